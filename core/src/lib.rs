@@ -1,0 +1,9 @@
+//! # splinelab
+//!
+//! Spline and Bézier numerics written once over a generic scalar
+//! ([`scalar::Real`]) and run in `f64` and in MPFR arbitrary precision
+//! ([`scalar::Mp`]), so that every f64 result has a high-precision twin.
+//!
+//! This crate is pure mathematics: it never prints, plots or reads files.
+
+pub mod scalar;

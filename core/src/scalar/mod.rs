@@ -1,0 +1,119 @@
+//! The scalar abstraction: one trait bound, [`Real`], for every algorithm in
+//! splinelab, implemented for `f64` and for the MPFR type [`Mp`].
+//!
+//! `Real` extends nalgebra's [`RealField`] (so nalgebra's LU, QR and SVD run in
+//! both precisions) with what a precision study needs: the unit roundoff,
+//! lossless or correctly rounded conversions, exact rationals and decimal
+//! output with a requested number of significant digits.
+
+mod eft;
+mod mp;
+
+pub use eft::{fast_two_sum, two_prod, two_sum};
+pub use mp::Mp;
+
+use nalgebra::RealField;
+use rug::{Float, Rational};
+
+/// A real scalar with a known, fixed binary precision.
+///
+/// Implemented for `f64` (53 bits) and [`Mp<BITS>`](Mp) (`BITS` bits). The
+/// precision is part of the type: no global state decides how an operation
+/// rounds, so two threads computing in `Mp<128>` and `Mp<256>` never interfere.
+pub trait Real: RealField {
+    /// Significand precision in bits (53 for `f64`).
+    const BITS: u32;
+
+    /// Short name of the type for tables and JSON (`"f64"`, `"mp256"`).
+    fn type_name() -> String;
+
+    /// Unit roundoff `u = 2^(−BITS)`: the relative error bound of one
+    /// correctly rounded operation (round to nearest).
+    fn unit_roundoff() -> Self {
+        Self::from_f64_exact(1.0).scale_by_pow2(-(Self::BITS as i32))
+    }
+
+    /// `x · 2^k`, exact unless it overflows or underflows.
+    fn scale_by_pow2(self, k: i32) -> Self;
+
+    /// Converts an `f64`. Exact whenever `BITS ≥ 53` (always, for the types
+    /// provided here at 53 bits or more); rounds to nearest otherwise.
+    fn from_f64_exact(x: f64) -> Self;
+
+    /// Converts to `f64`, correctly rounded (round to nearest, ties to even).
+    fn to_f64(&self) -> f64;
+
+    /// Converts an exact rational, correctly rounded to this precision.
+    fn from_rational(q: &Rational) -> Self;
+
+    /// The exact rational value, `None` for NaN or infinities.
+    fn to_rational(&self) -> Option<Rational>;
+
+    /// Converts a small integer exactly (`|n| < 2^BITS`).
+    fn from_i64(n: i64) -> Self {
+        Self::from_rational(&Rational::from(n))
+    }
+
+    /// The value as an MPFR float of the same precision (lossless).
+    fn to_float(&self) -> Float;
+
+    /// Decimal string with `digits` significant digits, scientific notation
+    /// (e.g. `"1.602462888e13"`), or `"NaN"`, `"inf"`, `"-inf"`.
+    fn to_decimal(&self, digits: usize) -> String {
+        decimal_string(&self.to_float(), digits)
+    }
+
+    /// The number of significant decimal digits that this precision carries:
+    /// `⌈BITS · log10 2⌉ + 1`, enough to round-trip.
+    fn decimal_digits() -> usize {
+        (Self::BITS as f64 * std::f64::consts::LOG10_2).ceil() as usize + 1
+    }
+}
+
+/// Formats an MPFR float with `digits` significant decimal digits.
+pub fn decimal_string(x: &Float, digits: usize) -> String {
+    if x.is_nan() {
+        return "NaN".into();
+    }
+    if x.is_infinite() {
+        return if x.is_sign_negative() { "-inf" } else { "inf" }.into();
+    }
+    x.to_string_radix(10, Some(digits.max(1)))
+}
+
+impl Real for f64 {
+    const BITS: u32 = 53;
+
+    fn type_name() -> String {
+        "f64".into()
+    }
+
+    fn scale_by_pow2(self, k: i32) -> Self {
+        // Split the exponent so that 2^k itself never overflows.
+        let half = k / 2;
+        self * 2f64.powi(half) * 2f64.powi(k - half)
+    }
+
+    fn from_f64_exact(x: f64) -> Self {
+        x
+    }
+
+    fn to_f64(&self) -> f64 {
+        *self
+    }
+
+    fn from_rational(q: &Rational) -> Self {
+        // `Rational::to_f64` truncates; go through a correctly rounded 53-bit
+        // MPFR value instead. Exact exponent range of f64 is kept by MPFR's
+        // wider range, so only subnormal results can double-round.
+        Float::with_val(53, q).to_f64()
+    }
+
+    fn to_rational(&self) -> Option<Rational> {
+        Rational::from_f64(*self)
+    }
+
+    fn to_float(&self) -> Float {
+        Float::with_val(53, *self)
+    }
+}
