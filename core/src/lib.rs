@@ -7,3 +7,5 @@
 //! This crate is pure mathematics: it never prints, plots or reads files.
 
 pub mod scalar;
+pub mod bernstein;
+pub mod conditioning;

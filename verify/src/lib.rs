@@ -1,1 +1,8 @@
-//! verify
+//! # splinelab-verify
+//!
+//! Measures the numerics of [`splinelab`] against independent references
+//! (higher-precision MPFR runs, exact rationals, closed forms) and returns the
+//! studies as plain serde data for the reports.
+
+pub mod conditioning;
+pub mod metrics;

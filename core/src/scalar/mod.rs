@@ -12,6 +12,15 @@ mod mp;
 pub use eft::{fast_two_sum, two_prod, two_sum};
 pub use mp::Mp;
 
+/// What generic numerical code needs in scope: the scalar trait, the MPFR
+/// type, and the supertraits whose methods (`pi()`, `sqrt()`, `zero()`, …)
+/// are called on concrete types.
+pub mod prelude {
+    pub use super::{Mp, Real};
+    pub use nalgebra::{ComplexField, RealField};
+    pub use num_traits::{One, Zero};
+}
+
 use nalgebra::RealField;
 use rug::{Float, Rational};
 
@@ -49,8 +58,10 @@ pub trait Real: RealField {
     /// The exact rational value, `None` for NaN or infinities.
     fn to_rational(&self) -> Option<Rational>;
 
-    /// Converts a small integer exactly (`|n| < 2^BITS`).
-    fn from_i64(n: i64) -> Self {
+    /// Converts an integer exactly (`|n| < 2^BITS`), correctly rounded
+    /// otherwise. (Named `from_int` because num-traits' `FromPrimitive`,
+    /// also a supertrait, already has an `Option`-returning `from_i64`.)
+    fn from_int(n: i64) -> Self {
         Self::from_rational(&Rational::from(n))
     }
 

@@ -91,7 +91,7 @@ impl<const BITS: u32> Real for Mp<BITS> {
         self.0.to_rational()
     }
 
-    fn from_i64(n: i64) -> Self {
+    fn from_int(n: i64) -> Self {
         Mp::new(n)
     }
 

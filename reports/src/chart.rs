@@ -1,0 +1,230 @@
+//! SVG line and scatter charts (plotters, SVG backend, no system fonts).
+//!
+//! Log axes are drawn by plotting `log10` of the data on a linear axis and
+//! labelling ticks `1e k`: one code path for every axis combination. Charts
+//! refuse non-finite points (and non-positive ones on a log axis) with an
+//! error naming the series, so a NaN can never slip silently into a picture.
+
+use plotters::prelude::*;
+
+/// How a series is drawn.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Style {
+    /// A polyline through the points.
+    Line,
+    /// Markers only (scatter).
+    Points,
+    /// A polyline with markers.
+    LinePoints,
+}
+
+/// One named series of `(x, y)` points.
+#[derive(Debug, Clone)]
+pub struct Series {
+    /// Legend label.
+    pub name: String,
+    /// The data.
+    pub points: Vec<(f64, f64)>,
+    /// How to draw it.
+    pub style: Style,
+}
+
+impl Series {
+    /// A series drawn as a line.
+    pub fn line(name: impl Into<String>, points: Vec<(f64, f64)>) -> Self {
+        Series { name: name.into(), points, style: Style::Line }
+    }
+    /// A series drawn as markers.
+    pub fn points(name: impl Into<String>, points: Vec<(f64, f64)>) -> Self {
+        Series { name: name.into(), points, style: Style::Points }
+    }
+    /// A series drawn as a line with markers.
+    pub fn line_points(name: impl Into<String>, points: Vec<(f64, f64)>) -> Self {
+        Series { name: name.into(), points, style: Style::LinePoints }
+    }
+}
+
+/// A chart: title, axis labels, log flags and its series.
+#[derive(Debug, Clone)]
+pub struct Chart {
+    /// File stem of the SVG (`cond_vs_degree` → `cond_vs_degree.svg`).
+    pub id: String,
+    /// Title drawn above the plot.
+    pub title: String,
+    /// X axis label.
+    pub x_label: String,
+    /// Y axis label.
+    pub y_label: String,
+    /// Logarithmic x axis.
+    pub x_log: bool,
+    /// Logarithmic y axis.
+    pub y_log: bool,
+    /// The data.
+    pub series: Vec<Series>,
+    /// One sentence saying what the reader should see.
+    pub caption: String,
+}
+
+/// Why a chart could not be drawn.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum ChartError {
+    /// A point is NaN or infinite.
+    #[error("series '{0}' has a non-finite point")]
+    NonFinite(String),
+    /// A point is ≤ 0 on a logarithmic axis.
+    #[error("series '{0}' has a non-positive value on a log axis")]
+    NonPositive(String),
+    /// No series has any point.
+    #[error("no data")]
+    Empty,
+    /// plotters failed.
+    #[error("drawing failed: {0}")]
+    Draw(String),
+}
+
+const PALETTE: [RGBColor; 8] = [
+    RGBColor(31, 119, 180),
+    RGBColor(255, 127, 14),
+    RGBColor(44, 160, 44),
+    RGBColor(214, 39, 40),
+    RGBColor(148, 103, 189),
+    RGBColor(140, 86, 75),
+    RGBColor(227, 119, 194),
+    RGBColor(127, 127, 127),
+];
+
+fn transform(v: f64, log: bool, name: &str) -> Result<f64, ChartError> {
+    if !v.is_finite() {
+        return Err(ChartError::NonFinite(name.to_string()));
+    }
+    if log {
+        if v <= 0.0 {
+            return Err(ChartError::NonPositive(name.to_string()));
+        }
+        Ok(v.log10())
+    } else {
+        Ok(v)
+    }
+}
+
+fn padded(lo: f64, hi: f64) -> (f64, f64) {
+    let pad = if hi > lo { (hi - lo) * 0.05 } else { lo.abs().max(1.0) * 0.05 };
+    (lo - pad, hi + pad)
+}
+
+fn tick_label(v: f64, log: bool) -> String {
+    if log {
+        format!("1e{}", v.round() as i64)
+    } else if v != 0.0 && (v.abs() >= 1e5 || v.abs() < 1e-3) {
+        format!("{v:.1e}")
+    } else {
+        format!("{v:.3}").trim_end_matches('0').trim_end_matches('.').to_string()
+    }
+}
+
+impl Chart {
+    /// Renders the chart as an SVG document (720 × 440 px).
+    pub fn render_svg(&self) -> Result<String, ChartError> {
+        let mut data = Vec::with_capacity(self.series.len());
+        for s in &self.series {
+            let pts = s
+                .points
+                .iter()
+                .map(|&(x, y)| {
+                    Ok((transform(x, self.x_log, &s.name)?, transform(y, self.y_log, &s.name)?))
+                })
+                .collect::<Result<Vec<_>, ChartError>>()?;
+            data.push(pts);
+        }
+        let all = || data.iter().flatten();
+        if all().next().is_none() {
+            return Err(ChartError::Empty);
+        }
+        let fold = |f: fn(&(f64, f64)) -> f64| {
+            all().map(f).fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| (a.min(v), b.max(v)))
+        };
+        let (x0, x1) = padded(fold(|p| p.0).0, fold(|p| p.0).1);
+        let (y0, y1) = padded(fold(|p| p.1).0, fold(|p| p.1).1);
+        let mut svg = String::new();
+        self.draw(&mut svg, &data, (x0..x1, y0..y1)).map_err(|e| ChartError::Draw(e.to_string()))?;
+        Ok(svg)
+    }
+
+    fn draw(
+        &self,
+        svg: &mut String,
+        data: &[Vec<(f64, f64)>],
+        (xr, yr): (std::ops::Range<f64>, std::ops::Range<f64>),
+    ) -> Result<(), Box<dyn std::error::Error + '_>> {
+        let root = SVGBackend::with_string(svg, (720, 440)).into_drawing_area();
+        root.fill(&WHITE)?;
+        let mut chart = ChartBuilder::on(&root)
+            .caption(&self.title, ("sans-serif", 18))
+            .margin(12)
+            .x_label_area_size(40)
+            .y_label_area_size(64)
+            .build_cartesian_2d(xr, yr)?;
+        let (xl, yl) = (self.x_log, self.y_log);
+        chart
+            .configure_mesh()
+            .x_desc(self.x_label.as_str())
+            .y_desc(self.y_label.as_str())
+            .x_label_formatter(&|v| tick_label(*v, xl))
+            .y_label_formatter(&|v| tick_label(*v, yl))
+            .draw()?;
+        for (k, (s, pts)) in self.series.iter().zip(data).enumerate() {
+            let color = PALETTE[k % PALETTE.len()];
+            let legend = move |(x, y): (i32, i32)| {
+                PathElement::new(vec![(x, y), (x + 18, y)], color.stroke_width(2))
+            };
+            if s.style != Style::Points {
+                chart
+                    .draw_series(LineSeries::new(pts.iter().copied(), color.stroke_width(2)))?
+                    .label(&s.name)
+                    .legend(legend);
+            }
+            if s.style != Style::Line {
+                let marks = chart.draw_series(
+                    pts.iter().map(|&p| Circle::new(p, 3, color.filled())),
+                )?;
+                if s.style == Style::Points {
+                    marks.label(&s.name).legend(legend);
+                }
+            }
+        }
+        chart
+            .configure_series_labels()
+            .background_style(WHITE.mix(0.85))
+            .border_style(BLACK)
+            .position(SeriesLabelPosition::UpperLeft)
+            .draw()?;
+        root.present()?;
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_nan_point_is_refused_with_the_series_named() {
+        let c = Chart {
+            id: "t".into(),
+            title: "t".into(),
+            x_label: "x".into(),
+            y_label: "y".into(),
+            x_log: false,
+            y_log: true,
+            series: vec![Series::line("bad", vec![(1.0, 1.0), (2.0, f64::NAN)])],
+            caption: String::new(),
+        };
+        assert_eq!(c.render_svg(), Err(ChartError::NonFinite("bad".into())));
+        let mut c2 = c.clone();
+        c2.series = vec![Series::line("neg", vec![(1.0, -1.0)])];
+        assert_eq!(c2.render_svg(), Err(ChartError::NonPositive("neg".into())));
+        c2.series = vec![Series::points("ok", vec![(1.0, 10.0), (2.0, 1000.0)])];
+        let svg = c2.render_svg().unwrap();
+        assert!(svg.starts_with("<svg") && svg.contains("1e3"));
+    }
+}

@@ -1,0 +1,39 @@
+//! Subcommands of `splinelab`, one file each. A new command adds one variant
+//! to [`Command`] and one arm to [`run`].
+
+pub mod cond;
+pub mod prec;
+pub mod report;
+
+use crate::error::CliError;
+use clap::{Parser, Subcommand};
+use std::process::ExitCode;
+
+/// splinelab: precision studies of spline and Bézier algorithms in f64 and
+/// MPFR arbitrary precision.
+#[derive(Debug, Parser)]
+#[command(name = "splinelab", version, about, long_about = None)]
+pub struct Cli {
+    /// The subcommand to run.
+    #[command(subcommand)]
+    pub command: Command,
+}
+
+/// The subcommands.
+#[derive(Debug, Subcommand)]
+pub enum Command {
+    /// Condition numbers of Bernstein (or monomial) Vandermonde matrices.
+    Cond(cond::CondArgs),
+    /// Run every study and write the HTML report, charts and summary.json.
+    Report(report::ReportArgs),
+}
+
+/// Runs a parsed command. `Ok` carries the exit code (0 unless a command
+/// defines others, like a regression compare).
+pub fn run(command: &Command) -> Result<ExitCode, CliError> {
+    match command {
+        Command::Cond(a) => cond::run(a),
+        Command::Report(a) => report::run(a),
+    }
+    .map(|()| ExitCode::SUCCESS)
+}

@@ -1,0 +1,24 @@
+//! `splinelab report`: run every study and write the report.
+
+use crate::error::CliError;
+use crate::report::{Profile, write_report};
+use clap::Args;
+use std::path::PathBuf;
+
+/// Arguments of `splinelab report`.
+#[derive(Debug, Args)]
+pub struct ReportArgs {
+    /// Output folder: index.html, summary.json and one .svg per chart.
+    #[arg(long)]
+    pub out: PathBuf,
+    /// Short sweeps for CI (under 30 s); the full report takes a few minutes.
+    #[arg(long)]
+    pub quick: bool,
+}
+
+/// Runs `splinelab report`.
+pub fn run(args: &ReportArgs) -> Result<(), CliError> {
+    let index = write_report(&args.out, &Profile { quick: args.quick })?;
+    eprintln!("report written: {}", index.display());
+    Ok(())
+}

@@ -1,0 +1,11 @@
+//! # splinelab-reports
+//!
+//! Presents the studies of `splinelab-verify`: the `splinelab` command line,
+//! an HTML report with SVG charts (plotters), and machine-readable JSON.
+
+pub mod chart;
+pub mod cli;
+pub mod error;
+pub mod html;
+pub mod output;
+pub mod report;

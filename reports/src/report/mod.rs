@@ -1,0 +1,102 @@
+//! The HTML report: one self-contained `index.html` assembled from the
+//! sections of every study, each chart also written as its own `.svg`, and
+//! `summary.json` with every section's headline figures.
+//!
+//! Adding a study means writing one `section` function (see
+//! [`sections::SECTIONS`]) that returns a [`Section`].
+
+pub mod conditioning;
+pub mod sections;
+
+use crate::chart::Chart;
+use crate::error::CliError;
+use crate::html::escape;
+use crate::output::write_atomic;
+use serde_json::{Map, Value, json};
+use std::path::Path;
+use std::time::Instant;
+
+/// How much work the report does.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Profile {
+    /// A short sweep for CI (the whole report in under 30 s).
+    pub quick: bool,
+}
+
+/// What a study contributes to the report.
+#[derive(Debug, Clone)]
+pub struct Section {
+    /// Stable identifier: the HTML anchor and the key in `summary.json`.
+    pub id: &'static str,
+    /// Heading.
+    pub title: String,
+    /// Body HTML (built with [`crate::html`]); charts are appended after it.
+    pub html: String,
+    /// Charts, drawn inline and written as `<id>.svg`.
+    pub charts: Vec<Chart>,
+    /// Headline figures for `summary.json`.
+    pub summary: Value,
+}
+
+/// A section's error, with the section named.
+pub type ReportError = CliError;
+
+/// A function that runs one study and presents it.
+pub type SectionFn = fn(&Profile) -> Result<Section, ReportError>;
+
+const STYLE: &str = "body{font-family:sans-serif;max-width:1000px;margin:2em auto;padding:0 1em;color:#222}\
+table{border-collapse:collapse;margin:1em 0;font-size:90%}td,th{border:1px solid #bbb;padding:3px 8px;text-align:right}\
+caption{font-weight:bold;margin-bottom:.3em}figure{margin:1.5em 0}figcaption{font-size:90%;color:#444}\
+nav li{margin:.2em 0}.meta{color:#666;font-size:90%}";
+
+fn render_section(s: &Section, seconds: f64, dir: &Path) -> Result<String, CliError> {
+    let mut html = format!("<section id=\"{}\">\n<h2>{}</h2>\n{}", s.id, escape(&s.title), s.html);
+    for chart in &s.charts {
+        let svg = chart.render_svg().map_err(|e| CliError::Chart(chart.id.clone(), e.to_string()))?;
+        write_atomic(&dir.join(format!("{}.svg", chart.id)), svg.as_bytes())?;
+        html.push_str(&format!(
+            "<figure>{svg}<figcaption>{} (<a href=\"{}.svg\">SVG</a>)</figcaption></figure>\n",
+            escape(&chart.caption),
+            chart.id
+        ));
+    }
+    html.push_str(&format!("<p class=\"meta\">Section computed in {seconds:.2} s.</p>\n</section>\n"));
+    Ok(html)
+}
+
+/// Runs every section and writes `index.html`, `summary.json` and the
+/// charts into `dir` (created if needed). Returns the path of `index.html`.
+pub fn write_report(dir: &Path, profile: &Profile) -> Result<std::path::PathBuf, CliError> {
+    std::fs::create_dir_all(dir).map_err(|source| CliError::Output { path: dir.into(), source })?;
+    let start = Instant::now();
+    let mut body = String::new();
+    let mut toc = String::new();
+    let mut summary = Map::new();
+    let mut timings = Map::new();
+    for section_fn in sections::SECTIONS {
+        let t = Instant::now();
+        let section = section_fn(profile)?;
+        let seconds = t.elapsed().as_secs_f64();
+        body.push_str(&render_section(&section, seconds, dir)?);
+        toc.push_str(&format!("<li><a href=\"#{}\">{}</a></li>", section.id, escape(&section.title)));
+        summary.insert(section.id.to_string(), section.summary);
+        timings.insert(section.id.to_string(), json!(seconds));
+    }
+    let total = start.elapsed().as_secs_f64();
+    summary.insert(
+        "report".into(),
+        json!({"profile": if profile.quick { "quick" } else { "full" }, "seconds": total, "section_seconds": timings}),
+    );
+    let page = format!(
+        "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>splinelab report</title>\
+         <style>{STYLE}</style></head><body>\n<h1>splinelab report</h1>\n<p class=\"meta\">Profile: {}; \
+         computed in {total:.1} s. Machine-readable figures: <a href=\"summary.json\">summary.json</a>.</p>\n\
+         <nav><ul>{toc}</ul></nav>\n{body}</body></html>\n",
+        if profile.quick { "quick" } else { "full" }
+    );
+    let summary = serde_json::to_string_pretty(&Value::Object(summary)).map_err(CliError::numerical)?;
+    write_atomic(&dir.join("summary.json"), summary.as_bytes())?;
+    let index = dir.join("index.html");
+    write_atomic(&index, page.as_bytes())?;
+    Ok(index)
+}

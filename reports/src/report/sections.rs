@@ -1,0 +1,6 @@
+//! The registry of report sections, in page order. A study adds one line.
+
+use super::SectionFn;
+
+/// Every section of the report, in the order they appear.
+pub const SECTIONS: &[SectionFn] = &[super::conditioning::section];

@@ -1,0 +1,9 @@
+#!/usr/bin/env bash
+# The test command: set up the machine, then run every test (unit, property,
+# integration and doc tests). Tests run in the release profile, which the
+# report shares, so the two commands compile the workspace once.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash scripts/setup.sh
+[ -f "$HOME/.cargo/env" ] && . "$HOME/.cargo/env"
+cargo test --release --workspace "$@"
