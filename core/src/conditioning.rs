@@ -38,7 +38,10 @@ const SVD_SWEEPS_PER_VALUE: usize = 100;
 
 fn check<T: Real>(a: &DMatrix<T>) -> Result<(), ConditionError> {
     if a.nrows() != a.ncols() || a.is_empty() {
-        return Err(ConditionError::Shape { rows: a.nrows(), cols: a.ncols() });
+        return Err(ConditionError::Shape {
+            rows: a.nrows(),
+            cols: a.ncols(),
+        });
     }
     if a.iter().any(|x| !x.is_finite()) {
         return Err(ConditionError::NonFinite);
@@ -97,7 +100,11 @@ pub fn norm_inf<T: Real>(a: &DMatrix<T>) -> T {
 /// relative error `O(n u cond)`, hence so does the result.
 pub fn cond_inf<T: Real>(a: &DMatrix<T>) -> Result<T, ConditionError> {
     check(a)?;
-    let inv = a.clone().lu().try_inverse().ok_or(ConditionError::Singular)?;
+    let inv = a
+        .clone()
+        .lu()
+        .try_inverse()
+        .ok_or(ConditionError::Singular)?;
     if inv.iter().any(|x| !x.is_finite()) {
         return Err(ConditionError::Singular);
     }

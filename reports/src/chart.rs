@@ -32,15 +32,27 @@ pub struct Series {
 impl Series {
     /// A series drawn as a line.
     pub fn line(name: impl Into<String>, points: Vec<(f64, f64)>) -> Self {
-        Series { name: name.into(), points, style: Style::Line }
+        Series {
+            name: name.into(),
+            points,
+            style: Style::Line,
+        }
     }
     /// A series drawn as markers.
     pub fn points(name: impl Into<String>, points: Vec<(f64, f64)>) -> Self {
-        Series { name: name.into(), points, style: Style::Points }
+        Series {
+            name: name.into(),
+            points,
+            style: Style::Points,
+        }
     }
     /// A series drawn as a line with markers.
     pub fn line_points(name: impl Into<String>, points: Vec<(f64, f64)>) -> Self {
-        Series { name: name.into(), points, style: Style::LinePoints }
+        Series {
+            name: name.into(),
+            points,
+            style: Style::LinePoints,
+        }
     }
 }
 
@@ -108,7 +120,11 @@ fn transform(v: f64, log: bool, name: &str) -> Result<f64, ChartError> {
 }
 
 fn padded(lo: f64, hi: f64) -> (f64, f64) {
-    let pad = if hi > lo { (hi - lo) * 0.05 } else { lo.abs().max(1.0) * 0.05 };
+    let pad = if hi > lo {
+        (hi - lo) * 0.05
+    } else {
+        lo.abs().max(1.0) * 0.05
+    };
     (lo - pad, hi + pad)
 }
 
@@ -118,7 +134,10 @@ fn tick_label(v: f64, log: bool) -> String {
     } else if v != 0.0 && (v.abs() >= 1e5 || v.abs() < 1e-3) {
         format!("{v:.1e}")
     } else {
-        format!("{v:.3}").trim_end_matches('0').trim_end_matches('.').to_string()
+        format!("{v:.3}")
+            .trim_end_matches('0')
+            .trim_end_matches('.')
+            .to_string()
     }
 }
 
@@ -131,7 +150,10 @@ impl Chart {
                 .points
                 .iter()
                 .map(|&(x, y)| {
-                    Ok((transform(x, self.x_log, &s.name)?, transform(y, self.y_log, &s.name)?))
+                    Ok((
+                        transform(x, self.x_log, &s.name)?,
+                        transform(y, self.y_log, &s.name)?,
+                    ))
                 })
                 .collect::<Result<Vec<_>, ChartError>>()?;
             data.push(pts);
@@ -141,12 +163,17 @@ impl Chart {
             return Err(ChartError::Empty);
         }
         let fold = |f: fn(&(f64, f64)) -> f64| {
-            all().map(f).fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| (a.min(v), b.max(v)))
+            all()
+                .map(f)
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| {
+                    (a.min(v), b.max(v))
+                })
         };
         let (x0, x1) = padded(fold(|p| p.0).0, fold(|p| p.0).1);
         let (y0, y1) = padded(fold(|p| p.1).0, fold(|p| p.1).1);
         let mut svg = String::new();
-        self.draw(&mut svg, &data, (x0..x1, y0..y1)).map_err(|e| ChartError::Draw(e.to_string()))?;
+        self.draw(&mut svg, &data, (x0..x1, y0..y1))
+            .map_err(|e| ChartError::Draw(e.to_string()))?;
         Ok(svg)
     }
 
@@ -184,9 +211,8 @@ impl Chart {
                     .legend(legend);
             }
             if s.style != Style::Line {
-                let marks = chart.draw_series(
-                    pts.iter().map(|&p| Circle::new(p, 3, color.filled())),
-                )?;
+                let marks =
+                    chart.draw_series(pts.iter().map(|&p| Circle::new(p, 3, color.filled())))?;
                 if s.style == Style::Points {
                     marks.label(&s.name).legend(legend);
                 }

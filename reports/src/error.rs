@@ -41,7 +41,10 @@ pub enum CliError {
 impl CliError {
     /// Shorthand for [`CliError::InvalidArgument`].
     pub fn invalid(arg: &'static str, why: impl Into<String>) -> Self {
-        CliError::InvalidArgument { arg, why: why.into() }
+        CliError::InvalidArgument {
+            arg,
+            why: why.into(),
+        }
     }
 
     /// Wraps any displayable numerical error.

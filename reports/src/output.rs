@@ -7,8 +7,14 @@ use std::path::Path;
 /// then renamed over it, so a reader sees the old file or the new one, never
 /// a truncated mixture.
 pub fn write_atomic(path: &Path, contents: &[u8]) -> Result<(), CliError> {
-    let err = |source| CliError::Output { path: path.to_path_buf(), source };
-    let name = path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
+    let err = |source| CliError::Output {
+        path: path.to_path_buf(),
+        source,
+    };
+    let name = path
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default();
     let tmp = path.with_file_name(format!(".{name}.tmp{}", std::process::id()));
     std::fs::write(&tmp, contents).map_err(err)?;
     std::fs::rename(&tmp, path).map_err(|e| {
@@ -19,5 +25,8 @@ pub fn write_atomic(path: &Path, contents: &[u8]) -> Result<(), CliError> {
 
 /// Prints a JSON value to stdout, pretty-printed.
 pub fn print_json(value: &serde_json::Value) {
-    println!("{}", serde_json::to_string_pretty(value).unwrap_or_else(|_| value.to_string()));
+    println!(
+        "{}",
+        serde_json::to_string_pretty(value).unwrap_or_else(|_| value.to_string())
+    );
 }

@@ -89,9 +89,15 @@ pub fn condition_numbers<T: Real>(case: &CondCase) -> Result<CondPair<T>, StudyE
     };
     let (c2, ci) = (cond2(&a)?, cond_inf(&a)?);
     Ok(if case.tensor {
-        CondPair { cond2: c2.clone() * c2, cond_inf: ci.clone() * ci }
+        CondPair {
+            cond2: c2.clone() * c2,
+            cond_inf: ci.clone() * ci,
+        }
     } else {
-        CondPair { cond2: c2, cond_inf: ci }
+        CondPair {
+            cond2: c2,
+            cond_inf: ci,
+        }
     })
 }
 
@@ -153,7 +159,12 @@ pub fn run_conditioning(degrees: &[usize]) -> Result<Vec<CondRow>, StudyError> {
         .into_iter()
         .flat_map(|basis| {
             NodeFamily::ALL.into_iter().flat_map(move |nodes| {
-                degrees.iter().map(move |&degree| CondCase { degree, nodes, basis, tensor: false })
+                degrees.iter().map(move |&degree| CondCase {
+                    degree,
+                    nodes,
+                    basis,
+                    tensor: false,
+                })
             })
         })
         .collect();

@@ -6,3 +6,4 @@
 
 pub mod conditioning;
 pub mod metrics;
+pub mod bezier_eval;

@@ -62,7 +62,10 @@ mod tests {
     fn one_ulp_off_is_one_ulp() {
         let r = Float::with_val(200, 1.5);
         assert_eq!(ulps_f64(1.5 + f64::EPSILON, &r), 1.0);
-        assert_eq!(relative_error(&(1.5 + f64::EPSILON), &r), f64::EPSILON / 1.5);
+        assert_eq!(
+            relative_error(&(1.5 + f64::EPSILON), &r),
+            f64::EPSILON / 1.5
+        );
     }
 
     #[test]

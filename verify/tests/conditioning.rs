@@ -11,7 +11,9 @@ use splinelab_verify::metrics::relative_error;
 type M = Mp<256>;
 
 fn hilbert<T: Real>(n: usize) -> DMatrix<T> {
-    DMatrix::from_fn(n, n, |i, j| T::from_rational(&Rational::from((1, (i + j + 1) as i64))))
+    DMatrix::from_fn(n, n, |i, j| {
+        T::from_rational(&Rational::from((1, (i + j + 1) as i64)))
+    })
 }
 
 /// The exact inverse of the Hilbert matrix (1-based closed form):
@@ -54,14 +56,23 @@ fn mpfr_svd_gets_hilbert_condition_numbers_to_20_digits_and_f64_does_not() {
         let r = reference.to_float();
         let mp = cond2(&hilbert::<M>(n)).unwrap();
         let rel = relative_error(&mp, &r);
-        assert!(rel < 1e-20, "n={n}: Mp<256> cond2 {mp} vs reference {reference}: rel {rel:e}");
+        assert!(
+            rel < 1e-20,
+            "n={n}: Mp<256> cond2 {mp} vs reference {reference}: rel {rel:e}"
+        );
         // f64 loses about log10(cond) of its 16 digits, but stays within the
         // backward-error bound c·n·u·cond.
         let f = cond2(&hilbert::<f64>(n)).unwrap();
         let rel_f = relative_error(&f, &r);
         let c = reference.to_f64();
-        assert!(rel_f > 1e3 * f64::EPSILON, "n={n}: f64 unexpectedly kept all digits");
-        assert!(rel_f < 10.0 * n as f64 * f64::EPSILON * c, "n={n}: rel {rel_f:e}");
+        assert!(
+            rel_f > 1e3 * f64::EPSILON,
+            "n={n}: f64 unexpectedly kept all digits"
+        );
+        assert!(
+            rel_f < 10.0 * n as f64 * f64::EPSILON * c,
+            "n={n}: rel {rel_f:e}"
+        );
     }
     // Published: cond₂(H_10) ≈ 1.6025e13 (Higham, Accuracy and Stability of
     // Numerical Algorithms, 2nd ed., §28.1).
@@ -71,15 +82,26 @@ fn mpfr_svd_gets_hilbert_condition_numbers_to_20_digits_and_f64_does_not() {
 
 #[test]
 fn tensor_condition_numbers_are_products_of_the_univariate_ones() {
-    for (n, nodes) in [(3usize, NodeFamily::Equispaced), (4, NodeFamily::ChebyshevGauss)] {
+    for (n, nodes) in [
+        (3usize, NodeFamily::Equispaced),
+        (4, NodeFamily::ChebyshevGauss),
+    ] {
         let t: Vec<M> = nodes.nodes(n).unwrap();
         let full = tensor_bernstein_vandermonde(&t, &t);
-        let one = CondCase { degree: n, nodes, basis: Basis::Bernstein, tensor: false };
+        let one = CondCase {
+            degree: n,
+            nodes,
+            basis: Basis::Bernstein,
+            tensor: false,
+        };
         let uni = condition_numbers::<M>(&one).unwrap();
         let tol = M::from_f64_exact(1e-60);
         for (direct, product) in [
             (cond2(&full).unwrap(), uni.cond2.clone() * uni.cond2.clone()),
-            (cond_inf(&full).unwrap(), uni.cond_inf.clone() * uni.cond_inf.clone()),
+            (
+                cond_inf(&full).unwrap(),
+                uni.cond_inf.clone() * uni.cond_inf.clone(),
+            ),
         ] {
             let rel = ((direct.clone() - product.clone()) / product.clone()).abs();
             assert!(rel < tol, "n={n}: {direct} vs {product}");
@@ -91,7 +113,12 @@ fn tensor_condition_numbers_are_products_of_the_univariate_ones() {
 fn f64_bernstein_vandermonde_condition_matches_mpfr_to_the_digits_cond_eps_allows() {
     for nodes in NodeFamily::ALL {
         for degree in [2usize, 5, 10, 15, 20, 25, 30] {
-            let case = CondCase { degree, nodes, basis: Basis::Bernstein, tensor: false };
+            let case = CondCase {
+                degree,
+                nodes,
+                basis: Basis::Bernstein,
+                tensor: false,
+            };
             let row = measure(&case).unwrap();
             let rel = 10f64.powf(-row.cond2_digits);
             let allowed = 10.0 * (degree + 1) as f64 * f64::EPSILON * row.cond2_ref_f64;
@@ -102,7 +129,10 @@ fn f64_bernstein_vandermonde_condition_matches_mpfr_to_the_digits_cond_eps_allow
                 row.cond2_ref
             );
             let rel_inf = 10f64.powf(-row.cond_inf_digits);
-            assert!(rel_inf <= allowed.max(2.0 * f64::EPSILON), "{nodes} n={degree} cond_inf");
+            assert!(
+                rel_inf <= allowed.max(2.0 * f64::EPSILON),
+                "{nodes} n={degree} cond_inf"
+            );
         }
     }
 }
@@ -111,8 +141,20 @@ fn f64_bernstein_vandermonde_condition_matches_mpfr_to_the_digits_cond_eps_allow
 fn bernstein_basis_is_better_conditioned_than_monomial_at_high_degree() {
     // A known result (Farouki–Rajan 1988): at equispaced nodes on [0, 1] the
     // Bernstein basis is far better conditioned than the power basis.
-    let case = |basis| CondCase { degree: 20, nodes: NodeFamily::Equispaced, basis, tensor: false };
-    let b = condition_numbers::<M>(&case(Basis::Bernstein)).unwrap().cond2;
-    let m = condition_numbers::<M>(&case(Basis::Monomial)).unwrap().cond2;
-    assert!(m > b.clone() * M::from_int(1000), "bernstein {b}, monomial {m}");
+    let case = |basis| CondCase {
+        degree: 20,
+        nodes: NodeFamily::Equispaced,
+        basis,
+        tensor: false,
+    };
+    let b = condition_numbers::<M>(&case(Basis::Bernstein))
+        .unwrap()
+        .cond2;
+    let m = condition_numbers::<M>(&case(Basis::Monomial))
+        .unwrap()
+        .cond2;
+    assert!(
+        m > b.clone() * M::from_int(1000),
+        "bernstein {b}, monomial {m}"
+    );
 }

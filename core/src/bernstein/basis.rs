@@ -78,8 +78,8 @@ pub fn bernstein<T: Real>(n: u32, i: u32, t: &T) -> T {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scalar::prelude::*;
     use crate::scalar::Mp;
+    use crate::scalar::prelude::*;
     use rug::Rational;
 
     /// Exact B_i^n(t) at a rational t.

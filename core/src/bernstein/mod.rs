@@ -3,3 +3,9 @@
 
 pub mod basis;
 pub mod vandermonde;
+pub mod bezier;
+pub mod power_form;
+pub mod bernstein_sum;
+pub mod volk_schumaker;
+pub mod compensated;
+pub mod condition;

@@ -19,7 +19,9 @@ pub enum VandermondeError {
     #[error("degree must be at least 1, got {0}")]
     DegreeTooSmall(usize),
     /// A node family name that is not one of the known families.
-    #[error("unknown node family '{0}' (expected equispaced, chebyshev-lobatto or chebyshev-gauss)")]
+    #[error(
+        "unknown node family '{0}' (expected equispaced, chebyshev-lobatto or chebyshev-gauss)"
+    )]
     UnknownNodes(String),
 }
 
@@ -79,8 +81,11 @@ impl NodeFamily {
     /// The nodes as exact rationals, where they are rational (equispaced
     /// only); `None` for the Chebyshev families.
     pub fn exact_nodes(self, n: usize) -> Option<Vec<Rational>> {
-        (self == NodeFamily::Equispaced && n > 0)
-            .then(|| (0..=n).map(|j| Rational::from((j as i64, n as i64))).collect())
+        (self == NodeFamily::Equispaced && n > 0).then(|| {
+            (0..=n)
+                .map(|j| Rational::from((j as i64, n as i64)))
+                .collect()
+        })
     }
 }
 
@@ -147,8 +152,8 @@ pub fn tensor_bernstein_vandermonde<T: Real>(u: &[T], v: &[T]) -> DMatrix<T> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scalar::prelude::*;
     use crate::bernstein::basis::bernstein;
+    use crate::scalar::prelude::*;
 
     #[test]
     fn kronecker_equals_row_by_row_definition_of_eq_2() {
@@ -163,8 +168,8 @@ mod tests {
                     for j in 0..=n {
                         let row = a * (n + 1) + b;
                         let col = i * (n + 1) + j;
-                        let direct = bernstein(n as u32, i as u32, ua)
-                            * bernstein(n as u32, j as u32, vb);
+                        let direct =
+                            bernstein(n as u32, i as u32, ua) * bernstein(n as u32, j as u32, vb);
                         let got = tensor[(row, col)];
                         assert!((got - direct).abs() <= 1e-14 * direct.abs().max(1e-300));
                     }
@@ -195,7 +200,10 @@ mod tests {
             let theta = M::pi() * M::from_int(j as i64) / M::from_int(n as i64);
             let want = ((M::one() - theta.cos()) / M::from_int(2)).to_f64();
             // sin² form: within 4 ulps of the correctly rounded value.
-            assert!((t - want).abs() <= 4.0 * f64::EPSILON * want, "j={j}: {t} vs {want}");
+            assert!(
+                (t - want).abs() <= 4.0 * f64::EPSILON * want,
+                "j={j}: {t} vs {want}"
+            );
         }
     }
 }

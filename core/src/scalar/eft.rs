@@ -37,9 +37,15 @@ pub fn fast_two_sum(a: f64, b: f64) -> (f64, f64) {
     (s, e)
 }
 
-/// TwoProd: `a · b = p + e` exactly, using one fused multiply-add
-/// (`e = fma(a, b, −p)`). Exact unless `a·b` overflows or `e` underflows
-/// (needs `e_a + e_b ≥ −1022 + 53`).
+/// TwoProd: `a · b = p + e` exactly. Exact unless `a·b` overflows or `e`
+/// underflows (needs `e_a + e_b ≥ −1022 + 53`).
+///
+/// With hardware FMA (`target_feature = "fma"`) it is one fused multiply-add,
+/// `e = fma(a, b, −p)`, 2 flops. Without it, `f64::mul_add` falls back to a
+/// slow correctly rounded software routine, so Dekker's product (Veltkamp
+/// splitting into 26-bit halves, 17 flops) is used instead; it is exact under
+/// the same conditions provided `|a|, |b| < 2^995` so that the split cannot
+/// overflow.
 ///
 /// ```
 /// use splinelab::scalar::two_prod;
@@ -50,6 +56,27 @@ pub fn fast_two_sum(a: f64, b: f64) -> (f64, f64) {
 /// ```
 pub fn two_prod(a: f64, b: f64) -> (f64, f64) {
     let p = a * b;
-    let e = a.mul_add(b, -p);
-    (p, e)
+    (p, product_error(a, b, p))
+}
+
+#[cfg(target_feature = "fma")]
+fn product_error(a: f64, b: f64, p: f64) -> f64 {
+    a.mul_add(b, -p)
+}
+
+#[cfg(not(target_feature = "fma"))]
+fn product_error(a: f64, b: f64, p: f64) -> f64 {
+    let (ah, al) = split(a);
+    let (bh, bl) = split(b);
+    al * bl - (((p - ah * bh) - al * bh) - ah * bl)
+}
+
+/// Veltkamp's split `a = hi + lo` with `hi`, `lo` of at most 26 significant
+/// bits each (factor `2^27 + 1`), so their pairwise products are exact.
+#[cfg(not(target_feature = "fma"))]
+fn split(a: f64) -> (f64, f64) {
+    const FACTOR: f64 = 134_217_729.0; // 2^27 + 1
+    let c = FACTOR * a;
+    let hi = c - (c - a);
+    (hi, a - hi)
 }

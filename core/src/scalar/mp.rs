@@ -239,12 +239,6 @@ impl<const BITS: u32> Mp<BITS> {
         x.next_down();
         Mp(x)
     }
-    /// The smallest positive normal value `2^(emin − 1)`.
-    fn min_positive() -> Self {
-        let mut x = Float::with_val(BITS, 0);
-        x.next_up();
-        Mp(x)
-    }
 }
 
 // ---- approx ------------------------------------------------------------------
@@ -449,8 +443,8 @@ impl<const BITS: u32> ComplexField for Mp<BITS> {
         self.map(|x| x.exp_m1())
     }
     unary!(
-        floor, ceil, round, trunc, fract, sin, cos, tan, asin, acos, atan, sinh, cosh, tanh,
-        asinh, acosh, atanh, log2, log10, ln, sqrt, exp, exp2, cbrt
+        floor, ceil, round, trunc, fract, sin, cos, tan, asin, acos, atan, sinh, cosh, tanh, asinh,
+        acosh, atanh, log2, log10, ln, sqrt, exp, exp2, cbrt
     );
 }
 
@@ -476,8 +470,10 @@ impl<const BITS: u32> RealField for Mp<BITS> {
     fn atan2(self, other: Self) -> Self {
         self.map(|y| y.atan2(&other.0))
     }
+    /// The most negative finite value, as simba's f64 gives `f64::MIN`
+    /// (despite the trait's doc comment).
     fn min_value() -> Option<Self> {
-        Some(Self::min_positive())
+        Some(-Self::max_finite())
     }
     fn max_value() -> Option<Self> {
         Some(Self::max_finite())

@@ -45,19 +45,28 @@ pub enum BasisArg {
 }
 
 fn parse_nodes(s: &str) -> Result<NodeFamily, String> {
-    s.parse().map_err(|e: splinelab::bernstein::vandermonde::VandermondeError| e.to_string())
+    s.parse()
+        .map_err(|e: splinelab::bernstein::vandermonde::VandermondeError| e.to_string())
 }
 
 /// Runs `splinelab cond`.
 pub fn run(args: &CondArgs) -> Result<(), CliError> {
     if !(1..=MAX_DEGREE).contains(&args.degree) {
-        return Err(CliError::invalid("--degree", format!("{} is outside 1..={MAX_DEGREE}", args.degree)));
+        return Err(CliError::invalid(
+            "--degree",
+            format!("{} is outside 1..={MAX_DEGREE}", args.degree),
+        ));
     }
     let basis = match args.basis {
         BasisArg::Bernstein => Basis::Bernstein,
         BasisArg::Monomial => Basis::Monomial,
     };
-    let case = CondCase { degree: args.degree, nodes: args.nodes, basis, tensor: args.tensor };
+    let case = CondCase {
+        degree: args.degree,
+        nodes: args.nodes,
+        basis,
+        tensor: args.tensor,
+    };
     let prec = args.prec;
     let (cond2, cond_inf) = with_real!(prec, T => {
         let c = condition_numbers::<T>(&case).map_err(CliError::numerical)?;
@@ -75,10 +84,22 @@ pub fn run(args: &CondArgs) -> Result<(), CliError> {
             "cond_inf": cond_inf,
         }));
     } else {
-        let size = if case.tensor { (case.degree + 1).pow(2) } else { case.degree + 1 };
-        println!("{} Vandermonde, {} nodes, degree {} ({size}×{size}{})", basis.name(), case.nodes,
-            case.degree, if case.tensor { ", tensor" } else { "" });
-        println!("precision  {prec} (computed at {} bits)", prec.working_bits());
+        let size = if case.tensor {
+            (case.degree + 1).pow(2)
+        } else {
+            case.degree + 1
+        };
+        println!(
+            "{} Vandermonde, {} nodes, degree {} ({size}×{size}{})",
+            basis.name(),
+            case.nodes,
+            case.degree,
+            if case.tensor { ", tensor" } else { "" }
+        );
+        println!(
+            "precision  {prec} (computed at {} bits)",
+            prec.working_bits()
+        );
         println!("cond_2     {cond2}");
         println!("cond_inf   {cond_inf}");
     }

@@ -1,6 +1,8 @@
 //! Subcommands of `splinelab`, one file each. A new command adds one variant
 //! to [`Command`] and one arm to [`run`].
 
+pub mod bezier_eval;
+pub mod compare;
 pub mod cond;
 pub mod prec;
 pub mod report;
@@ -26,14 +28,20 @@ pub enum Command {
     Cond(cond::CondArgs),
     /// Run every study and write the HTML report, charts and summary.json.
     Report(report::ReportArgs),
+    /// Compare a summary.json with a baseline; exit 1 when a figure regressed.
+    Compare(compare::CompareArgs),
+    /// Evaluate a Bernstein polynomial by one method, with running error bounds.
+    BezierEval(bezier_eval::BezierEvalArgs),
 }
 
 /// Runs a parsed command. `Ok` carries the exit code (0 unless a command
 /// defines others, like a regression compare).
 pub fn run(command: &Command) -> Result<ExitCode, CliError> {
+    let done = |r: Result<(), CliError>| r.map(|()| ExitCode::SUCCESS);
     match command {
-        Command::Cond(a) => cond::run(a),
-        Command::Report(a) => report::run(a),
+        Command::Cond(a) => done(cond::run(a)),
+        Command::Report(a) => done(report::run(a)),
+        Command::Compare(a) => compare::run(a),
+        Command::BezierEval(a) => done(bezier_eval::run(a)),
     }
-    .map(|()| ExitCode::SUCCESS)
 }

@@ -39,7 +39,9 @@ impl FromStr for Prec {
         if s == "f64" {
             return Ok(Prec::F64);
         }
-        let bits: u32 = s.parse().map_err(|_| format!("'{s}' is neither 'f64' nor a bit count"))?;
+        let bits: u32 = s
+            .parse()
+            .map_err(|_| format!("'{s}' is neither 'f64' nor a bit count"))?;
         if !(MIN_BITS..=MAX_BITS).contains(&bits) {
             return Err(format!("{bits} bits is outside {MIN_BITS}..={MAX_BITS}"));
         }
@@ -62,7 +64,10 @@ impl Prec {
     pub fn working_bits(self) -> u32 {
         match self {
             Prec::F64 => 53,
-            Prec::Bits(b) => LADDER.into_iter().find(|&w| w >= b).unwrap_or(LADDER[LADDER.len() - 1]),
+            Prec::Bits(b) => LADDER
+                .into_iter()
+                .find(|&w| w >= b)
+                .unwrap_or(LADDER[LADDER.len() - 1]),
         }
     }
 
@@ -107,13 +112,34 @@ macro_rules! with_real {
     ($prec:expr, $T:ident => $body:expr) => {{
         use splinelab::scalar::Mp;
         match $prec.working_bits() {
-            53 => { type $T = f64; $body }
-            64 => { type $T = Mp<64>; $body }
-            128 => { type $T = Mp<128>; $body }
-            256 => { type $T = Mp<256>; $body }
-            512 => { type $T = Mp<512>; $body }
-            2048 => { type $T = Mp<2048>; $body }
-            _ => { type $T = Mp<1_048_576>; $body }
+            53 => {
+                type $T = f64;
+                $body
+            }
+            64 => {
+                type $T = Mp<64>;
+                $body
+            }
+            128 => {
+                type $T = Mp<128>;
+                $body
+            }
+            256 => {
+                type $T = Mp<256>;
+                $body
+            }
+            512 => {
+                type $T = Mp<512>;
+                $body
+            }
+            2048 => {
+                type $T = Mp<2048>;
+                $body
+            }
+            _ => {
+                type $T = Mp<1_048_576>;
+                $body
+            }
         }
     }};
 }

@@ -5,8 +5,13 @@
 //! Adding a study means writing one `section` function (see
 //! [`sections::SECTIONS`]) that returns a [`Section`].
 
+pub mod bezier_eval;
+pub mod compare;
 pub mod conditioning;
+pub mod figure;
 pub mod sections;
+
+pub use figure::Figure;
 
 use crate::chart::Chart;
 use crate::error::CliError;
@@ -34,8 +39,11 @@ pub struct Section {
     pub html: String,
     /// Charts, drawn inline and written as `<id>.svg`.
     pub charts: Vec<Chart>,
-    /// Headline figures for `summary.json`.
+    /// The section's data for `summary.json` (stored under its id).
     pub summary: Value,
+    /// Headline figures watched by `splinelab compare` (names start with the
+    /// section id); stored in `summary.json` under `figures`.
+    pub figures: Vec<Figure>,
 }
 
 /// A section's error, with the section named.
@@ -50,9 +58,16 @@ caption{font-weight:bold;margin-bottom:.3em}figure{margin:1.5em 0}figcaption{fon
 nav li{margin:.2em 0}.meta{color:#666;font-size:90%}";
 
 fn render_section(s: &Section, seconds: f64, dir: &Path) -> Result<String, CliError> {
-    let mut html = format!("<section id=\"{}\">\n<h2>{}</h2>\n{}", s.id, escape(&s.title), s.html);
+    let mut html = format!(
+        "<section id=\"{}\">\n<h2>{}</h2>\n{}",
+        s.id,
+        escape(&s.title),
+        s.html
+    );
     for chart in &s.charts {
-        let svg = chart.render_svg().map_err(|e| CliError::Chart(chart.id.clone(), e.to_string()))?;
+        let svg = chart
+            .render_svg()
+            .map_err(|e| CliError::Chart(chart.id.clone(), e.to_string()))?;
         write_atomic(&dir.join(format!("{}.svg", chart.id)), svg.as_bytes())?;
         html.push_str(&format!(
             "<figure>{svg}<figcaption>{} (<a href=\"{}.svg\">SVG</a>)</figcaption></figure>\n",
@@ -60,26 +75,65 @@ fn render_section(s: &Section, seconds: f64, dir: &Path) -> Result<String, CliEr
             chart.id
         ));
     }
-    html.push_str(&format!("<p class=\"meta\">Section computed in {seconds:.2} s.</p>\n</section>\n"));
+    html.push_str(&format!(
+        "<p class=\"meta\">Section computed in {seconds:.2} s.</p>\n</section>\n"
+    ));
     Ok(html)
+}
+
+/// Noise band for wall-clock figures: CI machines are shared and noisy, so a
+/// section must be 4× slower than the baseline before it counts as a regression.
+pub const TIME_BAND: f64 = 4.0;
+
+/// Section timings below half a second are noise, not signal.
+pub const TIME_FLOOR: f64 = 0.5;
+
+/// A figure must be finite and named after its section.
+fn check_figures(section: &str, figures: &[Figure]) -> Result<(), CliError> {
+    for f in figures {
+        if !f.value.is_finite() || !f.name.starts_with(&format!("{section}.")) {
+            return Err(CliError::Numerical(format!(
+                "section {section}: figure '{}' is not finite or not named '{section}.…' ({})",
+                f.name, f.value
+            )));
+        }
+    }
+    Ok(())
 }
 
 /// Runs every section and writes `index.html`, `summary.json` and the
 /// charts into `dir` (created if needed). Returns the path of `index.html`.
 pub fn write_report(dir: &Path, profile: &Profile) -> Result<std::path::PathBuf, CliError> {
-    std::fs::create_dir_all(dir).map_err(|source| CliError::Output { path: dir.into(), source })?;
+    std::fs::create_dir_all(dir).map_err(|source| CliError::Output {
+        path: dir.into(),
+        source,
+    })?;
     let start = Instant::now();
     let mut body = String::new();
     let mut toc = String::new();
     let mut summary = Map::new();
     let mut timings = Map::new();
+    let mut figures = Vec::new();
     for section_fn in sections::SECTIONS {
         let t = Instant::now();
         let section = section_fn(profile)?;
         let seconds = t.elapsed().as_secs_f64();
         body.push_str(&render_section(&section, seconds, dir)?);
-        toc.push_str(&format!("<li><a href=\"#{}\">{}</a></li>", section.id, escape(&section.title)));
+        toc.push_str(&format!(
+            "<li><a href=\"#{}\">{}</a></li>",
+            section.id,
+            escape(&section.title)
+        ));
         summary.insert(section.id.to_string(), section.summary);
+        check_figures(section.id, &section.figures)?;
+        figures.extend(section.figures);
+        let time = Figure::cost(
+            format!("report.{}.seconds", section.id),
+            seconds,
+            "s",
+            TIME_BAND,
+        );
+        figures.push(time.with_floor(TIME_FLOOR));
         timings.insert(section.id.to_string(), json!(seconds));
     }
     let total = start.elapsed().as_secs_f64();
@@ -94,7 +148,12 @@ pub fn write_report(dir: &Path, profile: &Profile) -> Result<std::path::PathBuf,
          <nav><ul>{toc}</ul></nav>\n{body}</body></html>\n",
         if profile.quick { "quick" } else { "full" }
     );
-    let summary = serde_json::to_string_pretty(&Value::Object(summary)).map_err(CliError::numerical)?;
+    summary.insert(
+        "figures".into(),
+        serde_json::to_value(&figures).map_err(CliError::numerical)?,
+    );
+    let summary =
+        serde_json::to_string_pretty(&Value::Object(summary)).map_err(CliError::numerical)?;
     write_atomic(&dir.join("summary.json"), summary.as_bytes())?;
     let index = dir.join("index.html");
     write_atomic(&index, page.as_bytes())?;

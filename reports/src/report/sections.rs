@@ -3,4 +3,7 @@
 use super::SectionFn;
 
 /// Every section of the report, in the order they appear.
-pub const SECTIONS: &[SectionFn] = &[super::conditioning::section];
+pub const SECTIONS: &[SectionFn] = &[
+    super::conditioning::section,
+    super::bezier_eval::section,
+];
