@@ -6,6 +6,10 @@
 //!
 //! This crate is pure mathematics: it never prints, plots or reads files.
 
-pub mod scalar;
 pub mod bernstein;
 pub mod conditioning;
+pub mod qi;
+pub mod quadrature;
+pub mod roots;
+pub mod scalar;
+pub mod sspline;

@@ -23,10 +23,10 @@ pub fn write_atomic(path: &Path, contents: &[u8]) -> Result<(), CliError> {
     })
 }
 
-/// Prints a JSON value to stdout, pretty-printed.
+/// Prints a JSON value to stdout, pretty-printed. A closed pipe (`| head`)
+/// is not worth a panic: the reader already has what it wanted.
 pub fn print_json(value: &serde_json::Value) {
-    println!(
-        "{}",
-        serde_json::to_string_pretty(value).unwrap_or_else(|_| value.to_string())
-    );
+    use std::io::Write;
+    let text = serde_json::to_string_pretty(value).unwrap_or_else(|_| value.to_string());
+    let _ = writeln!(std::io::stdout().lock(), "{text}");
 }

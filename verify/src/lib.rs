@@ -4,6 +4,8 @@
 //! (higher-precision MPFR runs, exact rationals, closed forms) and returns the
 //! studies as plain serde data for the reports.
 
+pub mod bezier_eval;
 pub mod conditioning;
 pub mod metrics;
-pub mod bezier_eval;
+pub mod qi;
+pub mod sspline;

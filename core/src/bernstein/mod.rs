@@ -2,10 +2,10 @@
 //! algorithms that evaluate polynomials given in Bernstein form.
 
 pub mod basis;
-pub mod vandermonde;
-pub mod bezier;
-pub mod power_form;
 pub mod bernstein_sum;
-pub mod volk_schumaker;
+pub mod bezier;
 pub mod compensated;
 pub mod condition;
+pub mod power_form;
+pub mod vandermonde;
+pub mod volk_schumaker;

@@ -93,9 +93,30 @@ fn evaluate<T: Real>(input: &Input, method: Method, prec: Prec) -> Result<Vec<Ro
         .collect()
 }
 
+/// Largest degree accepted: de Casteljau costs O(n²) per parameter, so a
+/// degree of 10⁴ is already ~0.1 s per t in f64.
+pub const MAX_DEGREE: usize = 10_000;
+/// Most parameters accepted in one call.
+pub const MAX_PARAMETERS: usize = 1_000_000;
+
 /// Runs `splinelab bezier-eval`.
 pub fn run(args: &BezierEvalArgs) -> Result<(), CliError> {
     let input = read_input(&args.input)?;
+    if input.coeffs.len() > MAX_DEGREE + 1 {
+        return Err(CliError::invalid(
+            "--input",
+            format!(
+                "{} coefficients: degree above {MAX_DEGREE}",
+                input.coeffs.len()
+            ),
+        ));
+    }
+    if input.t.len() > MAX_PARAMETERS {
+        return Err(CliError::invalid(
+            "--input",
+            format!("{} parameters: more than {MAX_PARAMETERS}", input.t.len()),
+        ));
+    }
     if args.method == Method::Compensated && args.prec != Prec::F64 {
         return Err(CliError::invalid(
             "--method",

@@ -2,10 +2,13 @@
 //! to [`Command`] and one arm to [`run`].
 
 pub mod bezier_eval;
+pub mod coeffs;
 pub mod compare;
 pub mod cond;
 pub mod prec;
+pub mod qi;
 pub mod report;
+pub mod width;
 
 use crate::error::CliError;
 use clap::{Parser, Subcommand};
@@ -32,6 +35,12 @@ pub enum Command {
     Compare(compare::CompareArgs),
     /// Evaluate a Bernstein polynomial by one method, with running error bounds.
     BezierEval(bezier_eval::BezierEvalArgs),
+    /// G2 interpolation of 3D points by quaternion-integral curves (Newton).
+    Qi(qi::QiArgs),
+    /// S-spline coefficients c_i and poles for an order or a Beta2 tension.
+    Coeffs(coeffs::CoeffsArgs),
+    /// Smallest S-spline truncation half-width meeting a tolerance.
+    Width(width::WidthArgs),
 }
 
 /// Runs a parsed command. `Ok` carries the exit code (0 unless a command
@@ -43,5 +52,8 @@ pub fn run(command: &Command) -> Result<ExitCode, CliError> {
         Command::Report(a) => done(report::run(a)),
         Command::Compare(a) => compare::run(a),
         Command::BezierEval(a) => done(bezier_eval::run(a)),
+        Command::Qi(a) => done(qi::run(a)),
+        Command::Coeffs(a) => done(coeffs::run(a)),
+        Command::Width(a) => done(width::run(a)),
     }
 }

@@ -14,11 +14,16 @@ pub struct ReportArgs {
     /// Short sweeps for CI (under 30 s); the full report takes a few minutes.
     #[arg(long)]
     pub quick: bool,
+    /// No progress bar (it is only drawn when stderr is a terminal anyway).
+    #[arg(long)]
+    pub quiet: bool,
 }
 
 /// Runs `splinelab report`.
 pub fn run(args: &ReportArgs) -> Result<(), CliError> {
-    let index = write_report(&args.out, &Profile { quick: args.quick })?;
-    eprintln!("report written: {}", index.display());
+    let index = write_report(&args.out, &Profile { quick: args.quick }, args.quiet)?;
+    if !args.quiet {
+        eprintln!("report written: {}", index.display());
+    }
     Ok(())
 }

@@ -51,6 +51,10 @@ pub fn read_figures(path: &Path) -> Result<Vec<Figure>, CliError> {
     let list = figures
         .as_array()
         .ok_or_else(|| bad("field 'figures' is not an array".into()))?;
+    if list.is_empty() {
+        // Comparing nothing would pass vacuously.
+        return Err(bad("field 'figures' is empty".into()));
+    }
     list.iter()
         .enumerate()
         .map(|(i, f)| {

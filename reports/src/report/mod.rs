@@ -9,7 +9,9 @@ pub mod bezier_eval;
 pub mod compare;
 pub mod conditioning;
 pub mod figure;
+pub mod qi;
 pub mod sections;
+pub mod sspline;
 
 pub use figure::Figure;
 
@@ -17,6 +19,7 @@ use crate::chart::Chart;
 use crate::error::CliError;
 use crate::html::escape;
 use crate::output::write_atomic;
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use serde_json::{Map, Value, json};
 use std::path::Path;
 use std::time::Instant;
@@ -101,9 +104,30 @@ fn check_figures(section: &str, figures: &[Figure]) -> Result<(), CliError> {
     Ok(())
 }
 
+/// A progress bar over the sections on stderr: drawn only when stderr is a
+/// terminal (indicatif hides it otherwise, e.g. in CI) and not `quiet`.
+fn progress(len: usize, quiet: bool) -> ProgressBar {
+    let target = if quiet {
+        ProgressDrawTarget::hidden()
+    } else {
+        ProgressDrawTarget::stderr()
+    };
+    let bar = ProgressBar::with_draw_target(Some(len as u64), target);
+    if let Ok(style) =
+        ProgressStyle::with_template("{bar:30} {pos}/{len} sections  {msg} ({elapsed})")
+    {
+        bar.set_style(style);
+    }
+    bar
+}
+
 /// Runs every section and writes `index.html`, `summary.json` and the
 /// charts into `dir` (created if needed). Returns the path of `index.html`.
-pub fn write_report(dir: &Path, profile: &Profile) -> Result<std::path::PathBuf, CliError> {
+pub fn write_report(
+    dir: &Path,
+    profile: &Profile,
+    quiet: bool,
+) -> Result<std::path::PathBuf, CliError> {
     std::fs::create_dir_all(dir).map_err(|source| CliError::Output {
         path: dir.into(),
         source,
@@ -114,9 +138,12 @@ pub fn write_report(dir: &Path, profile: &Profile) -> Result<std::path::PathBuf,
     let mut summary = Map::new();
     let mut timings = Map::new();
     let mut figures = Vec::new();
+    let bar = progress(sections::SECTIONS.len(), quiet);
     for section_fn in sections::SECTIONS {
         let t = Instant::now();
         let section = section_fn(profile)?;
+        bar.set_message(section.title.clone());
+        bar.inc(1);
         let seconds = t.elapsed().as_secs_f64();
         body.push_str(&render_section(&section, seconds, dir)?);
         toc.push_str(&format!(
@@ -136,6 +163,7 @@ pub fn write_report(dir: &Path, profile: &Profile) -> Result<std::path::PathBuf,
         figures.push(time.with_floor(TIME_FLOOR));
         timings.insert(section.id.to_string(), json!(seconds));
     }
+    bar.finish_and_clear();
     let total = start.elapsed().as_secs_f64();
     summary.insert(
         "report".into(),

@@ -6,4 +6,6 @@ use super::SectionFn;
 pub const SECTIONS: &[SectionFn] = &[
     super::conditioning::section,
     super::bezier_eval::section,
+    super::qi::section,
+    super::sspline::section,
 ];

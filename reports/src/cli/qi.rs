@@ -1,0 +1,317 @@
+//! `splinelab qi`: G2 interpolation of 3D points by quadratic quaternion-
+//! integral curves (seed 004), solved by Newton's method.
+
+use super::prec::{Prec, parse_prec};
+use crate::error::CliError;
+use crate::output::print_json;
+use crate::with_real;
+use clap::Args;
+use nalgebra::Vector3;
+use rug::{Integer, Rational};
+use serde_json::{Value, json};
+use splinelab::qi::{QiError, QiOptions, interpolate};
+use splinelab::scalar::Real;
+use std::path::PathBuf;
+
+/// The convention of the output, stated in the JSON so that anyone can
+/// re-integrate the curve from the paper alone.
+pub const CONVENTION: &str = "Miura-Sakiyama (seed 004): segment i is C_i(t) = P_i + l_i * int_0^t \
+T(alpha(tau), beta(tau)) dtau, t in [0,1]; alpha(t) = sum_j alpha_j B_{2,j}(t), beta likewise (Bernstein, \
+degree 2); q = cos(beta) + (0, 0, cos(alpha), sin(alpha)) sin(beta) as (w, x, y, z); \
+T = q (1,0,0) q^-1 = (cos 2beta, sin alpha sin 2beta, -cos alpha sin 2beta)";
+
+/// Arguments of `splinelab qi`.
+#[derive(Debug, Args)]
+pub struct QiArgs {
+    /// JSON file `{"points": [[x,y,z], ...], "start_tangent": [x,y,z], "end_tangent": [x,y,z]}` (tangents
+    /// optional; default: circles through the first/last three points). Coordinates are JSON numbers
+    /// (read as the nearest f64, converted exactly) or decimal strings (rounded once at the working
+    /// precision; "nan"/"inf" are accepted and rejected by the solver with a typed error).
+    #[arg(long)]
+    pub input: PathBuf,
+    /// Working precision: f64, or MPFR bits (16..=1000000).
+    #[arg(long, default_value = "f64", value_parser = parse_prec)]
+    pub prec: Prec,
+    /// Damped Newton (backtracking line search) instead of plain Newton.
+    #[arg(long)]
+    pub damped: bool,
+    /// Maximum number of Newton steps (1..=1000).
+    #[arg(long, default_value_t = 50)]
+    pub max_iter: usize,
+    /// Print one JSON object (if Newton fails, the object still comes, with
+    /// "converged": false and the residual history, and the exit status is 1).
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// The parsed input file, as exact rationals (or IEEE specials).
+struct Input {
+    points: Vec<[Coord; 3]>,
+    start: Option<[Coord; 3]>,
+    end: Option<[Coord; 3]>,
+}
+
+/// A coordinate: exact rational, or a non-finite f64.
+#[derive(Clone)]
+enum Coord {
+    Exact(Rational),
+    Special(f64),
+}
+
+impl Coord {
+    fn to_real<T: Real>(&self) -> T {
+        match self {
+            Coord::Exact(q) => T::from_rational(q),
+            Coord::Special(x) => T::from_f64_exact(*x),
+        }
+    }
+}
+
+/// Parses a decimal `[-+]digits[.digits][e[-+]digits]` exactly.
+fn parse_decimal(s: &str) -> Option<Rational> {
+    let s = s.trim();
+    let (mant, exp) = match s.find(['e', 'E']) {
+        Some(k) => (&s[..k], s[k + 1..].parse::<i32>().ok()?),
+        None => (s, 0),
+    };
+    let (neg, mant) = match mant.strip_prefix('-') {
+        Some(m) => (true, m),
+        None => (false, mant.strip_prefix('+').unwrap_or(mant)),
+    };
+    let (int, frac) = mant.split_once('.').unwrap_or((mant, ""));
+    let digits = format!("{int}{frac}");
+    if digits.is_empty()
+        || !digits.bytes().all(|b| b.is_ascii_digit())
+        || exp.unsigned_abs() > 100_000
+    {
+        return None;
+    }
+    let m = Integer::from_str_radix(&digits, 10).ok()?;
+    let e = exp - frac.len() as i32;
+    let p = Integer::from(Integer::u_pow_u(10, e.unsigned_abs()));
+    let q = if e >= 0 {
+        Rational::from(m * p)
+    } else {
+        Rational::from((m, p))
+    };
+    Some(if neg { -q } else { q })
+}
+
+fn coord(v: &Value) -> Result<Coord, String> {
+    match v {
+        Value::Number(n) => {
+            let x = n.as_f64().ok_or("number out of range")?;
+            Rational::from_f64(x)
+                .map(Coord::Exact)
+                .ok_or_else(|| "non-finite number".into())
+        }
+        Value::String(s) => match s.trim().to_ascii_lowercase().as_str() {
+            "nan" => Ok(Coord::Special(f64::NAN)),
+            "inf" | "+inf" | "infinity" => Ok(Coord::Special(f64::INFINITY)),
+            "-inf" | "-infinity" => Ok(Coord::Special(f64::NEG_INFINITY)),
+            _ => parse_decimal(s)
+                .map(Coord::Exact)
+                .ok_or_else(|| format!("'{s}' is not a decimal number")),
+        },
+        other => Err(format!(
+            "expected a number or a decimal string, got {other}"
+        )),
+    }
+}
+
+fn triple(v: &Value, what: &str) -> Result<[Coord; 3], String> {
+    let a = v
+        .as_array()
+        .filter(|a| a.len() == 3)
+        .ok_or(format!("{what} must be [x, y, z]"))?;
+    Ok([coord(&a[0])?, coord(&a[1])?, coord(&a[2])?])
+}
+
+fn read_input(path: &PathBuf) -> Result<Input, CliError> {
+    let err = |why: String| CliError::Input {
+        path: path.clone(),
+        why,
+    };
+    let text = std::fs::read_to_string(path).map_err(|e| err(e.to_string()))?;
+    let v: Value = serde_json::from_str(&text).map_err(|e| err(e.to_string()))?;
+    let pts = v
+        .get("points")
+        .and_then(Value::as_array)
+        .ok_or_else(|| err("missing \"points\" array".into()))?;
+    let points = pts
+        .iter()
+        .enumerate()
+        .map(|(i, p)| triple(p, &format!("points[{i}]")))
+        .collect::<Result<_, _>>()
+        .map_err(err)?;
+    let opt = |key: &str| v.get(key).map(|t| triple(t, key)).transpose().map_err(err);
+    Ok(Input {
+        points,
+        start: opt("start_tangent")?,
+        end: opt("end_tangent")?,
+    })
+}
+
+fn vector<T: Real>(c: &[Coord; 3]) -> Vector3<T> {
+    Vector3::new(c[0].to_real(), c[1].to_real(), c[2].to_real())
+}
+
+/// A number for the JSON: an f64 as a JSON number, MPFR as a decimal
+/// string with the digits of the requested precision.
+fn out<T: Real>(prec: Prec, x: &T) -> Value {
+    match prec {
+        Prec::F64 => json!(x.to_f64()),
+        Prec::Bits(_) => json!(prec.format(x)),
+    }
+}
+
+/// Runs the interpolation at `T`; returns the JSON and the failure if any.
+fn solve<T: Real>(input: &Input, args: &QiArgs) -> Result<(Value, Option<QiError>), CliError> {
+    let points: Vec<Vector3<T>> = input.points.iter().map(vector).collect();
+    let opts = QiOptions::<T> {
+        damped: args.damped,
+        max_iter: args.max_iter,
+        start_tangent: input.start.as_ref().map(vector),
+        end_tangent: input.end.as_ref().map(vector),
+        ..Default::default()
+    };
+    let prec = args.prec;
+    let mut obj = json!({
+        "prec": prec.to_string(),
+        "working_bits": prec.working_bits(),
+        "damped": args.damped,
+        "points": points.len(),
+        "tol": out(prec, &opts.tol),
+        "convention": CONVENTION,
+    });
+    let m = obj.as_object_mut().expect("object");
+    match interpolate(&points, &opts) {
+        Ok(fit) => {
+            let segs: Vec<Value> = fit
+                .segments
+                .iter()
+                .map(|s| {
+                    json!({
+                        "alpha": s.alpha.iter().map(|a| out(prec, a)).collect::<Vec<_>>(),
+                        "beta": s.beta.iter().map(|b| out(prec, b)).collect::<Vec<_>>(),
+                        "length": out(prec, &s.length),
+                    })
+                })
+                .collect();
+            m.insert("converged".into(), json!(true));
+            m.insert("iterations".into(), json!(fit.iterations()));
+            m.insert(
+                "residuals".into(),
+                json!(
+                    fit.residuals()
+                        .iter()
+                        .map(|r| out(prec, r))
+                        .collect::<Vec<_>>()
+                ),
+            );
+            m.insert("quadrature_order".into(), json!(fit.rule.order()));
+            m.insert(
+                "quadrature_error_estimate".into(),
+                out(prec, &fit.quad_error),
+            );
+            m.insert("segments".into(), json!(segs));
+            Ok((obj, None))
+        }
+        Err(e @ QiError::NotConverged { .. }) => {
+            let QiError::NotConverged {
+                reason,
+                residuals,
+                steps,
+            } = &e
+            else {
+                unreachable!()
+            };
+            m.insert("converged".into(), json!(false));
+            m.insert(
+                "iterations".into(),
+                json!(residuals.len().saturating_sub(1)),
+            );
+            m.insert("residuals".into(), json!(residuals));
+            m.insert("steps".into(), json!(steps));
+            m.insert("failure".into(), json!(reason.to_string()));
+            m.insert("segments".into(), json!([]));
+            Ok((obj, Some(e)))
+        }
+        Err(e) => Err(CliError::numerical(e)),
+    }
+}
+
+/// Runs `splinelab qi`.
+pub fn run(args: &QiArgs) -> Result<(), CliError> {
+    if !(1..=1000).contains(&args.max_iter) {
+        return Err(CliError::invalid(
+            "--max-iter",
+            format!("{} is outside 1..=1000", args.max_iter),
+        ));
+    }
+    let input = read_input(&args.input)?;
+    let prec = args.prec;
+    let (obj, failure) = with_real!(prec, T => solve::<T>(&input, args)?);
+    if args.json {
+        print_json(&obj);
+    } else {
+        print_text(&obj);
+    }
+    match failure {
+        Some(e) => Err(CliError::numerical(e)),
+        None => Ok(()),
+    }
+}
+
+fn print_text(obj: &Value) {
+    let show = |v: &Value| {
+        v.as_str()
+            .map(str::to_string)
+            .unwrap_or_else(|| v.to_string())
+    };
+    println!(
+        "QI interpolation of {} points, precision {} ({} bits), {}",
+        obj["points"],
+        show(&obj["prec"]),
+        obj["working_bits"],
+        if obj["damped"] == json!(true) {
+            "damped Newton"
+        } else {
+            "Newton"
+        }
+    );
+    println!(
+        "converged  {}  after {} iterations",
+        obj["converged"], obj["iterations"]
+    );
+    for (k, r) in obj["residuals"]
+        .as_array()
+        .into_iter()
+        .flatten()
+        .enumerate()
+    {
+        println!("  ‖F(x_{k})‖₂ = {}", show(r));
+    }
+    for (i, s) in obj["segments"].as_array().into_iter().flatten().enumerate() {
+        println!(
+            "segment {i}: alpha {} beta {} length {}",
+            s["alpha"],
+            s["beta"],
+            show(&s["length"])
+        );
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn decimals_parse_exactly() {
+        assert_eq!(parse_decimal("0.1"), Some(Rational::from((1, 10))));
+        assert_eq!(parse_decimal("-2.5e-3"), Some(Rational::from((-1, 400))));
+        assert_eq!(parse_decimal("12E2"), Some(Rational::from(1200)));
+        assert_eq!(parse_decimal("1.x"), None);
+        assert_eq!(parse_decimal(""), None);
+    }
+}
