@@ -7,7 +7,9 @@
 //! This crate is pure mathematics: it never prints, plots or reads files.
 
 pub mod bernstein;
+pub mod bspline;
 pub mod conditioning;
+pub mod curves;
 pub mod qi;
 pub mod quadrature;
 pub mod roots;

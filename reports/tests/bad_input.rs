@@ -29,7 +29,15 @@ fn cases() -> Vec<Case> {
     let mut v = Vec::new();
     // Unknown subcommand and options, everywhere.
     v.push(case(&["frobnicate"], ""));
-    for sub in ["cond", "report", "compare", "bezier-eval"] {
+    for sub in [
+        "cond",
+        "report",
+        "compare",
+        "bezier-eval",
+        "coeffs",
+        "width",
+        "qi",
+    ] {
         v.push(case(&[sub, "--no-such-option"], ""));
     }
     // cond
@@ -138,6 +146,68 @@ fn cases() -> Vec<Case> {
             ));
         }
     }
+    // coeffs and width
+    for args in [
+        &["coeffs", "--order", "1"][..],
+        &["coeffs", "--order", "201"],
+        &["coeffs", "--order", "4", "--count", "0"],
+        &["coeffs", "--order", "4", "--count", "100001"],
+        &["coeffs", "--order", "4", "--tension", "-1"],
+        &["coeffs", "--order", "4", "--tension", "NaN"],
+        &["coeffs", "--order", "4", "--tension", "inf"],
+        &["coeffs", "--order", "4", "--prec", "8"],
+        &["coeffs", "--order", "x"],
+        &["width", "--order", "4", "--tol", "0"],
+        &["width", "--order", "4", "--tol", "1"],
+        &["width", "--order", "4", "--tol", "-1e-3"],
+        &["width", "--order", "4", "--tol", "NaN"],
+        &["width", "--order", "4", "--tol", "inf"],
+        &["width", "--order", "1", "--tol", "1e-3"],
+        &[
+            "width",
+            "--order",
+            "4",
+            "--tol",
+            "1e-3",
+            "--criterion",
+            "best",
+        ],
+        &["width", "--tension", "-2", "--tol", "1e-3"],
+        &["width", "--order", "4"],
+    ] {
+        v.push(case(args, ""));
+    }
+    // qi: every input defect.
+    let many: Vec<String> = (0..201).map(|k| format!("[{k},{},0]", k * k)).collect();
+    for bad in [
+        String::new(),
+        "{".into(),
+        r#"{"points": [[0,0,0],[1,0,0],[2,1,0]"#.into(),
+        r#"{"points": []}"#.into(),
+        r#"{"points": [[0,0,0]]}"#.into(),
+        r#"{"points": [[0,0,0],[1,0,0]]}"#.into(),
+        r#"{"points": [[0,0,0],[0,0,0],[1,1,0]]}"#.into(),
+        r#"{"points": [[0,0,0],[1,0,0],[1,0,0],[2,1,0]]}"#.into(),
+        r#"{"points": [[0,0,0],[1,"NaN",0],[2,1,0]]}"#.into(),
+        r#"{"points": [[0,0,0],[1,0,0],[2,1e999,0]]}"#.into(),
+        r#"{"points": [[0,0,0],[1,0,"inf"],[2,1,0]]}"#.into(),
+        r#"{"points": [[0,0],[1,0],[2,1]]}"#.into(),
+        r#"{"points": [[0,0,0],[1,0,0],[2,1,0]], "start_tangent": [0,0,0]}"#.into(),
+        r#"{"points": [[0,0,0],[1,0,0],[2,1,0]], "end_tangent": [1,"x",0]}"#.into(),
+        r#"{"points": [[0,0,0],[1,0,0],[2,1,0]], "start_tangent": [1e1000000,0,0]}"#.into(),
+        r#"{"points": 5}"#.into(),
+        format!(r#"{{"points": [{}]}}"#, many.join(",")),
+    ] {
+        v.push(case(&["qi", "--input", "{in}", "--json"], bad));
+    }
+    v.push(case(
+        &["qi", "--input", "{in}", "--max-iter", "0"],
+        r#"{"points": [[0,0,0],[1,0,0],[2,1,0]]}"#,
+    ));
+    v.push(case(
+        &["qi", "--input", "{in}", "--prec", "10"],
+        r#"{"points": [[0,0,0],[1,0,0],[2,1,0]]}"#,
+    ));
     v.push(case(
         &[
             "bezier-eval",

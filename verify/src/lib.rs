@@ -5,7 +5,10 @@
 //! studies as plain serde data for the reports.
 
 pub mod bezier_eval;
+pub mod bv_solvers;
 pub mod conditioning;
+pub mod curves;
+pub mod deform;
 pub mod metrics;
 pub mod qi;
 pub mod sspline;

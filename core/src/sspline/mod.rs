@@ -25,9 +25,13 @@
 pub mod beta2;
 pub mod bspline_uniform;
 pub mod coefficients;
+pub mod curve;
+pub mod end_conditions;
 pub mod euler_frobenius;
 pub mod family;
+pub mod global_cubic;
 pub mod node_values;
+pub mod surface;
 pub mod truncation;
 pub mod width;
 

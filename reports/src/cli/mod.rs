@@ -5,6 +5,8 @@ pub mod bezier_eval;
 pub mod coeffs;
 pub mod compare;
 pub mod cond;
+pub mod deform;
+pub mod flatten;
 pub mod prec;
 pub mod qi;
 pub mod report;
@@ -41,6 +43,10 @@ pub enum Command {
     Coeffs(coeffs::CoeffsArgs),
     /// Smallest S-spline truncation half-width meeting a tolerance.
     Width(width::WidthArgs),
+    /// Deform a Bézier patch grid by flow vectors (Bernstein inverse mapping) and correct its joins.
+    Deform(deform::DeformArgs),
+    /// Adaptive flattening of a Bézier curve vs uniform sampling (seed 002).
+    Flatten(flatten::FlattenArgs),
 }
 
 /// Runs a parsed command. `Ok` carries the exit code (0 unless a command
@@ -55,5 +61,7 @@ pub fn run(command: &Command) -> Result<ExitCode, CliError> {
         Command::Qi(a) => done(qi::run(a)),
         Command::Coeffs(a) => done(coeffs::run(a)),
         Command::Width(a) => done(width::run(a)),
+        Command::Deform(a) => done(deform::run(a)),
+        Command::Flatten(a) => done(flatten::run(a)),
     }
 }

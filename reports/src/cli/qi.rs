@@ -241,6 +241,10 @@ fn solve<T: Real>(input: &Input, args: &QiArgs) -> Result<(Value, Option<QiError
     }
 }
 
+/// Most points accepted: Newton solves a dense 7n × 7n system, whose
+/// matrix at 200 points already holds 2 million entries (MPFR: gigabytes).
+pub const MAX_POINTS: usize = 200;
+
 /// Runs `splinelab qi`.
 pub fn run(args: &QiArgs) -> Result<(), CliError> {
     if !(1..=1000).contains(&args.max_iter) {
@@ -250,6 +254,12 @@ pub fn run(args: &QiArgs) -> Result<(), CliError> {
         ));
     }
     let input = read_input(&args.input)?;
+    if input.points.len() > MAX_POINTS {
+        return Err(CliError::invalid(
+            "--input",
+            format!("{} points: more than {MAX_POINTS}", input.points.len()),
+        ));
+    }
     let prec = args.prec;
     let (obj, failure) = with_real!(prec, T => solve::<T>(&input, args)?);
     if args.json {

@@ -5,9 +5,11 @@
 //! Adding a study means writing one `section` function (see
 //! [`sections::SECTIONS`]) that returns a [`Section`].
 
+pub mod bernstein_inverse;
 pub mod bezier_eval;
 pub mod compare;
 pub mod conditioning;
+pub mod curves;
 pub mod figure;
 pub mod qi;
 pub mod sections;

@@ -7,5 +7,7 @@ pub const SECTIONS: &[SectionFn] = &[
     super::conditioning::section,
     super::bezier_eval::section,
     super::qi::section,
+    super::bernstein_inverse::section,
     super::sspline::section,
+    super::curves::section,
 ];

@@ -1,0 +1,326 @@
+//! NURBS: non-uniform rational B-spline curves and tensor-product surfaces,
+//! evaluated by the rational de Boor algorithm (seed 002 "BスプラインとNURBS":
+//! non-uniform knots, weighted control points), with the exact circle and
+//! cylinder.
+
+use super::de_boor::{BSpline, BSplineError, check_structure, de_boor_window, find_span};
+use super::knots::KnotVector;
+use crate::scalar::Real;
+use nalgebra::{SVector, Vector2, Vector3};
+use rug::Rational;
+
+fn check_weights<T: Real>(weights: &[T]) -> Result<(), BSplineError> {
+    match weights
+        .iter()
+        .position(|w| !(w.is_finite() && *w > T::zero()))
+    {
+        Some(index) => Err(BSplineError::BadWeight {
+            index,
+            value: weights[index].to_f64(),
+        }),
+        None => Ok(()),
+    }
+}
+
+/// A NURBS curve `P(t) = Σ N_{j,k}(t) w_j Q_j / Σ N_{j,k}(t) w_j`, stored as
+/// the B-spline of the homogeneous points `w_j Q_j` plus the weights (all
+/// finite and `> 0`, so the denominator is positive on the domain).
+#[derive(Clone, Debug, PartialEq)]
+pub struct NurbsCurve<T: Real, const D: usize> {
+    homogeneous: BSpline<T, D>,
+    weights: Vec<T>,
+}
+
+impl<T: Real, const D: usize> NurbsCurve<T, D> {
+    /// From affine control points, weights (`> 0`, finite) and knots;
+    /// stores `w_j Q_j` (one rounding per coordinate).
+    pub fn new(
+        order: usize,
+        points: Vec<SVector<T, D>>,
+        weights: Vec<T>,
+        knots: KnotVector<T>,
+    ) -> Result<Self, BSplineError> {
+        check_weights(&weights)?;
+        let h: Vec<_> = points
+            .iter()
+            .zip(&weights)
+            .map(|(p, w)| p * w.clone())
+            .collect();
+        Self::from_homogeneous(order, h, weights, knots)
+    }
+
+    /// From homogeneous points `w_j Q_j`, weights and knots.
+    pub fn from_homogeneous(
+        order: usize,
+        homogeneous: Vec<SVector<T, D>>,
+        weights: Vec<T>,
+        knots: KnotVector<T>,
+    ) -> Result<Self, BSplineError> {
+        check_weights(&weights)?;
+        if weights.len() != homogeneous.len() {
+            return Err(BSplineError::WeightCount {
+                points: homogeneous.len(),
+                weights: weights.len(),
+            });
+        }
+        Ok(NurbsCurve {
+            homogeneous: BSpline::new(order, homogeneous, knots)?,
+            weights,
+        })
+    }
+
+    /// The homogeneous B-spline `Σ N_j w_j Q_j` (order, knots, `w_j Q_j`).
+    pub fn homogeneous(&self) -> &BSpline<T, D> {
+        &self.homogeneous
+    }
+
+    /// The weights.
+    pub fn weights(&self) -> &[T] {
+        &self.weights
+    }
+
+    /// The parameter domain.
+    pub fn domain(&self) -> (T, T) {
+        self.homogeneous.domain()
+    }
+
+    /// `P(t)` by the rational de Boor algorithm: de Boor's triangle on the
+    /// homogeneous points and on the weights with the same `α`s, then one
+    /// division (Piegl–Tiller §4.2).
+    ///
+    /// **Cost**: `(D + 1) k(k−1)/2` affine combinations. **Accuracy**: the
+    /// weight sum has relative error `≤ γ_{3k}` (positive terms); each
+    /// numerator coordinate `≤ γ_{3k} Σ N_j |w_j Q_j|`; so `P(t)` is within
+    /// `≈ γ_{3k+1}(Σ N_j |w_j Q_j| / w(t) + |P(t)|)` per coordinate.
+    ///
+    /// ```
+    /// use nalgebra::Vector2;
+    /// use splinelab::bspline::nurbs::NurbsCurve;
+    /// let c = NurbsCurve::circle(&Vector2::new(0.0f64, 0.0), &1.0).unwrap();
+    /// let p = c.eval(&0.3).unwrap();
+    /// assert!((p.norm() - 1.0).abs() < 4.0 * f64::EPSILON);
+    /// ```
+    pub fn eval(&self, t: &T) -> Result<SVector<T, D>, BSplineError> {
+        let b = &self.homogeneous;
+        let (k, knots) = (b.order(), b.knots().as_slice());
+        let s = b.span(t)?;
+        let lo = s + 1 - k;
+        let h = de_boor_window(k, knots, b.points()[lo..=s].to_vec(), s, t);
+        let w = de_boor_window(k, knots, self.weights[lo..=s].to_vec(), s, t);
+        Ok(h / w)
+    }
+}
+
+/// The weight `√2/2` of the 90° corners of the NURBS circle, and the
+/// 9-point circle's knots `0,0,0,¼,¼,½,½,¾,¾,1,1,1`.
+fn circle_data<T: Real>() -> (T, KnotVector<T>) {
+    let q = |n: i64| T::from_rational(&Rational::from((n, 4)));
+    let knots = [0, 0, 0, 1, 1, 2, 2, 3, 3, 4, 4, 4].map(q).to_vec();
+    let s = T::from_int(2).sqrt() / T::from_int(2);
+    (s, KnotVector::new(knots).expect("constant knots are valid"))
+}
+
+/// Unit-square corners and edge midpoints of the 9-point circle, scaled by `s`
+/// at the corners: the homogeneous points of the unit circle.
+fn unit_circle_homogeneous<T: Real>(s: &T) -> Vec<Vector2<T>> {
+    let dirs = [
+        (1, 0),
+        (1, 1),
+        (0, 1),
+        (-1, 1),
+        (-1, 0),
+        (-1, -1),
+        (0, -1),
+        (1, -1),
+        (1, 0),
+    ];
+    dirs.iter()
+        .enumerate()
+        .map(|(j, &(x, y))| {
+            let w = if j % 2 == 1 { s.clone() } else { T::one() };
+            Vector2::new(T::from_int(x), T::from_int(y)) * w
+        })
+        .collect()
+}
+
+impl<T: Real> NurbsCurve<T, 2> {
+    /// The exact circle of radius `r` about `centre`: order 3, 9 control
+    /// points on the circumscribed square, corner weights `√2/2`, knots
+    /// `0,0,0,¼,¼,½,½,¾,¾,1,1,1` (Piegl–Tiller §7.5). Each quarter is the
+    /// rational quadratic arc with `w = cos 45°`, so `|P(t) − c| = r` for all
+    /// `t ∈ [0, 1]` in exact arithmetic. Errors for a non-finite centre or
+    /// radius or `r ≤ 0`.
+    pub fn circle(centre: &Vector2<T>, r: &T) -> Result<Self, BSplineError> {
+        if !(r.is_finite() && *r > T::zero()) {
+            return Err(BSplineError::BadWeight {
+                index: 0,
+                value: r.to_f64(),
+            });
+        }
+        let (s, knots) = circle_data::<T>();
+        let weights: Vec<T> = (0..9)
+            .map(|j| if j % 2 == 1 { s.clone() } else { T::one() })
+            .collect();
+        let h = unit_circle_homogeneous(&s)
+            .into_iter()
+            .zip(&weights)
+            .map(|(p, w)| p * r.clone() + centre * w.clone())
+            .collect();
+        Self::from_homogeneous(3, h, weights, knots)
+    }
+}
+
+/// A NURBS tensor-product surface
+/// `S(u, v) = Σ_i Σ_j N_i(u) N_j(v) w_ij P_ij / Σ_i Σ_j N_i(u) N_j(v) w_ij`,
+/// net `P_ij` row-major (`i` along `u`, `n_u` rows of `n_v` points).
+#[derive(Clone, Debug, PartialEq)]
+pub struct NurbsSurface<T: Real, const D: usize> {
+    orders: (usize, usize),
+    counts: (usize, usize),
+    homogeneous: Vec<SVector<T, D>>,
+    weights: Vec<T>,
+    knots_u: KnotVector<T>,
+    knots_v: KnotVector<T>,
+}
+
+impl<T: Real, const D: usize> NurbsSurface<T, D> {
+    /// Validates both directions like a [`BSpline`] (orders, counts, knots,
+    /// non-empty domains), the net size, finite points and weights `> 0`.
+    /// Stores `w_ij P_ij`.
+    pub fn new(
+        orders: (usize, usize),
+        counts: (usize, usize),
+        points: Vec<SVector<T, D>>,
+        weights: Vec<T>,
+        knots: (KnotVector<T>, KnotVector<T>),
+    ) -> Result<Self, BSplineError> {
+        let (nu, nv) = counts;
+        check_structure(orders.0, nu, &knots.0)?;
+        check_structure(orders.1, nv, &knots.1)?;
+        for got in [points.len(), weights.len()] {
+            if got != nu * nv {
+                return Err(BSplineError::NetSize { nu, nv, got });
+            }
+        }
+        if let Some(index) = points.iter().position(|p| p.iter().any(|x| !x.is_finite())) {
+            return Err(BSplineError::NonFinitePoint { index });
+        }
+        check_weights(&weights)?;
+        let homogeneous = points
+            .iter()
+            .zip(&weights)
+            .map(|(p, w)| p * w.clone())
+            .collect();
+        Ok(NurbsSurface {
+            orders,
+            counts,
+            homogeneous,
+            weights,
+            knots_u: knots.0,
+            knots_v: knots.1,
+        })
+    }
+
+    /// `S(u, v)` by rational de Boor as curves of curves: for each of the
+    /// `k_u` rows active at `u`, de Boor in `v` on `(w P, w)`; then de Boor
+    /// in `u` on those `k_u` homogeneous values; then one division.
+    ///
+    /// **Cost**: `(D + 1)(k_u k_v(k_v − 1) + k_u(k_u − 1))/2` affine
+    /// combinations. **Accuracy**: as [`NurbsCurve::eval`] with `γ_{3(k_u + k_v)}`.
+    pub fn eval(&self, u: &T, v: &T) -> Result<SVector<T, D>, BSplineError> {
+        let ((ku, kv), (nu, nv)) = (self.orders, self.counts);
+        let su = find_span(ku, nu, &self.knots_u, u)?;
+        let sv = find_span(kv, nv, &self.knots_v, v)?;
+        let (kus, kvs) = (self.knots_u.as_slice(), self.knots_v.as_slice());
+        let mut rows_h = Vec::with_capacity(ku);
+        let mut rows_w = Vec::with_capacity(ku);
+        for i in su + 1 - ku..=su {
+            let lo = i * nv + sv + 1 - kv;
+            let hi = i * nv + sv;
+            rows_h.push(de_boor_window(
+                kv,
+                kvs,
+                self.homogeneous[lo..=hi].to_vec(),
+                sv,
+                v,
+            ));
+            rows_w.push(de_boor_window(
+                kv,
+                kvs,
+                self.weights[lo..=hi].to_vec(),
+                sv,
+                v,
+            ));
+        }
+        let h = de_boor_window(ku, kus, rows_h, su, u);
+        let w = de_boor_window(ku, kus, rows_w, su, u);
+        Ok(h / w)
+    }
+}
+
+impl<T: Real> NurbsSurface<T, 3> {
+    /// The exact cylinder `x² + y² = r²`, `0 ≤ z ≤ height`: the NURBS circle
+    /// (order 3, 9 points) in `u` times a straight line (order 2, knots
+    /// `0,0,1,1`) in `v`; `S(u, v)` has `z = v · height` and distance `r`
+    /// from the `z` axis. Errors as [`NurbsCurve::circle`], or for a
+    /// non-finite height.
+    pub fn cylinder(r: &T, height: &T) -> Result<Self, BSplineError> {
+        if !(r.is_finite() && *r > T::zero()) {
+            return Err(BSplineError::BadWeight {
+                index: 0,
+                value: r.to_f64(),
+            });
+        }
+        if !height.is_finite() {
+            return Err(BSplineError::NonFinitePoint { index: 0 });
+        }
+        let (s, knots_u) = circle_data::<T>();
+        let dirs = [
+            (1, 0),
+            (1, 1),
+            (0, 1),
+            (-1, 1),
+            (-1, 0),
+            (-1, -1),
+            (0, -1),
+            (1, -1),
+            (1, 0),
+        ];
+        let mut points = Vec::with_capacity(18);
+        let mut weights = Vec::with_capacity(18);
+        for (j, &(x, y)) in dirs.iter().enumerate() {
+            let w = if j % 2 == 1 { s.clone() } else { T::one() };
+            for z in [T::zero(), height.clone()] {
+                points.push(Vector3::new(
+                    r.clone() * T::from_int(x),
+                    r.clone() * T::from_int(y),
+                    z,
+                ));
+                weights.push(w.clone());
+            }
+        }
+        let knots_v = KnotVector::new(vec![T::zero(), T::zero(), T::one(), T::one()])?;
+        Self::new((3, 2), (9, 2), points, weights, (knots_u, knots_v))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn circle_is_exact_at_dyadic_parameters_and_weights_are_checked() {
+        let c = NurbsCurve::circle(&Vector2::new(0.0f64, 0.0), &1.0).unwrap();
+        assert_eq!(c.eval(&0.0).unwrap(), Vector2::new(1.0, 0.0));
+        assert_eq!(c.eval(&0.25).unwrap(), Vector2::new(0.0, 1.0));
+        assert_eq!(c.eval(&1.0).unwrap(), Vector2::new(1.0, 0.0));
+        let k = KnotVector::new(vec![0.0, 0.0, 1.0, 1.0]).unwrap();
+        let pts = vec![Vector2::new(0.0, 0.0), Vector2::new(1.0, 0.0)];
+        for w in [0.0, -1.0, f64::NAN] {
+            assert!(matches!(
+                NurbsCurve::new(2, pts.clone(), vec![1.0, w], k.clone()),
+                Err(BSplineError::BadWeight { index: 1, .. })
+            ));
+        }
+    }
+}

@@ -1,0 +1,294 @@
+//! Drawing a Bézier curve as a polyline (seed 002, "ベジエ曲線の描画方法"):
+//! method 1, uniform parameter sampling; method 2, adaptive sampling that
+//! subdivides by de Casteljau while the control polygon is not flat.
+//!
+//! **The guarantee of method 2.** A Bézier curve lies in the convex hull of
+//! its control points. If every control point is within `ε` of the chord
+//! segment `[P_0, P_n]`, the hull is within `ε` of it too (the
+//! `ε`-neighbourhood of a segment is convex), hence so is the curve. The
+//! adaptive polyline is the chain of chords of sub-curves that passed this
+//! test, so **every point of the curve is within `ε` of the polyline** —
+//! a bound, not an estimate (up to the rounding floor of
+//! [`rounding_floor`]).
+
+use super::CurveError;
+use crate::bernstein::bezier::{Bezier, subdivide};
+use crate::scalar::Real;
+use nalgebra::SVector;
+
+/// Deepest subdivision before [`flatten`] gives up (`2⁻⁶⁰` of the parameter range).
+pub const MAX_DEPTH: usize = 60;
+
+/// Largest segment count [`uniform_segments`] tries (`2²⁴`).
+pub const MAX_UNIFORM_SEGMENTS: usize = 1 << 24;
+
+/// A polyline approximating a curve: vertices `points[j] ≈ P(params[j])`,
+/// `params` increasing from 0 to 1.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Polyline<T: Real, const D: usize> {
+    /// Curve parameters of the vertices.
+    pub params: Vec<T>,
+    /// The vertices.
+    pub points: Vec<SVector<T, D>>,
+}
+
+impl<T: Real, const D: usize> Polyline<T, D> {
+    /// Number of segments (vertices − 1).
+    pub fn segments(&self) -> usize {
+        self.points.len().saturating_sub(1)
+    }
+}
+
+/// Euclidean distance from `p` to the segment `[a, b]` (to `a` if `a = b`).
+///
+/// **Method**: clamp the projection parameter `s = (p − a)·(b − a)/|b − a|²`
+/// to `[0, 1]`. **Cost** `O(D)`. **Accuracy**: a few ulps of `max(|p − a|, |b − a|)`.
+pub fn segment_distance<T: Real, const D: usize>(
+    p: &SVector<T, D>,
+    a: &SVector<T, D>,
+    b: &SVector<T, D>,
+) -> T {
+    let ab = b - a;
+    let ap = p - a;
+    let len2 = ab.norm_squared();
+    if len2.is_zero() {
+        return ap.norm();
+    }
+    let s = (ap.dot(&ab) / len2).clamp(T::zero(), T::one());
+    (ap - ab * s).norm()
+}
+
+/// Flatness of a control polygon: `max_i dist(P_i, [P_0, P_n])`, which by
+/// the convex hull property bounds the distance of the whole curve from its
+/// chord (module doc). 0 for degree ≤ 1. **Cost** `O(nD)`.
+pub fn flatness<T: Real, const D: usize>(points: &[SVector<T, D>]) -> T {
+    let (a, b) = (&points[0], &points[points.len() - 1]);
+    points
+        .iter()
+        .map(|p| segment_distance(p, a, b))
+        .fold(T::zero(), |m, d| m.max(d))
+}
+
+/// The smallest tolerance [`flatten`] accepts for `curve`:
+/// `2⁸ · n · u · max_i ‖P_i‖_∞` (`u` the unit roundoff, at least one `u`).
+/// Each level of de Casteljau subdivision perturbs the sub-polygon by at most
+/// `γ_{3n} max|P_i|` per coordinate; over ≲ 40 levels and the flatness
+/// computation that stays below this floor, so a tolerance above it is
+/// honoured up to a relative `O(2⁻⁴)` slack in the worst case and typically
+/// to a few ulps.
+pub fn rounding_floor<T: Real, const D: usize>(curve: &Bezier<T, D>) -> T {
+    let scale = curve
+        .points()
+        .iter()
+        .flat_map(|p| p.iter())
+        .fold(T::zero(), |m, x| m.max(x.clone().abs()));
+    let n = T::from_int(curve.degree().max(1) as i64);
+    (scale * n).max(T::one()) * T::unit_roundoff().scale_by_pow2(8)
+}
+
+fn check_tol<T: Real, const D: usize>(curve: &Bezier<T, D>, tol: &T) -> Result<(), CurveError> {
+    if !tol.is_finite() || *tol <= T::zero() {
+        return Err(CurveError::OutOfRange {
+            name: "tolerance",
+            value: tol.to_f64(),
+            range: "(0, ∞)",
+        });
+    }
+    let floor = rounding_floor(curve);
+    if *tol < floor {
+        return Err(CurveError::ToleranceBelowRounding {
+            tol: tol.to_f64(),
+            floor: floor.to_f64(),
+        });
+    }
+    Ok(())
+}
+
+/// Adaptive flattening (seed 002 method 2): split at `t = ½` by de Casteljau
+/// ([`subdivide`]) until each piece's control polygon has
+/// [`flatness`] `≤ tol`; the polyline joins the pieces' end points.
+///
+/// **Guarantee**: every point of the curve is within `tol` of the polyline
+/// (convex hull property, module doc), for `tol ≥` [`rounding_floor`].
+/// **Cost**: `O(n²D)` per piece; the piece count grows like
+/// `√(‖Δ²P‖/tol)` as flatness shrinks by ≈ 4 per halving.
+/// **Errors**: `tol` not finite or `≤ 0`; below the rounding floor;
+/// more than [`MAX_DEPTH`] levels.
+///
+/// ```
+/// use nalgebra::Vector2;
+/// use splinelab::bernstein::bezier::Bezier;
+/// use splinelab::curves::flatten::flatten;
+/// let c = Bezier::new(vec![Vector2::new(0.0f64, 0.0), Vector2::new(1.0, 2.0),
+///                          Vector2::new(2.0, 0.0)]).unwrap();
+/// let poly = flatten(&c, &0.1).unwrap();
+/// assert_eq!(poly.points[0], Vector2::new(0.0, 0.0));
+/// assert_eq!(*poly.points.last().unwrap(), Vector2::new(2.0, 0.0));
+/// ```
+pub fn flatten<T: Real, const D: usize>(
+    curve: &Bezier<T, D>,
+    tol: &T,
+) -> Result<Polyline<T, D>, CurveError> {
+    check_tol(curve, tol)?;
+    let half = T::one() / T::from_int(2);
+    let mut params = vec![T::zero()];
+    let mut points = vec![curve.points()[0].clone()];
+    // Pieces still to examine, the leftmost on top: (t0, t1, depth, control points).
+    let mut stack = vec![(T::zero(), T::one(), 0usize, curve.points().to_vec())];
+    while let Some((t0, t1, depth, ctrl)) = stack.pop() {
+        if flatness(&ctrl) <= *tol {
+            params.push(t1);
+            points.push(ctrl[ctrl.len() - 1].clone());
+            continue;
+        }
+        if depth >= MAX_DEPTH {
+            return Err(CurveError::DepthExceeded(MAX_DEPTH));
+        }
+        let (left, right) = subdivide(&ctrl, &half)?;
+        let tm = (t0.clone() + t1.clone()) * half.clone();
+        stack.push((tm.clone(), t1, depth + 1, right));
+        stack.push((t0, tm, depth + 1, left));
+    }
+    Ok(Polyline { params, points })
+}
+
+/// Uniform sampling (seed 002 method 1): the polyline through `P(j/m)`,
+/// `j = 0..m`, each vertex by de Casteljau. `m ≥ 1`.
+pub fn uniform_polyline<T: Real, const D: usize>(
+    curve: &Bezier<T, D>,
+    m: usize,
+) -> Result<Polyline<T, D>, CurveError> {
+    let m = m.max(1);
+    let params: Vec<T> = (0..=m)
+        .map(|j| T::from_int(j as i64) / T::from_int(m as i64))
+        .collect();
+    let points = params
+        .iter()
+        .map(|t| curve.eval(t))
+        .collect::<Result<_, _>>()?;
+    Ok(Polyline { params, points })
+}
+
+/// Measured deviation of a polyline from the curve: for every polyline
+/// segment `j`, the curve is sampled at `samples` equally spaced parameters
+/// strictly inside `[params[j], params[j+1]]` and the largest distance to
+/// that segment is returned (the distance to the segment's own chord is an
+/// upper bound of the distance to the whole polyline).
+///
+/// **Accuracy**: a sampled maximum — it can miss the true maximum by a
+/// relative `O(1/samples²)` (the deviation is smooth with a quadratic peak).
+/// **Cost**: `segments · samples` de Casteljau evaluations.
+pub fn max_deviation<T: Real, const D: usize>(
+    curve: &Bezier<T, D>,
+    poly: &Polyline<T, D>,
+    samples: usize,
+) -> Result<T, CurveError> {
+    let k = T::from_int(samples as i64 + 1);
+    let mut worst = T::zero();
+    for j in 0..poly.segments() {
+        let (t0, t1) = (&poly.params[j], &poly.params[j + 1]);
+        let (a, b) = (&poly.points[j], &poly.points[j + 1]);
+        for i in 1..=samples {
+            let t = t0.clone() + (t1.clone() - t0.clone()) * T::from_int(i as i64) / k.clone();
+            worst = worst.max(segment_distance(&curve.eval(&t)?, a, b));
+        }
+    }
+    Ok(worst)
+}
+
+/// The number of equal parameter steps uniform sampling needs for the same
+/// tolerance: the smallest `m` whose [`uniform_polyline`] has
+/// [`max_deviation`] `≤ tol` (with `samples` per segment), found by doubling
+/// `m = 1, 2, 4, …` and then bisecting between the last failing and the
+/// first passing count. The deviation of uniform sampling decreases
+/// (essentially monotonically, like `m⁻²`) with `m`; bisection assumes it.
+///
+/// **Cost**: `O(log m)` trials of `m · samples` evaluations.
+/// **Errors**: bad `tol` (as [`flatten`]); more than [`MAX_UNIFORM_SEGMENTS`].
+pub fn uniform_segments<T: Real, const D: usize>(
+    curve: &Bezier<T, D>,
+    tol: &T,
+    samples: usize,
+) -> Result<usize, CurveError> {
+    check_tol(curve, tol)?;
+    let passes = |m: usize| -> Result<bool, CurveError> {
+        Ok(max_deviation(curve, &uniform_polyline(curve, m)?, samples)? <= *tol)
+    };
+    let mut hi = 1;
+    while !passes(hi)? {
+        if hi >= MAX_UNIFORM_SEGMENTS {
+            return Err(CurveError::DepthExceeded(MAX_UNIFORM_SEGMENTS));
+        }
+        hi *= 2;
+    }
+    // Invariant: hi passes; lo fails (or is 0).
+    let mut lo = hi / 2;
+    while hi - lo > 1 {
+        let mid = lo + (hi - lo) / 2;
+        if passes(mid)? {
+            hi = mid;
+        } else {
+            lo = mid;
+        }
+    }
+    Ok(hi)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use nalgebra::Vector2;
+
+    #[test]
+    fn segment_distance_closed_forms() {
+        let (a, b) = (Vector2::new(0.0f64, 0.0), Vector2::new(4.0, 0.0));
+        assert_eq!(segment_distance(&Vector2::new(1.0, 3.0), &a, &b), 3.0);
+        assert_eq!(segment_distance(&Vector2::new(7.0, 4.0), &a, &b), 5.0);
+        assert_eq!(segment_distance(&Vector2::new(3.0, 4.0), &a, &a), 5.0);
+    }
+
+    #[test]
+    fn bad_tolerances_are_typed_errors() {
+        let c = Bezier::new(vec![Vector2::new(0.0f64, 0.0), Vector2::new(1.0, 1.0)]).unwrap();
+        for tol in [0.0, -1.0, f64::NAN, f64::INFINITY] {
+            assert!(matches!(
+                flatten(&c, &tol),
+                Err(CurveError::OutOfRange { .. })
+            ));
+        }
+        assert!(matches!(
+            flatten(&c, &1e-17),
+            Err(CurveError::ToleranceBelowRounding { .. })
+        ));
+        // A straight line is flat at once: one segment.
+        assert_eq!(flatten(&c, &1e-9).unwrap().segments(), 1);
+    }
+
+    #[test]
+    fn parabola_counts_match_the_closed_form() {
+        // P(t) = (2t, 4t(1−t)). On a piece of width h the middle control point
+        // is 2h² above the chord midpoint (vertically) and the chord deviates
+        // by h² (vertically); near t = ½ the chord is horizontal.
+        let c = Bezier::new(vec![
+            Vector2::new(0.0f64, 0.0),
+            Vector2::new(1.0, 2.0),
+            Vector2::new(2.0, 0.0),
+        ])
+        .unwrap();
+        // Adaptive: every piece is flat at depth 6 (2·4⁻⁶ ≤ 1e-3 whatever its
+        // tilt); the horizontal ones at t = ½ are not at depth 5 (2·4⁻⁵ > 1e-3).
+        let poly = flatten(&c, &1e-3).unwrap();
+        assert!(poly.segments() <= 64);
+        let j = poly.params.iter().position(|t| *t == 0.5).unwrap();
+        assert_eq!(
+            (
+                poly.params[j + 1] - poly.params[j],
+                poly.params[j] - poly.params[j - 1]
+            ),
+            (1.0 / 64.0, 1.0 / 64.0)
+        );
+        // Uniform: for odd m the middle chord is horizontal with deviation 1/m²;
+        // m = 31 fails (1/961 > 1e-3), m = 32 passes (deviation ≤ 1/1024).
+        assert_eq!(uniform_segments(&c, &1e-3, 64).unwrap(), 32);
+    }
+}

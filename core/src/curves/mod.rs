@@ -1,0 +1,129 @@
+//! The curves of seed 002 (Takayama, *Curves*): cubic Hermite segments,
+//! rational Bézier curves (exact circular arcs), Catmull–Rom splines by the
+//! Barry–Goldman pyramid, and adaptive flattening of Bézier curves by
+//! de Casteljau subdivision.
+//!
+//! Polynomial Bézier curves themselves ([`Bezier`](crate::bernstein::bezier::Bezier)),
+//! tensor Bézier patches ([`Patch`](crate::bernstein::patch::Patch)) and
+//! B-splines / NURBS ([`bspline`](crate::bspline)) live in their own modules
+//! and are reused here, never re-implemented.
+//!
+//! All objects are generic over the scalar ([`Real`](crate::scalar::Real))
+//! and the dimension `D` (2-D and 3-D points are `SVector<T, 2>` / `SVector<T, 3>`).
+
+pub mod catmull_rom;
+pub mod flatten;
+pub mod hermite;
+pub mod rational_bezier;
+
+use crate::bernstein::bezier::BezierError;
+
+/// Why a curve of this module could not be built or evaluated.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum CurveError {
+    /// Not enough points for the construction.
+    #[error("{what} needs at least {needed} points, got {got}")]
+    TooFewPoints {
+        /// The construction.
+        what: &'static str,
+        /// Minimum number of points.
+        needed: usize,
+        /// Points given.
+        got: usize,
+    },
+    /// A point (or vector) has a NaN or infinite coordinate.
+    #[error("point {index} is not finite")]
+    NonFinitePoint {
+        /// Position of the offending point.
+        index: usize,
+    },
+    /// A scalar input (parameter, radius, angle) is NaN or infinite.
+    #[error("{name} is not finite")]
+    NonFinite {
+        /// Which input.
+        name: &'static str,
+    },
+    /// A weight is zero, negative or not finite.
+    #[error("weight {index} = {value} is not a positive finite number")]
+    BadWeight {
+        /// Position of the weight.
+        index: usize,
+        /// Its value (as f64).
+        value: f64,
+    },
+    /// Points and weights have different counts.
+    #[error("{points} points but {weights} weights")]
+    LengthMismatch {
+        /// Number of points.
+        points: usize,
+        /// Number of weights.
+        weights: usize,
+    },
+    /// The denominator of a rational curve is not positive at this parameter.
+    #[error("the weight function of the rational curve is not positive at t = {t}")]
+    VanishingDenominator {
+        /// The parameter (as f64).
+        t: f64,
+    },
+    /// Two consecutive points coincide: the chordal/centripetal knot interval
+    /// `|P_k − P_{k−1}|^α` is zero and the pyramid would divide by zero.
+    #[error("points {index} and {next} coincide: zero chord under non-uniform knot spacing")]
+    CoincidentPoints {
+        /// First point of the zero chord.
+        index: usize,
+        /// Second point (the next one, cyclically for closed curves).
+        next: usize,
+    },
+    /// A parameter is outside the curve's domain.
+    #[error("parameter {t} is outside the domain [{lo}, {hi}]")]
+    OutOfDomain {
+        /// The parameter (as f64).
+        t: f64,
+        /// Domain start.
+        lo: f64,
+        /// Domain end.
+        hi: f64,
+    },
+    /// A value is outside its documented range.
+    #[error("{name} = {value} is outside {range}")]
+    OutOfRange {
+        /// Which input.
+        name: &'static str,
+        /// Its value (as f64).
+        value: f64,
+        /// The accepted range.
+        range: &'static str,
+    },
+    /// The flatness tolerance is below what the precision can honour.
+    #[error("tolerance {tol:e} is below the rounding floor {floor:e} of this precision and curve")]
+    ToleranceBelowRounding {
+        /// The requested tolerance.
+        tol: f64,
+        /// The smallest honourable tolerance.
+        floor: f64,
+    },
+    /// The wrong degree for a conversion.
+    #[error("expected a Bézier curve of degree {expected}, got degree {got}")]
+    Degree {
+        /// Required degree.
+        expected: usize,
+        /// Given degree.
+        got: usize,
+    },
+    /// Subdivision did not reach the tolerance within the depth limit.
+    #[error("adaptive subdivision exceeded depth {0}")]
+    DepthExceeded(usize),
+    /// An error of the underlying Bézier code.
+    #[error(transparent)]
+    Bezier(#[from] BezierError),
+}
+
+/// Checks that every coordinate of every point is finite.
+pub(crate) fn check_points<T: crate::scalar::Real, const D: usize>(
+    points: &[nalgebra::SVector<T, D>],
+) -> Result<(), CurveError> {
+    match points.iter().position(|p| p.iter().any(|x| !x.is_finite())) {
+        Some(index) => Err(CurveError::NonFinitePoint { index }),
+        None => Ok(()),
+    }
+}

@@ -1,0 +1,400 @@
+//! `splinelab deform`: deform a grid of Bézier patches by flow vectors at
+//! their sample points (seed 001 eq 4), correct the joins (§2.3), and write
+//! the surface as JSON plus an SVG picture.
+//!
+//! Input (JSON):
+//!
+//! ```text
+//! { "degree": 3, "nu": 2, "nv": 2,
+//!   "patches": [ [[x,y,z], … (n+1)² points P_ij row-major], … nu·nv patches, row-major over (p, q) ],
+//!   "samples": {"family": "equispaced"}   or   {"u": [...], "v": [...]},
+//!   "flow": [ [[fx,fy,fz], … (n+1)² vectors at R(u_a, v_b), row-major], … one list per patch ],
+//!   "solver": "kronecker-marco-martinez",   (optional; or "full-lu", "kronecker-lu")
+//!   "correct": true }                       (optional, default true; needs degree ≥ 3)
+//! ```
+//!
+//! Everything is read, validated and computed before the output directory is
+//! created; bad input leaves nothing behind.
+
+use crate::error::CliError;
+use crate::output::{print_json, write_atomic};
+use crate::report::bernstein_inverse::surface_chart;
+use clap::Args;
+use serde::Deserialize;
+use serde_json::json;
+use splinelab::bernstein::bv_solve::TensorSolver;
+use splinelab::bernstein::continuity::correct_continuity;
+use splinelab::bernstein::inverse_mapping::{SampleGrid, deform_grid};
+use splinelab::bernstein::patch::{Patch, PatchGrid, Point3};
+use splinelab::bernstein::vandermonde::NodeFamily;
+use splinelab_verify::deform::{
+    Defects, PushParams, defects, grid_to_f64, push_surfaces, sample_residual,
+};
+use std::path::{Path, PathBuf};
+
+/// Largest accepted patch degree (a 31 × 31 sample grid per patch).
+pub const MAX_DEGREE: usize = 30;
+/// Largest accepted number of patches.
+pub const MAX_PATCHES: usize = 10_000;
+
+/// Arguments of `splinelab deform`.
+#[derive(Debug, Args)]
+pub struct DeformArgs {
+    /// Input JSON {degree, nu, nv, patches, samples, flow[, solver, correct]}: the patch grid, the
+    /// sample parameters ({"family": "equispaced"} or {"u": [...], "v": [...]}) and flow vectors.
+    #[arg(long, required_unless_present = "example", conflicts_with = "example")]
+    pub input: Option<PathBuf>,
+    /// Use the seed-001 experiment instead of --input: 10 × 10 bicubic patches on z = 0 pushed by a
+    /// Gaussian (its input is written to DIR/input.json).
+    #[arg(long)]
+    pub example: bool,
+    /// Output directory (created): deformed.json and deformed.svg.
+    #[arg(long)]
+    pub out: PathBuf,
+    /// Print a JSON summary on stdout.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// Sample parameters: a node family or explicit lists.
+#[derive(Debug, Clone, Deserialize, serde::Serialize)]
+#[serde(untagged)]
+pub enum SamplesSpec {
+    /// The same node family in `u` and `v`.
+    Family {
+        /// `equispaced`, `chebyshev-lobatto` or `chebyshev-gauss`.
+        family: NodeFamily,
+    },
+    /// Explicit increasing parameters in `[0, 1]`.
+    Explicit {
+        /// `u_0 < … < u_n`.
+        u: Vec<f64>,
+        /// `v_0 < … < v_n`.
+        v: Vec<f64>,
+    },
+}
+
+/// The input file.
+#[derive(Debug, Clone, Deserialize, serde::Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct DeformInput {
+    /// Patch degree `n`.
+    pub degree: usize,
+    /// Patches in `u`.
+    pub nu: usize,
+    /// Patches in `v`.
+    pub nv: usize,
+    /// Control nets.
+    pub patches: Vec<Vec<[f64; 3]>>,
+    /// Sample parameters.
+    pub samples: SamplesSpec,
+    /// Flow vectors per patch.
+    pub flow: Vec<Vec<[f64; 3]>>,
+    /// Solver for eq 4.
+    #[serde(default = "default_solver")]
+    pub solver: String,
+    /// Apply the §2.3 correction.
+    #[serde(default = "default_true")]
+    pub correct: bool,
+}
+
+fn default_solver() -> String {
+    TensorSolver::KroneckerMarcoMartinez.name().into()
+}
+
+fn default_true() -> bool {
+    true
+}
+
+fn points(v: &[[f64; 3]]) -> Vec<Point3<f64>> {
+    v.iter().map(|p| Point3::new(p[0], p[1], p[2])).collect()
+}
+
+/// What `deform` computed, before anything is written.
+struct Outcome {
+    input: DeformInput,
+    deformed: PatchGrid<f64>,
+    corrected: Option<PatchGrid<f64>>,
+    samples: SampleGrid<f64>,
+    residual: f64,
+    before: Defects,
+    after: Option<Defects>,
+}
+
+fn compute(input: DeformInput, bad: &dyn Fn(String) -> CliError) -> Result<Outcome, CliError> {
+    if !(1..=MAX_DEGREE).contains(&input.degree) {
+        return Err(bad(format!(
+            "degree {} is outside 1..={MAX_DEGREE}",
+            input.degree
+        )));
+    }
+    if input.nu.saturating_mul(input.nv) > MAX_PATCHES {
+        return Err(bad(format!(
+            "{}×{} patches exceed {MAX_PATCHES}",
+            input.nu, input.nv
+        )));
+    }
+    let solver: TensorSolver = input.solver.parse().map_err(bad)?;
+    let patches = input
+        .patches
+        .iter()
+        .enumerate()
+        .map(|(k, c)| {
+            Patch::new(input.degree, points(c)).map_err(|e| bad(format!("patch {k}: {e}")))
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+    let surface = PatchGrid::new(input.nu, input.nv, patches).map_err(|e| bad(e.to_string()))?;
+    let samples = match &input.samples {
+        SamplesSpec::Family { family } => SampleGrid::from_family(*family, input.degree),
+        SamplesSpec::Explicit { u, v } => SampleGrid::new(u.clone(), v.clone()),
+    }
+    .map_err(|e| bad(e.to_string()))?;
+    let flows: Vec<Vec<Point3<f64>>> = input.flow.iter().map(|f| points(f)).collect();
+    let deformed =
+        deform_grid(&surface, &samples, &flows, solver).map_err(|e| bad(e.to_string()))?;
+    let residual =
+        sample_residual(&surface, &deformed, &samples, &flows).map_err(CliError::numerical)?;
+    let before = defects(&deformed).map_err(CliError::numerical)?;
+    let corrected = if input.correct {
+        Some(correct_continuity(&deformed).map_err(|e| bad(e.to_string()))?)
+    } else {
+        None
+    };
+    let after = corrected
+        .as_ref()
+        .map(defects)
+        .transpose()
+        .map_err(CliError::numerical)?;
+    Ok(Outcome {
+        input,
+        deformed,
+        corrected,
+        samples,
+        residual,
+        before,
+        after,
+    })
+}
+
+/// The seed-001 experiment as an input file.
+fn example_input() -> Result<DeformInput, CliError> {
+    let p = PushParams::default();
+    let s = push_surfaces::<f64>(&p).map_err(CliError::numerical)?;
+    let flow = s
+        .flows
+        .iter()
+        .map(|f| f.iter().map(|v| [v.x, v.y, v.z]).collect())
+        .collect();
+    Ok(DeformInput {
+        degree: p.degree,
+        nu: p.patches,
+        nv: p.patches,
+        patches: grid_to_f64(&s.initial),
+        samples: SamplesSpec::Family { family: p.nodes },
+        flow,
+        solver: p.solver.name().into(),
+        correct: true,
+    })
+}
+
+fn read_input(path: &Path) -> Result<DeformInput, CliError> {
+    let err = |why: String| CliError::Input {
+        path: path.to_path_buf(),
+        why,
+    };
+    let text = std::fs::read_to_string(path).map_err(|e| err(e.to_string()))?;
+    serde_json::from_str(&text).map_err(|e| err(e.to_string()))
+}
+
+/// Runs `splinelab deform`.
+pub fn run(args: &DeformArgs) -> Result<(), CliError> {
+    let (input, source) = match &args.input {
+        Some(path) => (read_input(path)?, path.clone()),
+        None => (example_input()?, PathBuf::from("(built-in example)")),
+    };
+    let src = source.clone();
+    let bad = move |why: String| CliError::Input {
+        path: src.clone(),
+        why,
+    };
+    let out = compute(input, &bad)?;
+    let final_grid = out.corrected.as_ref().unwrap_or(&out.deformed);
+    let nets = grid_to_f64(final_grid);
+    let title = if out.corrected.is_some() {
+        "Deformed surface (continuity corrected)"
+    } else {
+        "Deformed surface"
+    };
+    let chart = surface_chart("deformed", title, &nets, out.input.nv, out.input.degree, "")?;
+    let svg = chart
+        .render_svg()
+        .map_err(|e| CliError::Chart("deformed".into(), e.to_string()))?;
+    let (u, v) = (out.samples.u().to_vec(), out.samples.v().to_vec());
+    let doc = json!({
+        "degree": out.input.degree,
+        "nu": out.input.nu,
+        "nv": out.input.nv,
+        "solver": out.input.solver,
+        "samples": {"u": u, "v": v},
+        "corrected": out.corrected.is_some(),
+        "patches": nets,
+        "patches_before_correction": out.corrected.as_ref().map(|_| grid_to_f64(&out.deformed)),
+        "max_sample_residual": out.residual,
+        "join_defects_before_correction": out.before,
+        "join_defects_after_correction": out.after,
+    });
+    let text = serde_json::to_string_pretty(&doc).map_err(CliError::numerical)?;
+    let example = if args.example {
+        Some(serde_json::to_string(&out.input).map_err(CliError::numerical)?)
+    } else {
+        None
+    };
+    // All computed: only now touch the file system.
+    std::fs::create_dir_all(&args.out).map_err(|source| CliError::Output {
+        path: args.out.clone(),
+        source,
+    })?;
+    let mut files = vec![
+        args.out.join("deformed.json"),
+        args.out.join("deformed.svg"),
+    ];
+    write_atomic(&files[0], text.as_bytes())?;
+    write_atomic(&files[1], svg.as_bytes())?;
+    if let Some(e) = example {
+        files.push(args.out.join("input.json"));
+        write_atomic(&files[2], e.as_bytes())?;
+    }
+    if args.json {
+        print_json(&json!({
+            "input": source,
+            "files": files,
+            "degree": out.input.degree,
+            "patches": out.input.nu * out.input.nv,
+            "solver": out.input.solver,
+            "corrected": out.corrected.is_some(),
+            "max_sample_residual": out.residual,
+            "join_defects_before_correction": out.before,
+            "join_defects_after_correction": out.after,
+        }));
+    } else {
+        println!(
+            "deformed {}×{} degree-{} patches with {}",
+            out.input.nu, out.input.nv, out.input.degree, out.input.solver
+        );
+        println!("max sample residual      {:.3e}", out.residual);
+        println!(
+            "cross-tangent mismatch   {:.3e} (before correction)",
+            out.before.tangent
+        );
+        if let Some(a) = &out.after {
+            println!(
+                "cross-tangent mismatch   {:.3e} (after correction)",
+                a.tangent
+            );
+        }
+        for f in &files {
+            println!("wrote {}", f.display());
+        }
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn tiny() -> DeformInput {
+        let net: Vec<[f64; 3]> = (0..4)
+            .map(|k| [(k / 2) as f64, (k % 2) as f64, 0.0])
+            .collect();
+        DeformInput {
+            degree: 1,
+            nu: 1,
+            nv: 1,
+            patches: vec![net],
+            samples: SamplesSpec::Family {
+                family: NodeFamily::Equispaced,
+            },
+            flow: vec![vec![[0.0, 0.0, 1.0]; 4]],
+            solver: default_solver(),
+            correct: false,
+        }
+    }
+
+    #[test]
+    fn bad_input_is_refused_before_anything_is_written() {
+        let dir =
+            std::env::temp_dir().join(format!("splinelab_deform_test_{}", std::process::id()));
+        let bad_file = dir.with_extension("json");
+        type Change = Box<dyn Fn(&mut DeformInput)>;
+        let cases: Vec<Change> = vec![
+            Box::new(|i| {
+                i.samples = SamplesSpec::Explicit {
+                    u: vec![0.5, 0.5],
+                    v: vec![0.0, 1.0],
+                }
+            }),
+            Box::new(|i| {
+                i.samples = SamplesSpec::Explicit {
+                    u: vec![0.0, 1.5],
+                    v: vec![0.0, 1.0],
+                }
+            }),
+            Box::new(|i| i.flow[0][2][1] = f64::NAN),
+            Box::new(|i| i.patches[0][1][0] = f64::INFINITY),
+            Box::new(|i| i.flow[0].pop().map(drop).unwrap_or(())),
+            Box::new(|i| i.nv = 2),
+            Box::new(|i| i.solver = "cholesky".into()),
+            Box::new(|i| i.correct = true),
+        ];
+        for (k, change) in cases.iter().enumerate() {
+            let mut input = tiny();
+            change(&mut input);
+            // NaN/inf cannot be written as JSON; test compute() directly for those.
+            let bad = |why: String| CliError::Input {
+                path: bad_file.clone(),
+                why,
+            };
+            assert!(
+                matches!(compute(input, &bad), Err(CliError::Input { .. })),
+                "case {k}"
+            );
+        }
+        std::fs::write(
+            &bad_file,
+            serde_json::to_string(&{
+                let mut i = tiny();
+                i.samples = SamplesSpec::Explicit {
+                    u: vec![0.0, 0.0],
+                    v: vec![0.0, 1.0],
+                };
+                i
+            })
+            .unwrap(),
+        )
+        .unwrap();
+        let args = DeformArgs {
+            input: Some(bad_file.clone()),
+            example: false,
+            out: dir.clone(),
+            json: false,
+        };
+        assert!(matches!(run(&args), Err(CliError::Input { .. })));
+        assert!(!dir.exists(), "nothing may be written on bad input");
+        std::fs::write(&bad_file, "{\"degree\": 1}").unwrap();
+        assert!(matches!(run(&args), Err(CliError::Input { .. })));
+        assert!(!dir.exists());
+        let _ = std::fs::remove_file(&bad_file);
+    }
+
+    #[test]
+    fn a_bilinear_patch_lifted_by_one_is_the_lifted_patch() {
+        let out = compute(tiny(), &|why| CliError::numerical(why)).unwrap();
+        // Degree 1 at corner samples: control points are the samples, so the
+        // flow (0, 0, 1) lifts every control point by exactly 1.
+        for (k, p) in out.deformed.patch(0, 0).control().iter().enumerate() {
+            assert_eq!(*p, Point3::new((k / 2) as f64, (k % 2) as f64, 1.0));
+        }
+        assert_eq!(out.residual, 0.0);
+    }
+}

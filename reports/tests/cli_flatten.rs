@@ -1,0 +1,176 @@
+//! `splinelab flatten` end to end: the JSON contract on the parabola
+//! `P(t) = (2t, 4t(1 − t))`, whose uniform count and flatness guarantee have
+//! closed forms, a 3-D curve, and bad input rejected with non-zero exit.
+
+use serde_json::Value;
+use std::process::{Command, Output};
+
+fn splinelab(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_splinelab"))
+        .args(args)
+        .output()
+        .unwrap()
+}
+
+fn write(name: &str, contents: &str) -> String {
+    let dir = std::env::temp_dir().join(format!("splinelab_cli_flatten_{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join(name);
+    std::fs::write(&path, contents).unwrap();
+    path.to_string_lossy().into_owned()
+}
+
+fn run_json(file: &str, tol: &str) -> Value {
+    let out = splinelab(&["flatten", "--input", file, "--tol", tol, "--json"]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    serde_json::from_slice(&out.stdout).unwrap()
+}
+
+/// Distance from `p` to the segment `[a, b]` (independent of the crate's).
+fn seg_dist(p: (f64, f64), a: (f64, f64), b: (f64, f64)) -> f64 {
+    let (dx, dy) = (b.0 - a.0, b.1 - a.1);
+    let s = (((p.0 - a.0) * dx + (p.1 - a.1) * dy) / (dx * dx + dy * dy)).clamp(0.0, 1.0);
+    ((p.0 - a.0 - s * dx).powi(2) + (p.1 - a.1 - s * dy).powi(2)).sqrt()
+}
+
+#[test]
+fn parabola_contract_matches_the_closed_forms() {
+    let file = write("parabola.json", r#"{"points": [[0, 0], [1, 2], [2, 0]]}"#);
+    let v = run_json(&file, "1e-3");
+    let poly: Vec<(f64, f64)> = v["polyline"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|p| (p[0].as_f64().unwrap(), p[1].as_f64().unwrap()))
+        .collect();
+    assert_eq!(v["segments"].as_u64().unwrap() as usize, poly.len() - 1);
+    // Uniform: for odd m the middle chord is horizontal with deviation 1/m²,
+    // so m = 31 fails (1/961 > 1e-3) and m = 32 is the first to pass.
+    assert_eq!(v["uniform_segments"], 32);
+    assert_eq!((poly[0], *poly.last().unwrap()), ((0.0, 0.0), (2.0, 0.0)));
+    // Every vertex is on the parabola y = x(2 − x)...
+    for &(x, y) in &poly {
+        assert!((y - x * (2.0 - x)).abs() < 1e-15, "({x}, {y})");
+    }
+    // ... and every point of the curve is within tol of the polyline.
+    for j in 0..=20000 {
+        let t = j as f64 / 20000.0;
+        let p = (2.0 * t, 4.0 * t * (1.0 - t));
+        let d = poly
+            .windows(2)
+            .map(|w| seg_dist(p, w[0], w[1]))
+            .fold(f64::INFINITY, f64::min);
+        assert!(d <= 1e-3, "t = {t}: {d}");
+    }
+    // Every piece is flat by depth 6 (2·4⁻⁶ ≤ 1e-3), so at most 64 segments.
+    assert!(poly.len() - 1 <= 64);
+}
+
+#[test]
+fn three_d_points_and_higher_degree_work() {
+    let file = write(
+        "helix.json",
+        r#"{"points": [[1, 0, 0], [1, 1, 0.5], [0, 1, 1], [-1, 1, 1.5], [-1, 0, 2], [-1, -1, 2.5]]}"#,
+    );
+    let v = run_json(&file, "1e-4");
+    assert_eq!(v["degree"], 5);
+    assert_eq!(v["polyline"][0].as_array().unwrap().len(), 3);
+    assert!(v["max_deviation"].as_f64().unwrap() <= 1e-4);
+    assert!(v["uniform_max_deviation"].as_f64().unwrap() <= 1e-4);
+}
+
+#[test]
+fn bad_input_is_a_clear_error_with_non_zero_exit() {
+    let good = write("good.json", r#"{"points": [[0, 0], [1, 1]]}"#);
+    let cases: Vec<(Vec<String>, &str)> = vec![
+        (
+            vec!["--input".into(), good.clone(), "--tol".into(), "0".into()],
+            "--tol",
+        ),
+        (
+            vec!["--input".into(), good.clone(), "--tol".into(), "-1".into()],
+            "--tol",
+        ),
+        (
+            vec!["--input".into(), good.clone(), "--tol".into(), "NaN".into()],
+            "--tol",
+        ),
+        (
+            vec![
+                "--input".into(),
+                good.clone(),
+                "--tol".into(),
+                "1e-300".into(),
+            ],
+            "rounding",
+        ),
+        (
+            vec![
+                "--input".into(),
+                "/nonexistent/x.json".into(),
+                "--tol".into(),
+                "1e-3".into(),
+            ],
+            "cannot read",
+        ),
+        (
+            vec![
+                "--input".into(),
+                write("mixed.json", r#"{"points": [[0, 0], [1, 1, 1]]}"#),
+                "--tol".into(),
+                "1e-3".into(),
+            ],
+            "coordinates",
+        ),
+        (
+            vec![
+                "--input".into(),
+                write("empty.json", r#"{"points": []}"#),
+                "--tol".into(),
+                "1e-3".into(),
+            ],
+            "no control points",
+        ),
+        (
+            vec![
+                "--input".into(),
+                write("bad.json", r#"{"pts": 1}"#),
+                "--tol".into(),
+                "1e-3".into(),
+            ],
+            "points",
+        ),
+        (
+            vec![
+                "--input".into(),
+                write("str.json", r#"{"points": [[0, "a"]]}"#),
+                "--tol".into(),
+                "1e-3".into(),
+            ],
+            "not an array of numbers",
+        ),
+        (
+            vec![
+                "--input".into(),
+                write("one.json", r#"{"points": [[0], [1]]}"#),
+                "--tol".into(),
+                "1e-3".into(),
+            ],
+            "2-D or 3-D",
+        ),
+    ];
+    for (args, needle) in cases {
+        let mut all = vec!["flatten".to_string()];
+        all.extend(args);
+        let refs: Vec<&str> = all.iter().map(String::as_str).collect();
+        let out = splinelab(&refs);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(!out.status.success(), "{refs:?} succeeded");
+        assert!(err.contains(needle), "{refs:?}: {err}");
+        assert!(!err.contains("panicked"), "{err}");
+    }
+}

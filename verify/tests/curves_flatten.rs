@@ -1,0 +1,93 @@
+//! Adaptive flattening (seed 002, method 2): every curve point within the
+//! tolerance of the polyline (dense samples), for cubic and higher degrees,
+//! in f64 and MPFR; de Casteljau subdivision invariance; segment counts of
+//! adaptive vs uniform sampling on closed forms.
+
+use nalgebra::Vector2;
+use proptest::prelude::*;
+use splinelab::bernstein::bezier::Bezier;
+use splinelab::curves::flatten::{flatten, max_deviation, uniform_polyline, uniform_segments};
+use splinelab::scalar::prelude::*;
+use splinelab_verify::curves::{dist_ref, flatten_excess, frac, in_u};
+
+fn curve<T: Real>(pts: &[[i32; 2]]) -> Bezier<T, 2> {
+    Bezier::new(
+        pts.iter()
+            .map(|p| Vector2::new(T::from_int(p[0] as i64), T::from_int(p[1] as i64)))
+            .collect(),
+    )
+    .unwrap()
+}
+
+fn control() -> impl Strategy<Value = Vec<[i32; 2]>> {
+    proptest::collection::vec([-16i32..=16, -16i32..=16], 4..12)
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(64))]
+
+    #[test]
+    fn every_curve_point_is_within_tol_of_the_polyline_f64(p in control(), k in 1i32..=8) {
+        let tol = 10f64.powi(-k);
+        let (excess, _) = flatten_excess(&curve::<f64>(&p), &tol, 24).unwrap();
+        prop_assert!(excess <= 1.0, "deviation / tol = {excess}");
+    }
+
+    #[test]
+    fn every_curve_point_is_within_tol_of_the_polyline_mp128(p in control(), k in 1u32..=4) {
+        // Fewer, coarser cases than f64: MPFR subdivision is ~100× slower.
+        let tol = Mp::<128>::from_int(1) / Mp::from_int(10i64.pow(k));
+        let (excess, _) = flatten_excess(&curve::<Mp<128>>(&p), &tol, 6).unwrap();
+        prop_assert!(excess <= 1.0, "deviation / tol = {excess}");
+    }
+
+    #[test]
+    fn subdivision_halves_reproduce_the_curve(p in control(), t in 1usize..64, s in 0usize..=16) {
+        // L(s) = P(t s), R(s) = P(t + (1 − t) s): compared in MPFR 128 against
+        // the f64 halves, and in MPFR 256 for the MPFR halves.
+        let (t, s) = (frac::<f64>(t, 64), frac::<f64>(s, 16));
+        let c = curve::<f64>(&p);
+        let (l, r) = c.subdivide(&t).unwrap();
+        let cm = curve::<Mp<128>>(&p);
+        let (tm, sm) = (Mp::<128>::from(t), Mp::<128>::from(s));
+        let left_ref = cm.eval(&(tm.clone() * sm.clone())).unwrap();
+        let lf = l.eval(&s).unwrap();
+        let lf = Vector2::new(Mp::<128>::from(lf.x), Mp::from(lf.y));
+        prop_assert!(in_u::<f64>(&dist_ref(&lf, &left_ref), 16.0) <= 256.0);
+        let (lm, rm) = cm.subdivide(&tm).unwrap();
+        let right_ref = cm.eval(&(tm.clone() + (Mp::from(1.0) - tm.clone()) * sm.clone())).unwrap();
+        prop_assert!(in_u::<Mp<128>>(&dist_ref(&rm.eval(&sm).unwrap(), &right_ref), 16.0) <= 256.0);
+        prop_assert!(in_u::<Mp<128>>(&dist_ref(&lm.eval(&sm).unwrap(), &left_ref), 16.0) <= 256.0);
+        let _ = r;
+    }
+}
+
+#[test]
+fn uniform_count_is_the_smallest_passing_count() {
+    // Degree 10 zig-zag: the returned m passes, m − 1 does not.
+    let pts: Vec<[i32; 2]> = (0..=10)
+        .map(|i| [i, if i % 2 == 0 { 0 } else { 1 }])
+        .collect();
+    let c = curve::<f64>(&pts);
+    for tol in [1e-2, 1e-4] {
+        let m = uniform_segments(&c, &tol, 32).unwrap();
+        assert!(max_deviation(&c, &uniform_polyline(&c, m).unwrap(), 32).unwrap() <= tol);
+        assert!(max_deviation(&c, &uniform_polyline(&c, m - 1).unwrap(), 32).unwrap() > tol);
+        let a = flatten(&c, &tol).unwrap();
+        assert!(max_deviation(&c, &a, 32).unwrap() <= tol);
+    }
+}
+
+#[test]
+fn cubic_counts_scale_like_the_inverse_square_root_of_tol() {
+    // Both methods converge with order 2: 100× smaller tol needs ≈ 10× more
+    // segments (between 5× and 20× allowing for the discrete counts).
+    let c = curve::<f64>(&[[0, 0], [1, 2], [3, -1], [4, 1]]);
+    for f in [
+        |c: &Bezier<f64, 2>, t: f64| flatten(c, &t).unwrap().segments(),
+        |c: &Bezier<f64, 2>, t: f64| uniform_segments(c, &t, 32).unwrap(),
+    ] {
+        let (a, b) = (f(&c, 1e-4), f(&c, 1e-6));
+        assert!((5 * a..=20 * a).contains(&b), "{a} → {b}");
+    }
+}
