@@ -77,6 +77,29 @@ pub struct Chart {
     pub caption: String,
 }
 
+/// A chart with a linear x axis, the usual shape of a report figure: the
+/// one constructor the report sections share.
+pub fn line_chart(
+    id: &str,
+    title: &str,
+    x_label: &str,
+    y_label: &str,
+    y_log: bool,
+    series: Vec<Series>,
+    caption: &str,
+) -> Chart {
+    Chart {
+        id: id.into(),
+        title: title.into(),
+        x_label: x_label.into(),
+        y_label: y_label.into(),
+        x_log: false,
+        y_log,
+        series,
+        caption: caption.into(),
+    }
+}
+
 /// Why a chart could not be drawn.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum ChartError {

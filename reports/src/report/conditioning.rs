@@ -1,7 +1,7 @@
 //! Report section: Bernstein–Vandermonde conditioning (seed 001 eq 2–3).
 
 use super::{Figure, Profile, ReportError, Section};
-use crate::chart::{Chart, Series};
+use crate::chart::{Chart, Series, line_chart};
 use crate::error::CliError;
 use crate::html::{num, paragraph, table};
 use serde_json::json;
@@ -27,16 +27,7 @@ fn chart(
     series: Vec<Series>,
     caption: &str,
 ) -> Chart {
-    Chart {
-        id: id.into(),
-        title: title.into(),
-        x_label: "degree n".into(),
-        y_label: y_label.into(),
-        x_log: false,
-        y_log,
-        series,
-        caption: caption.into(),
-    }
+    line_chart(id, title, "degree n", y_label, y_log, series, caption)
 }
 
 fn cond_chart(rows: &[CondRow]) -> Chart {

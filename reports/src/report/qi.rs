@@ -9,26 +9,7 @@ use splinelab_verify::qi::{
     ConvergenceRun, CurvaturePlot, Curve3d, IterationRow, QiParams, QiStudy, RandomStudy, run_qi,
 };
 
-fn chart(
-    id: &str,
-    title: &str,
-    x: &str,
-    y: &str,
-    y_log: bool,
-    series: Vec<Series>,
-    caption: &str,
-) -> Chart {
-    Chart {
-        id: id.into(),
-        title: title.into(),
-        x_label: x.into(),
-        y_label: y.into(),
-        x_log: false,
-        y_log,
-        series,
-        caption: caption.into(),
-    }
-}
+use crate::chart::line_chart as chart;
 
 fn label(r: &ConvergenceRun) -> String {
     format!(

@@ -10,26 +10,7 @@ use splinelab_verify::sspline::{
     MP_BITS, MethodAccuracy, SsplineParams, SsplineStudy, WidthRow, run_sspline,
 };
 
-fn chart(
-    id: &str,
-    title: &str,
-    x: &str,
-    y: &str,
-    y_log: bool,
-    series: Vec<Series>,
-    caption: &str,
-) -> Chart {
-    Chart {
-        id: id.into(),
-        title: title.into(),
-        x_label: x.into(),
-        y_label: y.into(),
-        x_log: false,
-        y_log,
-        series,
-        caption: caption.into(),
-    }
-}
+use crate::chart::line_chart as chart;
 
 fn positive(points: impl Iterator<Item = (f64, f64)>) -> Vec<(f64, f64)> {
     points.filter(|(_, y)| *y > 0.0 && y.is_finite()).collect()
