@@ -117,7 +117,9 @@ pub enum ChartError {
     Draw(String),
 }
 
-const PALETTE: [RGBColor; 8] = [
+// Twelve distinguishable colours (tab10 plus two), so that the sweeps with
+// ten or more series (orders 2..24) do not reuse a colour.
+const PALETTE: [RGBColor; 12] = [
     RGBColor(31, 119, 180),
     RGBColor(255, 127, 14),
     RGBColor(44, 160, 44),
@@ -126,6 +128,10 @@ const PALETTE: [RGBColor; 8] = [
     RGBColor(140, 86, 75),
     RGBColor(227, 119, 194),
     RGBColor(127, 127, 127),
+    RGBColor(188, 189, 34),
+    RGBColor(23, 190, 207),
+    RGBColor(0, 0, 0),
+    RGBColor(120, 60, 0),
 ];
 
 fn transform(v: f64, log: bool, name: &str) -> Result<f64, ChartError> {
