@@ -106,27 +106,14 @@ pub struct BvRow {
     pub mm_1d: SolveError,
 }
 
-/// A small deterministic generator (SplitMix64), so that every run measures
-/// the same right-hand sides.
-struct SplitMix(u64);
-
-impl SplitMix {
-    fn next_unit(&mut self) -> f64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^= z >> 31;
-        (z >> 11) as f64 / (1u64 << 53) as f64
-    }
-}
+use crate::rng::SplitMix64;
 
 /// `RHS_SAMPLES` right-hand sides of `rows` entries; entry `k` of a tensor
 /// right-hand side is grid point `(k / side, k % side)`.
 pub fn right_hand_sides(kind: RhsKind, rows: usize, side: usize, seed: u64) -> DMatrix<f64> {
-    let mut rng = SplitMix(seed);
+    let mut rng = SplitMix64::new(seed);
     DMatrix::from_fn(rows, RHS_SAMPLES, |k, _| {
-        let x = rng.next_unit();
+        let x = rng.unit();
         match kind {
             RhsKind::Random => 2.0 * x - 1.0,
             RhsKind::SignAlternating => {

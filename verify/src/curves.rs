@@ -78,31 +78,11 @@ pub fn radial_error_u<T: Real, const D: usize>(p: &SVector<T, D>, c: &SVector<T,
 
 // ---- deterministic inputs -------------------------------------------------
 
-/// SplitMix64: a tiny deterministic generator for study inputs.
-#[derive(Debug, Clone)]
-pub struct Rng(u64);
+use crate::rng::SplitMix64;
 
-impl Rng {
-    /// Seeded generator.
-    pub fn new(seed: u64) -> Self {
-        Rng(seed)
-    }
-    fn next(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
-    /// A dyadic number `j / 2^10` in `[−range, range]` (exact in every precision).
-    pub fn dyadic(&mut self, range: f64) -> f64 {
-        let steps = (range * 1024.0) as u64;
-        (self.next() % (2 * steps + 1)) as f64 / 1024.0 - range
-    }
-    /// A random point with dyadic coordinates.
-    pub fn point<T: Real, const D: usize>(&mut self, range: f64) -> SVector<T, D> {
-        SVector::from_fn(|_, _| T::from_f64_exact(self.dyadic(range)))
-    }
+/// A random point with dyadic coordinates in `[−range, range]`.
+fn random_point<T: Real, const D: usize>(rng: &mut SplitMix64, range: f64) -> SVector<T, D> {
+    SVector::from_fn(|_, _| T::from_f64_exact(rng.dyadic(range)))
 }
 
 /// `j / m` in `T` (correctly rounded).
@@ -618,7 +598,7 @@ fn properties<T: Real>(cases: usize) -> Result<Vec<PropertyRow>, CurvesStudyErro
     } else {
         format!("mp{}", T::BITS)
     };
-    let mut rng = Rng::new(0x5EED_0002);
+    let mut rng = SplitMix64::new(0x5EED_0002);
     let mut h = HermiteErrors::default();
     let (mut elev, mut cr, mut boor, mut bb, mut bd, mut patch) = (
         0.0f64,
@@ -630,10 +610,10 @@ fn properties<T: Real>(cases: usize) -> Result<Vec<PropertyRow>, CurvesStudyErro
     );
     for case in 0..cases {
         let seg = Hermite::<T, 3>::new(
-            rng.point(4.0),
-            rng.point(4.0),
-            rng.point(8.0),
-            rng.point(8.0),
+            random_point(&mut rng, 4.0),
+            random_point(&mut rng, 4.0),
+            random_point(&mut rng, 8.0),
+            random_point(&mut rng, 8.0),
         )
         .map_err(err)?;
         let e = hermite_errors(&seg)?;
@@ -642,7 +622,7 @@ fn properties<T: Real>(cases: usize) -> Result<Vec<PropertyRow>, CurvesStudyErro
         h.bezier_agreement = h.bezier_agreement.max(e.bezier_agreement);
         h.conversion_derivatives = h.conversion_derivatives.max(e.conversion_derivatives);
         let deg = 2 + case % 5;
-        let pts: Vec<Vector2<T>> = (0..=deg).map(|_| rng.point(4.0)).collect();
+        let pts: Vec<Vector2<T>> = (0..=deg).map(|_| random_point(&mut rng, 4.0)).collect();
         let w: Vec<T> = (0..=deg)
             .map(|_| T::from_f64_exact(0.25 + rng.dyadic(1.0).abs() * 3.75))
             .collect();
@@ -650,7 +630,7 @@ fn properties<T: Real>(cases: usize) -> Result<Vec<PropertyRow>, CurvesStudyErro
             &RationalBezier::new(pts.clone(), w).map_err(err)?,
         )?);
         let spacing = Spacing::ALL[case % 3];
-        let cpts: Vec<Vector2<T>> = (0..6).map(|_| rng.point(4.0)).collect();
+        let cpts: Vec<Vector2<T>> = (0..6).map(|_| random_point(&mut rng, 4.0)).collect();
         if let Ok(c) = CatmullRom::new(cpts, spacing, case % 2 == 0) {
             let e = catmull_rom_errors(&c)?;
             cr.interpolation = cr.interpolation.max(e.interpolation);
@@ -663,7 +643,7 @@ fn properties<T: Real>(cases: usize) -> Result<Vec<PropertyRow>, CurvesStudyErro
             .map(|_| T::from_f64_exact(rng.dyadic(4.0)))
             .collect();
         knots.sort_by(|a, b| a.partial_cmp(b).unwrap_or(std::cmp::Ordering::Equal));
-        let q: Vec<Vector2<T>> = (0..npts).map(|_| rng.point(4.0)).collect();
+        let q: Vec<Vector2<T>> = (0..npts).map(|_| random_point(&mut rng, 4.0)).collect();
         if let Ok(c) = KnotVector::new(knots)
             .map_err(err)
             .and_then(|k| BSpline::new(order, q.clone(), k).map_err(err))
@@ -674,7 +654,7 @@ fn properties<T: Real>(cases: usize) -> Result<Vec<PropertyRow>, CurvesStudyErro
         bb = bb.max(a);
         bd = bd.max(b);
         if case < 8 {
-            let net: Vec<Vector3<T>> = (0..16).map(|_| rng.point(4.0)).collect();
+            let net: Vec<Vector3<T>> = (0..16).map(|_| random_point(&mut rng, 4.0)).collect();
             patch = patch.max(patch_vs_nurbs(&Patch::new(3, net).map_err(err)?)?);
         }
     }

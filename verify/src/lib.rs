@@ -11,4 +11,5 @@ pub mod curves;
 pub mod deform;
 pub mod metrics;
 pub mod qi;
+pub mod rng;
 pub mod sspline;

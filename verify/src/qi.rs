@@ -66,28 +66,7 @@ fn sampled(family: &str, n: usize, f: impl Fn(f64) -> [f64; 3]) -> QiCase {
     }
 }
 
-/// SplitMix64 (Steele–Lea–Flood 2014): a small, reproducible generator.
-#[derive(Debug, Clone)]
-pub struct SplitMix64(u64);
-
-impl SplitMix64 {
-    /// Generator with the given seed.
-    pub fn new(seed: u64) -> Self {
-        SplitMix64(seed)
-    }
-    /// Next 64 random bits.
-    pub fn next_u64(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
-    /// Uniform in `[0, 1)` with 53 random bits.
-    pub fn uniform(&mut self) -> f64 {
-        (self.next_u64() >> 11) as f64 / (1u64 << 53) as f64
-    }
-}
+pub use crate::rng::SplitMix64;
 
 /// A random walk: 4–8 points, steps of length in `[0.5, 1.5]`, each turning
 /// by an angle uniform in `[0°, 150°]` about a random axis. Returns the
@@ -101,17 +80,13 @@ pub fn random_walk(seed: u64) -> (QiCase, f64) {
     let mut max_turn: f64 = 0.0;
     for k in 1..n {
         if k > 1 {
-            let theta = rng.uniform() * 150f64.to_radians();
-            let r = Vector3::new(
-                rng.uniform() - 0.5,
-                rng.uniform() - 0.5,
-                rng.uniform() - 0.5,
-            );
+            let theta = rng.unit() * 150f64.to_radians();
+            let r = Vector3::new(rng.unit() - 0.5, rng.unit() - 0.5, rng.unit() - 0.5);
             let perp = (r - d * d.dot(&r)).normalize();
             d = (d * theta.cos() + perp * theta.sin()).normalize();
             max_turn = max_turn.max(theta.to_degrees());
         }
-        p += d * (0.5 + rng.uniform());
+        p += d * (0.5 + rng.unit());
         pts.push([p.x, p.y, p.z]);
     }
     let case = QiCase {
