@@ -13,51 +13,26 @@ use splinelab::bernstein::vandermonde::{NodeFamily, bernstein_vandermonde};
 use splinelab::conditioning::cond_inf;
 use splinelab::scalar::prelude::*;
 use splinelab_verify::bv_solvers::{RhsKind, measure, right_hand_sides};
+use splinelab_verify::exact::solve_rational;
 use splinelab_verify::metrics::ulps_f64;
 
-/// Solves `A x = b` exactly by Gaussian elimination over the rationals
-/// (first non-zero pivot), `A_{ji} = B_i^n(t_j)` at exact rational nodes.
+/// Solves `A x = b` exactly, `A_{ji} = B_i^n(t_j)` at exact rational nodes.
 fn exact_solve(t: &[Rational], b: &[Rational]) -> Vec<Rational> {
     let n = t.len() - 1;
-    let mut a: Vec<Vec<Rational>> = t
+    let a: Vec<Vec<Rational>> = t
         .iter()
-        .zip(b)
-        .map(|(tj, bj)| {
+        .map(|tj| {
             let om = Rational::from(1) - tj.clone();
-            let mut row: Vec<Rational> = (0..=n)
+            (0..=n)
                 .map(|i| {
                     Rational::from(binomial(n as u32, i as u32))
                         * tj.clone().pow(i as u32)
                         * om.clone().pow((n - i) as u32)
                 })
-                .collect();
-            row.push(bj.clone());
-            row
+                .collect()
         })
         .collect();
-    for k in 0..=n {
-        let p = (k..=n).find(|&r| a[r][k] != 0).expect("nonsingular");
-        a.swap(k, p);
-        for r in k + 1..=n {
-            if a[r][k] == 0 {
-                continue;
-            }
-            let f = a[r][k].clone() / a[k][k].clone();
-            let (top, bottom) = a.split_at_mut(r);
-            for (x, y) in bottom[0].iter_mut().zip(&top[k]).skip(k) {
-                *x -= f.clone() * y;
-            }
-        }
-    }
-    let mut x = vec![Rational::new(); n + 1];
-    for k in (0..=n).rev() {
-        let mut s = a[k][n + 1].clone();
-        for j in k + 1..=n {
-            s -= a[k][j].clone() * x[j].clone();
-        }
-        x[k] = s / a[k][k].clone();
-    }
-    x
+    solve_rational(a, b).expect("nonsingular")
 }
 
 #[test]

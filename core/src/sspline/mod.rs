@@ -20,7 +20,9 @@
 //! - [`coefficients`]: `c_i` by three independent methods;
 //! - [`truncation`]: the truncated basis `S_n` (eq 10, 28) and the error
 //!   measures of truncation;
-//! - [`width`]: the truncation-width chooser.
+//! - [`width`]: the truncation-width chooser;
+//! - [`prefilter`]: the full build of interpolation coefficients from samples
+//!   (exact recursive filter and truncated convolution).
 
 pub mod beta2;
 pub mod bspline_uniform;
@@ -31,6 +33,7 @@ pub mod euler_frobenius;
 pub mod family;
 pub mod global_cubic;
 pub mod node_values;
+pub mod prefilter;
 pub mod surface;
 pub mod truncation;
 pub mod width;

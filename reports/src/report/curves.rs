@@ -3,6 +3,7 @@
 //! adaptive vs uniform flattening — and the table of verified properties
 //! with their measured worst errors.
 
+use super::figure::slug;
 use super::{Figure, Profile, ReportError, Section};
 use crate::chart::{Chart, Series};
 use crate::error::CliError;
@@ -137,18 +138,6 @@ fn flatten_table(d: &CurvesData) -> String {
         ],
         &body,
     )
-}
-
-fn slug(s: &str) -> String {
-    let mut out = String::new();
-    for c in s.replace('é', "e").chars() {
-        if c.is_ascii_alphanumeric() {
-            out.push(c.to_ascii_lowercase());
-        } else if !out.ends_with('_') {
-            out.push('_');
-        }
-    }
-    out.trim_matches('_').to_string()
 }
 
 /// Headline figures: the worst errors (units of u) of the key properties in

@@ -94,3 +94,17 @@ impl Figure {
         self
     }
 }
+
+/// A figure-name fragment from free text: ASCII alphanumerics lower-cased,
+/// every other run of characters one `_` (`é` read as `e`).
+pub fn slug(s: &str) -> String {
+    let mut out = String::new();
+    for c in s.replace('é', "e").chars() {
+        if c.is_ascii_alphanumeric() {
+            out.push(c.to_ascii_lowercase());
+        } else if !out.ends_with('_') {
+            out.push('_');
+        }
+    }
+    out.trim_matches('_').to_string()
+}

@@ -14,6 +14,7 @@ pub mod figure;
 pub mod qi;
 pub mod sections;
 pub mod sspline;
+pub mod update_cost;
 
 pub use figure::Figure;
 

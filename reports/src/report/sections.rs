@@ -10,4 +10,5 @@ pub const SECTIONS: &[SectionFn] = &[
     super::bernstein_inverse::section,
     super::sspline::section,
     super::curves::section,
+    super::update_cost::section,
 ];
