@@ -50,6 +50,7 @@ fn full_build(c: &mut Criterion) {
                 |b, s| b.iter(|| cs.apply(black_box(s), EndRule::Reflect).unwrap()),
             );
         }
+        g.throughput(Throughput::Elements(2));
         g.bench_function("recursive_two_samples", |b| {
             b.iter(|| {
                 rec.apply(black_box(&[1.0, -1.0]), EndRule::Reflect)

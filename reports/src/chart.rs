@@ -159,7 +159,13 @@ fn padded(lo: f64, hi: f64) -> (f64, f64) {
 
 fn tick_label(v: f64, log: bool) -> String {
     if log {
-        format!("1e{}", v.round() as i64)
+        // Short log ranges get ticks between the decades: label them by value.
+        let k = v.round();
+        if (v - k).abs() < 1e-9 {
+            format!("1e{}", k as i64)
+        } else {
+            format!("{:.1e}", 10f64.powf(v))
+        }
     } else if v != 0.0 && (v.abs() >= 1e5 || v.abs() < 1e-3) {
         format!("{v:.1e}")
     } else {
@@ -261,6 +267,13 @@ impl Chart {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn log_ticks_between_decades_are_labelled_by_value() {
+        assert_eq!(tick_label(8.0, true), "1e8");
+        assert_eq!(tick_label(7.5, true), "3.2e7"); // 10^7.5 = 31 622 776.6
+        assert_eq!(tick_label(-2.0, true), "1e-2");
+    }
 
     #[test]
     fn a_nan_point_is_refused_with_the_series_named() {

@@ -496,9 +496,10 @@ fn surface_edit(n: usize) -> Result<SurfaceEdit, CurveError> {
         side,
         half_width: n,
         changed_control_points: changed,
+        // "before" drawn last: "after" shows only where the edit reached.
         wireframes: vec![
-            wireframe(&before, side, "before")?,
             wireframe(&after, side, &format!("after moving P({k},{k}) up by 3"))?,
+            wireframe(&before, side, "before")?,
         ],
     })
 }

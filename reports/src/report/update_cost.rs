@@ -106,7 +106,7 @@ fn picture_charts(d: &UpdateCostData) -> Vec<Chart> {
             "0.35 y + z",
             false,
             lines(&d.surface.wireframes),
-            "Oblique wireframe before and after the edit; away from the moved point the two nets coincide.",
+            "Oblique wireframe before (drawn on top) and after the edit: the changed surface shows only within the (2n + 1)² support around the moved point.",
         ),
     ]
 }
