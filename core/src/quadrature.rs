@@ -24,6 +24,9 @@ pub enum QuadratureError {
     /// A rule needs at least one node.
     #[error("a Gauss–Legendre rule needs at least one node")]
     ZeroOrder,
+    /// More nodes than [`MAX_NODES`].
+    #[error("a Gauss–Legendre rule of {0} nodes exceeds the limit of {MAX_NODES}")]
+    TooManyNodes(usize),
     /// Tolerances must be positive and finite.
     #[error("quadrature tolerance must be positive and finite (got {0})")]
     InvalidTolerance(f64),
@@ -48,6 +51,11 @@ pub enum QuadratureError {
         tol: f64,
     },
 }
+
+/// Most nodes a rule may have: building one costs `O(m²)` operations
+/// (`m/2` Newton solves on the `O(m)` recurrence), and the QI study's
+/// doubling search stops at 2048.
+pub const MAX_NODES: usize = 1 << 16;
 
 /// An `m`-point Gauss–Legendre rule mapped to `[0, 1]`.
 ///
@@ -118,9 +126,13 @@ impl<T: Real> GaussLegendre<T> {
     /// about `log₂(BITS/53)` steps per root after an `f64` start).
     /// Accuracy: nodes and weights within a few ulps of `T` (checked in the
     /// tests by exactness on polynomials and by symmetry).
+    /// Errors: `m = 0`, `m >` [`MAX_NODES`], a root that does not converge.
     pub fn new(m: usize) -> Result<Self, QuadratureError> {
         if m == 0 {
             return Err(QuadratureError::ZeroOrder);
+        }
+        if m > MAX_NODES {
+            return Err(QuadratureError::TooManyNodes(m));
         }
         let half = T::from_f64_exact(0.5);
         let mut nodes = vec![T::zero(); m];
@@ -199,7 +211,7 @@ pub fn choose_order<T: Real>(
     let mut m = m0.max(1);
     let mut low = GaussLegendre::new(m)?;
     loop {
-        let high = GaussLegendre::new(2 * m)?;
+        let high = GaussLegendre::new(m.saturating_mul(2))?;
         let est = diff(&low, &high);
         if est.is_finite() && est <= *tol {
             return Ok((low, est));

@@ -7,5 +7,6 @@ pub mod chart;
 pub mod cli;
 pub mod error;
 pub mod html;
+pub mod input;
 pub mod output;
 pub mod report;

@@ -3,21 +3,26 @@
 //! must fail with a clear `error: …` message and a non-zero exit, never a
 //! panic, and must leave no output file behind.
 
+use serde_json::{Value, json};
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
 struct Case {
     /// Arguments; `{in}` is replaced by the input file, `{out}` by a fresh
-    /// output path that must not exist afterwards.
+    /// output path, which must be as `setup` left it afterwards (absent
+    /// without a setup).
     args: Vec<&'static str>,
     /// Contents of the input file (if `{in}` is used).
     input: String,
+    /// Prepares the output path before the run.
+    setup: Option<fn(&Path)>,
 }
 
 fn case(args: &[&'static str], input: impl Into<String>) -> Case {
     Case {
         args: args.to_vec(),
         input: input.into(),
+        setup: None,
     }
 }
 
@@ -37,9 +42,13 @@ fn cases() -> Vec<Case> {
         "coeffs",
         "width",
         "qi",
+        "flatten",
+        "deform",
     ] {
         v.push(case(&[sub, "--no-such-option"], ""));
     }
+    flatten_cases(&mut v);
+    deform_cases(&mut v);
     // cond
     for (deg, nodes, prec) in [
         ("0", "equispaced", "f64"),
@@ -237,6 +246,232 @@ fn cases() -> Vec<Case> {
     v
 }
 
+/// Malformed or truncated JSON and the wrong top-level shapes, for any
+/// command reading an object.
+fn malformed(valid: &str) -> Vec<String> {
+    vec![
+        String::new(),
+        " \n".into(),
+        "{".into(),
+        valid[..valid.len() / 2].into(),
+        valid[..valid.len() - 1].into(),
+        format!("{valid},"),
+        "[]".into(),
+        "null".into(),
+        "\"points\"".into(),
+        "{\"points\": [[0, 0], [1, 1]]".into(),
+        "\u{feff}{}".into(),
+        "{\"a\": NaN}".into(),
+    ]
+}
+
+/// A valid `flatten` input: the parabola (2t, 4t(1 − t)).
+const FLATTEN_VALID: &str = r#"{"points": [[0, 0], [1, 2], [2, 0]]}"#;
+
+fn flatten_cases(v: &mut Vec<Case>) {
+    let valid = FLATTEN_VALID;
+    let zigzag: Vec<String> = (0..201).map(|k| format!("[{k},{}]", k % 2)).collect();
+    let mut inputs = malformed(valid);
+    inputs.extend(
+        [
+            // Non-finite: JSON has no NaN; overflow, huge exponents, strings.
+            r#"{"points": [[0, 0], [1e999, 2], [2, 0]]}"#,
+            r#"{"points": [[0, 0], [1, -1e400], [2, 0]]}"#,
+            r#"{"points": [[0, 0], [1, 1e1000000], [2, 0]]}"#,
+            r#"{"points": [[0, 0], [1, "NaN"], [2, 0]]}"#,
+            r#"{"points": [[0, 0], ["inf", 1], [2, 0]]}"#,
+            r#"{"points": [[0, 0], [1, null], [2, 0]]}"#,
+            r#"{"points": [[0, 0], [true, 1], [2, 0]]}"#,
+            // Empty, wrong shapes and dimensions.
+            r#"{"points": []}"#,
+            r#"{"points": [[]]}"#,
+            r#"{"points": [[1]]}"#,
+            r#"{"points": [[1, 2, 3, 4]]}"#,
+            r#"{"points": [[0, 0], [1, 1, 1]]}"#,
+            r#"{"points": [0, 1]}"#,
+            r#"{"points": {"x": [0, 1]}}"#,
+            r#"{"points": 3}"#,
+            r#"{"pts": [[0, 0], [1, 1]]}"#,
+            r#"{"points": [[0, 0], [1, 1]], "tol": 0.1}"#,
+        ]
+        .map(String::from),
+    );
+    // Huge: degree above the limit.
+    inputs.push(format!(r#"{{"points": [{},[0,0]]}}"#, zigzag.join(",")));
+    for input in inputs {
+        v.push(case(
+            &["flatten", "--input", "{in}", "--tol", "1e-3"],
+            input,
+        ));
+    }
+    // Bad tolerances, one of them a request of absurd work: a degree-200
+    // zigzag to 10⁻⁴ would need ~10¹¹ de Casteljau steps.
+    for tol in [
+        "--tol=0",
+        "--tol=-1",
+        "--tol=-0",
+        "--tol=NaN",
+        "--tol=inf",
+        "--tol=1e999",
+        "--tol=1e-300",
+        "--tol=x",
+        "--tol=",
+    ] {
+        v.push(case(&["flatten", "--input", "{in}", tol], valid));
+    }
+    v.push(case(
+        &["flatten", "--input", "{in}", "--tol", "1e-4"],
+        format!(r#"{{"points": [{}]}}"#, zigzag.join(",")),
+    ));
+    v.push(case(&["flatten", "--input", "{in}"], valid));
+    v.push(case(&["flatten", "--tol", "1e-3"], ""));
+    v.push(case(
+        &["flatten", "--input", "/nonexistent/c.json", "--tol", "1e-3"],
+        "",
+    ));
+    // The input is a folder (`{out}` after the setup creates it).
+    v.push(Case {
+        setup: Some(|out| std::fs::create_dir_all(out).unwrap()),
+        ..case(&["flatten", "--input", "{out}", "--tol", "1e-3"], "")
+    });
+}
+
+/// A valid `deform` input: one bilinear patch lifted by 1.
+fn tiny_deform() -> Value {
+    let net: Vec<[f64; 3]> = (0..4)
+        .map(|k| [(k / 2) as f64, (k % 2) as f64, 0.0])
+        .collect();
+    json!({
+        "degree": 1, "nu": 1, "nv": 1,
+        "patches": [net],
+        "samples": {"family": "equispaced"},
+        "flow": [[[0, 0, 1], [0, 0, 1], [0, 0, 1], [0, 0, 1]]],
+        "solver": "kronecker-marco-martinez",
+        "correct": false,
+    })
+}
+
+/// `tiny_deform()` with `pointer` set to `value` (raw JSON text, so that it
+/// can hold what serde_json will not write: 1e999, truncated numbers).
+fn deform_with(pointer: &str, value: &str) -> String {
+    let mut doc = tiny_deform();
+    *doc.pointer_mut(pointer).unwrap() = json!("@@");
+    doc.to_string().replace("\"@@\"", value)
+}
+
+fn deform_cases(v: &mut Vec<Case>) {
+    let valid = tiny_deform().to_string();
+    let mut inputs = malformed(&valid);
+    for (pointer, value) in [
+        // Non-finite numbers and strings in place of numbers.
+        ("/patches/0/1/0", "1e999"),
+        ("/patches/0/1/0", "-1e1000000"),
+        ("/patches/0/1/0", "\"NaN\""),
+        ("/flow/0/2/2", "1e400"),
+        ("/flow/0/2/2", "null"),
+        ("/samples", r#"{"u": [0, 1e999], "v": [0, 1]}"#),
+        // Degree and grid sizes: zero, negative, fractional, beyond usize, huge.
+        ("/degree", "0"),
+        ("/degree", "31"),
+        ("/degree", "-1"),
+        ("/degree", "1.5"),
+        ("/degree", "1e30"),
+        ("/degree", "100000000000000000000"),
+        ("/nu", "0"),
+        ("/nv", "2"),
+        ("/nu", "1000000"),
+        ("/nv", "18446744073709551615"),
+        // Empty and one-element lists, wrong point sizes.
+        ("/patches", "[]"),
+        ("/patches/0", "[]"),
+        ("/patches/0", "[[0, 0, 0]]"),
+        ("/patches/0/2", "[1, 0]"),
+        ("/patches/0/2", "[1, 0, 0, 0]"),
+        ("/flow", "[]"),
+        ("/flow/0", "[[0, 0, 1]]"),
+        ("/samples", r#"{"u": [], "v": []}"#),
+        ("/samples", r#"{"u": [0.5], "v": [0.5]}"#),
+        // Duplicate, decreasing and out-of-range sample parameters.
+        ("/samples", r#"{"u": [0.5, 0.5], "v": [0, 1]}"#),
+        ("/samples", r#"{"u": [1, 0], "v": [0, 1]}"#),
+        ("/samples", r#"{"u": [0, 1.5], "v": [0, 1]}"#),
+        ("/samples", r#"{"u": [0, 1], "v": [0, 0.5, 1]}"#),
+        ("/samples", r#"{"u": [0, 1]}"#),
+        (
+            "/samples",
+            r#"{"family": "equispaced", "u": [0, 1], "v": [0, 1]}"#,
+        ),
+        ("/samples", r#"{"family": "lobatto"}"#),
+        ("/samples", r#"{}"#),
+        ("/samples", r#""equispaced""#),
+        // Options: unknown solver, wrong type, correction below degree 3.
+        ("/solver", r#""cholesky""#),
+        ("/solver", "3"),
+        ("/correct", r#""yes""#),
+        ("/correct", "true"),
+        ("/flow/0/1", r#"{"x": 0}"#),
+    ] {
+        inputs.push(deform_with(pointer, value));
+    }
+    let mut extra = tiny_deform();
+    extra["scale"] = json!(2);
+    inputs.push(extra.to_string());
+    for input in inputs {
+        v.push(case(
+            &["deform", "--input", "{in}", "--out", "{out}"],
+            input,
+        ));
+    }
+    for args in [
+        &["deform", "--out", "{out}"][..],
+        &["deform", "--input", "{in}"],
+        &["deform", "--input", "{in}", "--example", "--out", "{out}"],
+        &["deform", "--input", "/nonexistent/d.json", "--out", "{out}"],
+        // Unwritable outputs: below a file, in /proc.
+        &["deform", "--input", "{in}", "--out", "{in}/sub"],
+        &["deform", "--example", "--out", "{in}/sub"],
+        &[
+            "deform",
+            "--input",
+            "{in}",
+            "--out",
+            "/proc/splinelab-bad-input",
+        ],
+    ] {
+        v.push(case(args, valid.clone()));
+    }
+    // The output folder exists but a target name is taken by a folder: the
+    // other file must not be written either.
+    for blocker in ["deformed.json", "deformed.svg"] {
+        let setup: fn(&Path) = match blocker {
+            "deformed.json" => |out| std::fs::create_dir_all(out.join("deformed.json")).unwrap(),
+            _ => |out| std::fs::create_dir_all(out.join("deformed.svg")).unwrap(),
+        };
+        v.push(Case {
+            setup: Some(setup),
+            ..case(
+                &["deform", "--input", "{in}", "--out", "{out}"],
+                valid.clone(),
+            )
+        });
+    }
+}
+
+/// Every path below `p` (itself included), sorted; empty if absent.
+fn listing(p: &Path) -> Vec<PathBuf> {
+    let mut all = Vec::new();
+    if p.exists() {
+        all.push(p.to_path_buf());
+    }
+    if let Ok(entries) = std::fs::read_dir(p) {
+        for e in entries {
+            all.extend(listing(&e.unwrap().path()));
+        }
+    }
+    all.sort();
+    all
+}
+
 fn scratch() -> PathBuf {
     let dir = std::env::temp_dir().join(format!("splinelab-bad-input-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
@@ -254,6 +489,10 @@ fn run_case(dir: &Path, k: usize, c: &Case) -> Result<(), String> {
     )
     .unwrap();
     let out = dir.join(format!("out{k}"));
+    if let Some(setup) = c.setup {
+        setup(&out);
+    }
+    let before = listing(&out);
     let args: Vec<String> = c
         .args
         .iter()
@@ -276,7 +515,7 @@ fn run_case(dir: &Path, k: usize, c: &Case) -> Result<(), String> {
         "panicked"
     } else if !err.to_lowercase().contains("error") {
         "no error message"
-    } else if out.exists() {
+    } else if listing(&out) != before {
         "left an output behind"
     } else {
         return Ok(());
@@ -304,4 +543,43 @@ fn every_bad_input_is_a_clear_error_without_panic_or_output() {
         cases.len(),
         failures.join("\n")
     );
+}
+
+/// The inputs the flatten and deform cases break are themselves accepted, so
+/// each case fails for its own defect.
+#[test]
+fn the_valid_inputs_behind_the_cases_succeed() {
+    let dir = std::env::temp_dir().join(format!("splinelab-bad-input-ok-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let (flat, def, out) = (dir.join("f.json"), dir.join("d.json"), dir.join("out"));
+    std::fs::write(&flat, FLATTEN_VALID).unwrap();
+    std::fs::write(&def, tiny_deform().to_string()).unwrap();
+    let run = |args: &[&std::ffi::OsStr]| {
+        Command::new(env!("CARGO_BIN_EXE_splinelab"))
+            .args(args)
+            .output()
+            .unwrap()
+    };
+    let f = run(&[
+        "flatten".as_ref(),
+        "--input".as_ref(),
+        flat.as_os_str(),
+        "--tol=1e-3".as_ref(),
+    ]);
+    assert!(f.status.success(), "{}", String::from_utf8_lossy(&f.stderr));
+    let d = run(&[
+        "deform".as_ref(),
+        "--input".as_ref(),
+        def.as_os_str(),
+        "--out".as_ref(),
+        out.as_os_str(),
+    ]);
+    assert!(d.status.success(), "{}", String::from_utf8_lossy(&d.stderr));
+    let names: Vec<_> = listing(&out)
+        .iter()
+        .map(|p| p.file_name().unwrap().to_owned())
+        .collect();
+    assert_eq!(names, ["out", "deformed.json", "deformed.svg"]);
+    let _ = std::fs::remove_dir_all(&dir);
 }

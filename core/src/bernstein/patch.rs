@@ -62,8 +62,16 @@ pub enum PatchError {
         /// Patches in `v`.
         nv: usize,
     },
+    /// `n_u · n_v` patches cannot be stored.
+    #[error("a {nu}×{nv} grid has more patches than can be stored")]
+    TooManyPatches {
+        /// Patches in `u`.
+        nu: usize,
+        /// Patches in `v`.
+        nv: usize,
+    },
     /// The number of patches is not `n_u · n_v`.
-    #[error("a {nu}×{nv} grid needs {} patches, got {got}", nu * nv)]
+    #[error("a {nu}×{nv} grid needs {} patches, got {got}", nu.saturating_mul(*nv))]
     GridSize {
         /// Patches in `u`.
         nu: usize,
@@ -122,7 +130,10 @@ impl<T: Real> Patch<T> {
         if degree == 0 {
             return Err(PatchError::DegreeTooSmall(degree));
         }
-        let expected = (degree + 1) * (degree + 1);
+        // Saturates for absurd degrees: no vector holds usize::MAX points.
+        let expected = degree
+            .saturating_add(1)
+            .saturating_mul(degree.saturating_add(1));
         if control.len() != expected {
             return Err(PatchError::WrongPointCount {
                 degree,
@@ -246,7 +257,7 @@ impl<T: Real> PatchGrid<T> {
         if nu == 0 || nv == 0 {
             return Err(PatchError::EmptyGrid { nu, nv });
         }
-        if patches.len() != nu * nv {
+        if nu.checked_mul(nv) != Some(patches.len()) {
             return Err(PatchError::GridSize {
                 nu,
                 nv,
@@ -272,7 +283,11 @@ impl<T: Real> PatchGrid<T> {
             Point3::new(size.clone(), T::zero(), T::zero()),
             Point3::new(T::zero(), size.clone(), T::zero()),
         );
-        let mut patches = Vec::with_capacity(nu * nv);
+        let count = nu.checked_mul(nv);
+        let mut patches = Vec::new();
+        if count.is_none_or(|c| patches.try_reserve_exact(c).is_err()) {
+            return Err(PatchError::TooManyPatches { nu, nv });
+        }
         for p in 0..nu {
             for q in 0..nv {
                 let origin = Point3::new(

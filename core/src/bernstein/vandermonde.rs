@@ -23,6 +23,9 @@ pub enum VandermondeError {
         "unknown node family '{0}' (expected equispaced, chebyshev-lobatto or chebyshev-gauss)"
     )]
     UnknownNodes(String),
+    /// More nodes than can be stored.
+    #[error("degree {0} needs more nodes than can be stored")]
+    DegreeTooLarge(usize),
 }
 
 /// Where on `[0, 1]` the `n + 1` interpolation nodes `t_0 < … < t_n` sit.
@@ -64,18 +67,23 @@ impl NodeFamily {
         if n == 0 {
             return Err(VandermondeError::DegreeTooSmall(n));
         }
+        let mut nodes = Vec::new();
+        if n.checked_add(1)
+            .is_none_or(|k| nodes.try_reserve_exact(k).is_err())
+        {
+            return Err(VandermondeError::DegreeTooLarge(n));
+        }
         let sin_sq = |num: usize, den: usize| {
             let theta = T::pi() * T::from_int(num as i64) / T::from_int(den as i64);
             let s = theta.sin();
             s.clone() * s
         };
-        Ok((0..=n)
-            .map(|j| match self {
-                NodeFamily::Equispaced => T::from_rational(&Rational::from((j as i64, n as i64))),
-                NodeFamily::ChebyshevLobatto => sin_sq(j, 2 * n),
-                NodeFamily::ChebyshevGauss => sin_sq(2 * j + 1, 4 * n + 4),
-            })
-            .collect())
+        nodes.extend((0..=n).map(|j| match self {
+            NodeFamily::Equispaced => T::from_rational(&Rational::from((j as i64, n as i64))),
+            NodeFamily::ChebyshevLobatto => sin_sq(j, 2 * n),
+            NodeFamily::ChebyshevGauss => sin_sq(2 * j + 1, 4 * n + 4),
+        }));
+        Ok(nodes)
     }
 
     /// The nodes as exact rationals, where they are rational (equispaced

@@ -25,7 +25,7 @@ pub enum BSplineError {
         got: usize,
     },
     /// `#knots ≠ #points + order`.
-    #[error("{points} points of order {order} need {} knots, got {got}", points + order)]
+    #[error("{points} points of order {order} need {} knots, got {got}", points.saturating_add(*order))]
     KnotCount {
         /// Number of points.
         points: usize,
@@ -83,7 +83,7 @@ pub enum BSplineError {
         hi: f64,
     },
     /// The net of a surface does not have `n_u · n_v` points.
-    #[error("a {nu}×{nv} net needs {} points, got {got}", nu * nv)]
+    #[error("a {nu}×{nv} net needs {} points, got {got}", nu.saturating_mul(*nv))]
     NetSize {
         /// Points in `u`.
         nu: usize,
@@ -107,7 +107,7 @@ pub(crate) fn check_structure<T: Real>(
     if points < order {
         return Err(BSplineError::TooFewPoints { order, got: points });
     }
-    if knots.len() != points + order {
+    if points.checked_add(order) != Some(knots.len()) {
         return Err(BSplineError::KnotCount {
             points,
             order,

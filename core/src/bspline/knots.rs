@@ -22,6 +22,14 @@ pub enum KnotError {
         /// Position of the first knot that decreases.
         index: usize,
     },
+    /// More knots than can be addressed or allocated.
+    #[error("{points} control points of order {order} need more knots than can be stored")]
+    TooMany {
+        /// The order asked for.
+        order: usize,
+        /// The control points asked for.
+        points: usize,
+    },
 }
 
 /// A validated knot vector (finite, non-decreasing, at least 2 knots).
@@ -74,13 +82,19 @@ impl<T: Real> KnotVector<T> {
 
     /// Clamped uniform knots for `points` control points of order `k` on
     /// `[0, 1]`: `k` zeros, the interior knots `j/(points − k + 1)`, `k`
-    /// ones (each correctly rounded). `points ≥ k ≥ 1`, else `TooFew`.
+    /// ones (each correctly rounded). `points ≥ k ≥ 1`, else `TooFew`;
+    /// `TooMany` when the `points + k` knots cannot be allocated.
     pub fn clamped_uniform(order: usize, points: usize) -> Result<Self, KnotError> {
+        let too_many = KnotError::TooMany { order, points };
+        let count = points.checked_add(order).ok_or(too_many.clone())?;
         if order == 0 || points < order {
-            return Err(KnotError::TooFew(points + order));
+            return Err(KnotError::TooFew(count));
         }
+        let mut knots = Vec::new();
+        knots.try_reserve_exact(count).map_err(|_| too_many)?;
+        // `count` elements fit in memory, so it fits an i64.
         let spans = (points - order + 1) as i64;
-        let mut knots = vec![T::zero(); order];
+        knots.extend(std::iter::repeat_n(T::zero(), order));
         knots.extend((1..spans).map(|j| T::from_rational(&Rational::from((j, spans)))));
         knots.extend(std::iter::repeat_n(T::one(), order));
         Self::new(knots)

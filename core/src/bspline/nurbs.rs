@@ -22,6 +22,14 @@ fn check_weights<T: Real>(weights: &[T]) -> Result<(), BSplineError> {
     }
 }
 
+fn check_weight_count(points: usize, weights: usize) -> Result<(), BSplineError> {
+    if points == weights {
+        Ok(())
+    } else {
+        Err(BSplineError::WeightCount { points, weights })
+    }
+}
+
 /// A NURBS curve `P(t) = Σ N_{j,k}(t) w_j Q_j / Σ N_{j,k}(t) w_j`, stored as
 /// the B-spline of the homogeneous points `w_j Q_j` plus the weights (all
 /// finite and `> 0`, so the denominator is positive on the domain).
@@ -41,6 +49,7 @@ impl<T: Real, const D: usize> NurbsCurve<T, D> {
         knots: KnotVector<T>,
     ) -> Result<Self, BSplineError> {
         check_weights(&weights)?;
+        check_weight_count(points.len(), weights.len())?;
         let h: Vec<_> = points
             .iter()
             .zip(&weights)
@@ -57,12 +66,7 @@ impl<T: Real, const D: usize> NurbsCurve<T, D> {
         knots: KnotVector<T>,
     ) -> Result<Self, BSplineError> {
         check_weights(&weights)?;
-        if weights.len() != homogeneous.len() {
-            return Err(BSplineError::WeightCount {
-                points: homogeneous.len(),
-                weights: weights.len(),
-            });
-        }
+        check_weight_count(homogeneous.len(), weights.len())?;
         Ok(NurbsCurve {
             homogeneous: BSpline::new(order, homogeneous, knots)?,
             weights,
@@ -198,7 +202,7 @@ impl<T: Real, const D: usize> NurbsSurface<T, D> {
         check_structure(orders.0, nu, &knots.0)?;
         check_structure(orders.1, nv, &knots.1)?;
         for got in [points.len(), weights.len()] {
-            if got != nu * nv {
+            if nu.checked_mul(nv) != Some(got) {
                 return Err(BSplineError::NetSize { nu, nv, got });
             }
         }

@@ -94,7 +94,8 @@ fn lerp_d<T: Real, const D: usize>(
 
 impl<T: Real, const D: usize> CatmullRom<T, D> {
     /// Builds the spline; typed errors for too few points, non-finite
-    /// points and zero chords under centripetal/chordal spacing.
+    /// points, zero chords under centripetal/chordal spacing and chords
+    /// that overflow the precision.
     pub fn new(
         points: Vec<SVector<T, D>>,
         spacing: Spacing,
@@ -120,7 +121,13 @@ impl<T: Real, const D: usize> CatmullRom<T, D> {
             let next = (k + 1) % n;
             let len = (&points[next] - &points[k]).norm();
             let d = spacing.interval(len);
-            if !(d > T::zero() && d.is_finite()) {
+            if !d.is_finite() {
+                // Finite points whose distance overflows the precision.
+                return Err(CurveError::NonFinite {
+                    name: "knot interval (chord length)",
+                });
+            }
+            if d <= T::zero() {
                 return Err(CurveError::CoincidentPoints { index: k, next });
             }
             intervals.push(d);

@@ -196,6 +196,43 @@ pub fn max_deviation<T: Real, const D: usize>(
     Ok(worst)
 }
 
+/// An a-priori upper bound of the segment count uniform sampling needs for
+/// `tol`: `m* = √(n(n−1) max_i ‖Δ²P_i‖₂ / (8 tol))`, at least 1, not rounded
+/// (it can exceed every `usize` for tiny tolerances).
+///
+/// **Derivation**: on a parameter interval of width `h = 1/m` the chord of
+/// `P` deviates from the curve by at most `h²/8 · max‖P''‖` (the error of
+/// linear interpolation, in any norm), and `P''` is the Bézier curve of
+/// degree `n − 2` with control points `n(n−1)Δ²P_i`, so by the convex hull
+/// property `‖P''‖ ≤ n(n−1) max_i ‖Δ²P_i‖`. Every `m ≥ m*` therefore meets
+/// `tol` in exact arithmetic, and [`uniform_segments`] returns at most
+/// `⌈m*⌉` up to rounding. **Cost** `O(nD)`. **Errors**: bad `tol` (as
+/// [`flatten`]).
+///
+/// ```
+/// use nalgebra::Vector2;
+/// use splinelab::bernstein::bezier::Bezier;
+/// use splinelab::curves::flatten::uniform_segments_bound;
+/// // P(t) = (2t, 4t(1−t)): Δ²P = (0, −4), so m* = √(2·4/(8·10⁻³)) = √1000.
+/// let c = Bezier::new(vec![Vector2::new(0.0f64, 0.0), Vector2::new(1.0, 2.0),
+///                          Vector2::new(2.0, 0.0)]).unwrap();
+/// assert!((uniform_segments_bound(&c, &1e-3).unwrap() - 1000f64.sqrt()).abs() < 1e-12);
+/// ```
+pub fn uniform_segments_bound<T: Real, const D: usize>(
+    curve: &Bezier<T, D>,
+    tol: &T,
+) -> Result<T, CurveError> {
+    check_tol(curve, tol)?;
+    let p = curve.points();
+    let second = p
+        .windows(3)
+        .map(|w| (&w[2] - &w[1] * T::from_int(2) + &w[0]).norm())
+        .fold(T::zero(), |m, d| m.max(d));
+    let n = T::from_int(curve.degree() as i64);
+    let m = (n.clone() * (n - T::one()) * second / (T::from_int(8) * tol.clone())).sqrt();
+    Ok(m.max(T::one()))
+}
+
 /// The number of equal parameter steps uniform sampling needs for the same
 /// tolerance: the smallest `m` whose [`uniform_polyline`] has
 /// [`max_deviation`] `≤ tol` (with `samples` per segment), found by doubling
@@ -290,5 +327,24 @@ mod tests {
         // Uniform: for odd m the middle chord is horizontal with deviation 1/m²;
         // m = 31 fails (1/961 > 1e-3), m = 32 passes (deviation ≤ 1/1024).
         assert_eq!(uniform_segments(&c, &1e-3, 64).unwrap(), 32);
+        // The a-priori bound √1000 ≈ 31.6 is within one segment of it.
+        let bound = uniform_segments_bound(&c, &1e-3).unwrap();
+        assert!(bound > 31.0 && bound < 32.0, "{bound}");
+    }
+
+    #[test]
+    fn the_uniform_bound_is_never_beaten() {
+        // A wiggly cubic and a degree-6 zigzag: the smallest passing m found
+        // by search must not exceed the a-priori bound.
+        let cubic = [(0.0, 0.0), (1.0, 3.0), (2.0, -3.0), (3.0, 0.0)];
+        let zigzag: Vec<_> = (0..7).map(|k| (k as f64, (-1f64).powi(k))).collect();
+        for pts in [cubic.to_vec(), zigzag] {
+            let c = Bezier::new(pts.iter().map(|&(x, y)| Vector2::new(x, y)).collect()).unwrap();
+            for tol in [1e-1, 1e-3, 1e-5] {
+                let m = uniform_segments(&c, &tol, 64).unwrap() as f64;
+                let bound = uniform_segments_bound(&c, &tol).unwrap();
+                assert!(m <= bound.ceil(), "m = {m}, bound {bound}");
+            }
+        }
     }
 }

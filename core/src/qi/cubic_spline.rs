@@ -40,7 +40,8 @@ pub struct ClampedCubicSpline<T: Real> {
 }
 
 impl<T: Real> ClampedCubicSpline<T> {
-    /// Builds the spline through `points` (≥ 2, distinct consecutive) with
+    /// Builds the spline through `points` (≥ 2, finite, distinct consecutive
+    /// under chord-length parameterisation) with finite
     /// end slopes `d_start = S'(u_0)`, `d_end = S'(u_n)` (derivatives with
     /// respect to the knot parameter). See the module doc for the method.
     pub fn new(
@@ -51,6 +52,14 @@ impl<T: Real> ClampedCubicSpline<T> {
     ) -> Result<Self, QiError> {
         if points.len() < 2 {
             return Err(QiError::TooFewPoints(points.len()));
+        }
+        if let Some(index) = points.iter().position(|p| !p.iter().all(|c| c.is_finite())) {
+            return Err(QiError::NonFinitePoint { index });
+        }
+        for (which, d) in [("start", d_start), ("end", d_end)] {
+            if !d.iter().all(|c| c.is_finite()) {
+                return Err(QiError::InvalidTangent { which });
+            }
         }
         let mut knots = vec![T::zero()];
         for (i, w) in points.windows(2).enumerate() {

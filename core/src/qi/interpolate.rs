@@ -240,7 +240,8 @@ fn validate_options<T: Real>(opts: &QiOptions<T>) -> Result<(), QiError> {
             ),
         });
     }
-    if opts.min_quad_order == 0 || opts.min_quad_order * 2 > opts.max_quad_order {
+    let doubled = opts.min_quad_order.checked_mul(2);
+    if opts.min_quad_order == 0 || doubled.is_none_or(|d| d > opts.max_quad_order) {
         return Err(QiError::InvalidOption {
             name: "min_quad_order",
             why: "need 1 ≤ 2·min_quad_order ≤ max_quad_order".into(),

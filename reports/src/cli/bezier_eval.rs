@@ -3,6 +3,7 @@
 
 use super::prec::{Prec, parse_prec};
 use crate::error::CliError;
+use crate::input::{input_error, parse_json, read_text};
 use crate::output::print_json;
 use crate::with_real;
 use clap::Args;
@@ -10,7 +11,7 @@ use serde::Deserialize;
 use serde_json::{Value, json};
 use splinelab::scalar::Real;
 use splinelab_verify::bezier_eval::{EvalError, Method, Prepared};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 /// Arguments of `splinelab bezier-eval`.
 #[derive(Debug, Args)]
@@ -38,31 +39,59 @@ fn parse_method(s: &str) -> Result<Method, String> {
     s.parse()
 }
 
-/// The input file.
+/// The input file of `bezier-eval`.
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
-struct Input {
-    coeffs: Vec<f64>,
-    t: Vec<f64>,
+pub struct BezierEvalInput {
+    /// The Bernstein coefficients `b_0..b_n`.
+    pub coeffs: Vec<f64>,
+    /// The parameters.
+    pub t: Vec<f64>,
 }
 
-fn read_input(path: &PathBuf) -> Result<Input, CliError> {
-    let err = |why: String| CliError::Input {
-        path: path.clone(),
-        why,
-    };
-    let text = std::fs::read_to_string(path).map_err(|e| err(e.to_string()))?;
-    serde_json::from_str(&text).map_err(|e| err(e.to_string()))
+/// Parses and validates the input file's text (`path` names it in errors):
+/// at least one coefficient, degree at most [`MAX_DEGREE`], at most
+/// [`MAX_PARAMETERS`] parameters (finiteness: JSON has no NaN, and numbers
+/// beyond the f64 range are refused by the parser).
+pub fn parse_input(path: &Path, text: &str) -> Result<BezierEvalInput, CliError> {
+    let input: BezierEvalInput = parse_json(path, text)?;
+    let n = input.coeffs.len();
+    if n == 0 {
+        return Err(input_error(path, "field \"coeffs\" is empty"));
+    }
+    if n > MAX_DEGREE + 1 {
+        return Err(input_error(
+            path,
+            format!("{n} coefficients: degree above {MAX_DEGREE}"),
+        ));
+    }
+    if input.t.len() > MAX_PARAMETERS {
+        return Err(input_error(
+            path,
+            format!("{} parameters: more than {MAX_PARAMETERS}", input.t.len()),
+        ));
+    }
+    Ok(input)
 }
 
 /// One evaluated point, formatted for output.
-struct Row {
-    value: Value,
-    bound: Option<Value>,
-    extrapolated: bool,
+#[derive(Debug, Clone, PartialEq)]
+pub struct Row {
+    /// `p(t)`: a JSON number in f64, a decimal string in MPFR.
+    pub value: Value,
+    /// The running error bound (f64 only).
+    pub bound: Option<Value>,
+    /// `t` lies outside `[0, 1]`.
+    pub extrapolated: bool,
 }
 
-fn evaluate<T: Real>(input: &Input, method: Method, prec: Prec) -> Result<Vec<Row>, CliError> {
+/// Evaluates `input` at every parameter by `method` in the working
+/// precision `T` (which `prec` names).
+pub fn evaluate<T: Real>(
+    input: &BezierEvalInput,
+    method: Method,
+    prec: Prec,
+) -> Result<Vec<Row>, CliError> {
     let fail = |e: EvalError| CliError::numerical(e);
     let coeffs = input.coeffs.iter().map(|&c| T::from_f64_exact(c)).collect();
     let prepared = Prepared::<T>::new(coeffs).map_err(|e| fail(e.into()))?;
@@ -101,22 +130,7 @@ pub const MAX_PARAMETERS: usize = 1_000_000;
 
 /// Runs `splinelab bezier-eval`.
 pub fn run(args: &BezierEvalArgs) -> Result<(), CliError> {
-    let input = read_input(&args.input)?;
-    if input.coeffs.len() > MAX_DEGREE + 1 {
-        return Err(CliError::invalid(
-            "--input",
-            format!(
-                "{} coefficients: degree above {MAX_DEGREE}",
-                input.coeffs.len()
-            ),
-        ));
-    }
-    if input.t.len() > MAX_PARAMETERS {
-        return Err(CliError::invalid(
-            "--input",
-            format!("{} parameters: more than {MAX_PARAMETERS}", input.t.len()),
-        ));
-    }
+    let input = parse_input(&args.input, &read_text(&args.input)?)?;
     if args.method == Method::Compensated && args.prec != Prec::F64 {
         return Err(CliError::invalid(
             "--method",

@@ -17,7 +17,8 @@
 //! created; bad input leaves nothing behind.
 
 use crate::error::CliError;
-use crate::output::{print_json, write_atomic};
+use crate::input::{input_error, parse_json, read_text};
+use crate::output::{print_json, write_all_atomic};
 use crate::report::bernstein_inverse::surface_chart;
 use clap::Args;
 use serde::Deserialize;
@@ -58,7 +59,7 @@ pub struct DeformArgs {
 
 /// Sample parameters: a node family or explicit lists.
 #[derive(Debug, Clone, Deserialize, serde::Serialize)]
-#[serde(untagged)]
+#[serde(untagged, try_from = "RawSamples")]
 pub enum SamplesSpec {
     /// The same node family in `u` and `v`.
     Family {
@@ -72,6 +73,37 @@ pub enum SamplesSpec {
         /// `v_0 < … < v_n`.
         v: Vec<f64>,
     },
+}
+
+/// `samples` as written: exactly one of the two forms, no other key.
+#[derive(Deserialize)]
+#[serde(
+    deny_unknown_fields,
+    expecting = "samples as {\"family\": NAME} or {\"u\": [...], \"v\": [...]}"
+)]
+struct RawSamples {
+    family: Option<NodeFamily>,
+    u: Option<Vec<f64>>,
+    v: Option<Vec<f64>>,
+}
+
+impl TryFrom<RawSamples> for SamplesSpec {
+    type Error = &'static str;
+    fn try_from(raw: RawSamples) -> Result<Self, Self::Error> {
+        match raw {
+            RawSamples {
+                family: Some(family),
+                u: None,
+                v: None,
+            } => Ok(SamplesSpec::Family { family }),
+            RawSamples {
+                family: None,
+                u: Some(u),
+                v: Some(v),
+            } => Ok(SamplesSpec::Explicit { u, v }),
+            _ => Err("samples: give either \"family\" or both \"u\" and \"v\""),
+        }
+    }
 }
 
 /// The input file.
@@ -111,7 +143,7 @@ fn points(v: &[[f64; 3]]) -> Vec<Point3<f64>> {
 }
 
 /// What `deform` computed, before anything is written.
-struct Outcome {
+pub struct Outcome {
     input: DeformInput,
     deformed: PatchGrid<f64>,
     corrected: Option<PatchGrid<f64>>,
@@ -121,7 +153,11 @@ struct Outcome {
     after: Option<Defects>,
 }
 
-fn compute(input: DeformInput, bad: &dyn Fn(String) -> CliError) -> Result<Outcome, CliError> {
+/// Validates `input` (from the file `source`: degree, patch count, solver,
+/// nets, samples, flows) and deforms the grid, then corrects the joins if
+/// asked. Errors in the input are [`CliError::Input`] naming `source`.
+pub fn compute(input: DeformInput, source: &Path) -> Result<Outcome, CliError> {
+    let bad = |why: String| input_error(source, why);
     if !(1..=MAX_DEGREE).contains(&input.degree) {
         return Err(bad(format!(
             "degree {} is outside 1..={MAX_DEGREE}",
@@ -134,7 +170,7 @@ fn compute(input: DeformInput, bad: &dyn Fn(String) -> CliError) -> Result<Outco
             input.nu, input.nv
         )));
     }
-    let solver: TensorSolver = input.solver.parse().map_err(bad)?;
+    let solver: TensorSolver = input.solver.parse().map_err(&bad)?;
     let patches = input
         .patches
         .iter()
@@ -197,27 +233,38 @@ fn example_input() -> Result<DeformInput, CliError> {
     })
 }
 
-fn read_input(path: &Path) -> Result<DeformInput, CliError> {
-    let err = |why: String| CliError::Input {
-        path: path.to_path_buf(),
-        why,
-    };
-    let text = std::fs::read_to_string(path).map_err(|e| err(e.to_string()))?;
-    serde_json::from_str(&text).map_err(|e| err(e.to_string()))
+/// Parses the input file's text (`path` names it in errors); [`compute`]
+/// validates the contents.
+pub fn parse_input(path: &Path, text: &str) -> Result<DeformInput, CliError> {
+    parse_json(path, text)
+}
+
+/// Creates `dir` and writes `files` into it as one step: a failure leaves no
+/// file behind, and removes `dir` again if this call created it.
+fn write_outputs(dir: &Path, files: &[(PathBuf, String)]) -> Result<(), CliError> {
+    let existed = dir.exists();
+    std::fs::create_dir_all(dir).map_err(|source| CliError::Output {
+        path: dir.to_path_buf(),
+        source,
+    })?;
+    let contents: Vec<(&Path, &[u8])> = files
+        .iter()
+        .map(|(p, c)| (p.as_path(), c.as_bytes()))
+        .collect();
+    write_all_atomic(&contents).inspect_err(|_| {
+        if !existed {
+            let _ = std::fs::remove_dir(dir);
+        }
+    })
 }
 
 /// Runs `splinelab deform`.
 pub fn run(args: &DeformArgs) -> Result<(), CliError> {
     let (input, source) = match &args.input {
-        Some(path) => (read_input(path)?, path.clone()),
+        Some(path) => (parse_input(path, &read_text(path)?)?, path.clone()),
         None => (example_input()?, PathBuf::from("(built-in example)")),
     };
-    let src = source.clone();
-    let bad = move |why: String| CliError::Input {
-        path: src.clone(),
-        why,
-    };
-    let out = compute(input, &bad)?;
+    let out = compute(input, &source)?;
     let final_grid = out.corrected.as_ref().unwrap_or(&out.deformed);
     let nets = grid_to_f64(final_grid);
     let title = if out.corrected.is_some() {
@@ -249,21 +296,16 @@ pub fn run(args: &DeformArgs) -> Result<(), CliError> {
     } else {
         None
     };
-    // All computed: only now touch the file system.
-    std::fs::create_dir_all(&args.out).map_err(|source| CliError::Output {
-        path: args.out.clone(),
-        source,
-    })?;
     let mut files = vec![
-        args.out.join("deformed.json"),
-        args.out.join("deformed.svg"),
+        (args.out.join("deformed.json"), text),
+        (args.out.join("deformed.svg"), svg),
     ];
-    write_atomic(&files[0], text.as_bytes())?;
-    write_atomic(&files[1], svg.as_bytes())?;
     if let Some(e) = example {
-        files.push(args.out.join("input.json"));
-        write_atomic(&files[2], e.as_bytes())?;
+        files.push((args.out.join("input.json"), e));
     }
+    // All computed: only now touch the file system.
+    write_outputs(&args.out, &files)?;
+    let files: Vec<&PathBuf> = files.iter().map(|(p, _)| p).collect();
     if args.json {
         print_json(&json!({
             "input": source,
@@ -351,12 +393,8 @@ mod tests {
             let mut input = tiny();
             change(&mut input);
             // NaN/inf cannot be written as JSON; test compute() directly for those.
-            let bad = |why: String| CliError::Input {
-                path: bad_file.clone(),
-                why,
-            };
             assert!(
-                matches!(compute(input, &bad), Err(CliError::Input { .. })),
+                matches!(compute(input, &bad_file), Err(CliError::Input { .. })),
                 "case {k}"
             );
         }
@@ -389,7 +427,7 @@ mod tests {
 
     #[test]
     fn a_bilinear_patch_lifted_by_one_is_the_lifted_patch() {
-        let out = compute(tiny(), &|why| CliError::numerical(why)).unwrap();
+        let out = compute(tiny(), Path::new("tiny.json")).unwrap();
         // Degree 1 at corner samples: control points are the samples, so the
         // flow (0, 0, 1) lifts every control point by exactly 1.
         for (k, p) in out.deformed.patch(0, 0).control().iter().enumerate() {

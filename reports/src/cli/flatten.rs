@@ -10,12 +10,15 @@
 //! polyline segment, distance to that segment).
 
 use crate::error::CliError;
+use crate::input::{array_field, input_error, parse_object, read_text};
 use crate::output::print_json;
 use clap::Args;
 use nalgebra::SVector;
 use serde_json::{Value, json};
 use splinelab::bernstein::bezier::Bezier;
-use splinelab::curves::flatten::{flatten, max_deviation, uniform_polyline, uniform_segments};
+use splinelab::curves::flatten::{
+    flatten, max_deviation, uniform_polyline, uniform_segments, uniform_segments_bound,
+};
 use std::path::{Path, PathBuf};
 
 /// Curve samples per polyline segment when measuring deviations.
@@ -23,6 +26,29 @@ pub const DEVIATION_SAMPLES: usize = 32;
 
 /// Largest degree accepted (de Casteljau is O(n²) per point).
 pub const MAX_DEGREE: usize = 200;
+
+/// Most de Casteljau steps one call may take (about 8 s in f64 on one core). The
+/// uniform search evaluates about `(4 + log₂ m) · m · DEVIATION_SAMPLES`
+/// points of `n(n+1)/2` steps each, `m` the segment count it ends at.
+pub const MAX_WORK: f64 = 5e9;
+
+/// Refuses a request whose uniform search would exceed [`MAX_WORK`], with
+/// `m` estimated from above by [`uniform_segments_bound`].
+fn check_work<const D: usize>(curve: &Bezier<f64, D>, tol: f64) -> Result<(), CliError> {
+    let m = uniform_segments_bound(curve, &tol).map_err(CliError::numerical)?;
+    let n = curve.degree() as f64;
+    let work = (4.0 + m.log2()) * m * DEVIATION_SAMPLES as f64 * n * (n + 1.0) / 2.0;
+    if work > MAX_WORK {
+        return Err(CliError::invalid(
+            "--tol",
+            format!(
+                "uniform sampling of this degree-{n} curve to {tol:e} may need {m:.3e} segments \
+                 ({work:.1e} de Casteljau steps, more than {MAX_WORK:e}): raise the tolerance"
+            ),
+        ));
+    }
+    Ok(())
+}
 
 /// Arguments of `splinelab flatten`.
 #[derive(Debug, Args)]
@@ -38,61 +64,64 @@ pub struct FlattenArgs {
     pub json: bool,
 }
 
-fn input_error(path: &Path, why: impl Into<String>) -> CliError {
-    CliError::Input {
-        path: path.to_path_buf(),
-        why: why.into(),
-    }
+/// The coordinates of `p`, the point at `index`, or why they are not numbers.
+fn coordinates(index: usize, p: &Value) -> Result<Vec<f64>, String> {
+    p.as_array()
+        .and_then(|a| a.iter().map(Value::as_f64).collect::<Option<Vec<f64>>>())
+        .ok_or_else(|| format!("points[{index}]: not an array of numbers, got {p}"))
 }
 
-/// Reads the control points: a non-empty list of 2-D or 3-D finite points,
-/// all of one dimension.
-fn read_points(path: &Path) -> Result<Vec<Vec<f64>>, CliError> {
-    let text = std::fs::read_to_string(path).map_err(|e| input_error(path, e.to_string()))?;
-    let v: Value = serde_json::from_str(&text).map_err(|e| input_error(path, e.to_string()))?;
-    let list = v
-        .get("points")
-        .and_then(Value::as_array)
-        .ok_or_else(|| input_error(path, "expected an object with a \"points\" array"))?;
-    let mut points = Vec::with_capacity(list.len());
-    for (i, p) in list.iter().enumerate() {
-        let coords: Option<Vec<f64>> = p
-            .as_array()
-            .map(|a| a.iter().map(Value::as_f64).collect())
-            .unwrap_or(None);
-        let coords = coords
-            .ok_or_else(|| input_error(path, format!("point {i} is not an array of numbers")))?;
-        if coords.iter().any(|x| !x.is_finite()) {
-            return Err(input_error(path, format!("point {i} is not finite")));
-        }
-        points.push(coords);
+/// Parses and validates the input file's text (`path` names it in errors):
+/// an object `{"points": [...]}` of 1 to [`MAX_DEGREE`] + 1 points, all 2-D
+/// or all 3-D (finite: JSON has no NaN and the parser refuses overflow).
+pub fn parse_points(path: &Path, text: &str) -> Result<Vec<Vec<f64>>, CliError> {
+    let map = parse_object(path, text, &["points"])?;
+    let list = array_field(path, &map, "points")?;
+    let bad = |why: String| input_error(path, why);
+    if list.len() > MAX_DEGREE + 1 {
+        return Err(bad(format!(
+            "{} control points: degree above {MAX_DEGREE}",
+            list.len()
+        )));
     }
+    let points = list
+        .iter()
+        .enumerate()
+        .map(|(i, p)| coordinates(i, p))
+        .collect::<Result<Vec<_>, _>>()
+        .map_err(bad)?;
     let dim = points
         .first()
         .map(Vec::len)
-        .ok_or_else(|| input_error(path, "no control points"))?;
+        .ok_or_else(|| bad("no control points".into()))?;
     if !(dim == 2 || dim == 3) {
-        return Err(input_error(
-            path,
-            format!("points must be 2-D or 3-D, point 0 has {dim} coordinates"),
-        ));
+        return Err(bad(format!(
+            "points must be 2-D or 3-D, points[0] has {dim} coordinates"
+        )));
     }
     if let Some(i) = points.iter().position(|p| p.len() != dim) {
-        return Err(input_error(
-            path,
-            format!(
-                "point {i} has {} coordinates, point 0 has {dim}",
-                points[i].len()
-            ),
-        ));
-    }
-    if points.len() > MAX_DEGREE + 1 {
-        return Err(input_error(
-            path,
-            format!("degree {} exceeds {MAX_DEGREE}", points.len() - 1),
-        ));
+        return Err(bad(format!(
+            "points[{i}] has {} coordinates, points[0] has {dim}",
+            points[i].len()
+        )));
     }
     Ok(points)
+}
+
+/// Flattens the curve with control points `points` (as from
+/// [`parse_points`]) to tolerance `tol`: the JSON object `--json` prints.
+pub fn flatten_points(points: &[Vec<f64>], tol: f64) -> Result<Value, CliError> {
+    if !(tol.is_finite() && tol > 0.0) {
+        return Err(CliError::invalid(
+            "--tol",
+            format!("{tol} is not a positive finite number"),
+        ));
+    }
+    match points.first().map(Vec::len) {
+        Some(2) => run_dim::<2>(points, tol),
+        Some(3) => run_dim::<3>(points, tol),
+        _ => Err(CliError::invalid("--input", "points must be 2-D or 3-D")),
+    }
 }
 
 fn run_dim<const D: usize>(points: &[Vec<f64>], tol: f64) -> Result<Value, CliError> {
@@ -101,6 +130,7 @@ fn run_dim<const D: usize>(points: &[Vec<f64>], tol: f64) -> Result<Value, CliEr
         .map(|p| SVector::<f64, D>::from_column_slice(p))
         .collect();
     let curve = Bezier::new(ctrl).map_err(CliError::numerical)?;
+    check_work(&curve, tol)?;
     let poly = flatten(&curve, &tol).map_err(CliError::numerical)?;
     let m = uniform_segments(&curve, &tol, DEVIATION_SAMPLES).map_err(CliError::numerical)?;
     let uniform = uniform_polyline(&curve, m).map_err(CliError::numerical)?;
@@ -122,18 +152,8 @@ fn run_dim<const D: usize>(points: &[Vec<f64>], tol: f64) -> Result<Value, CliEr
 
 /// Runs `splinelab flatten`.
 pub fn run(args: &FlattenArgs) -> Result<(), CliError> {
-    if !(args.tol.is_finite() && args.tol > 0.0) {
-        return Err(CliError::invalid(
-            "--tol",
-            format!("{} is not a positive finite number", args.tol),
-        ));
-    }
-    let points = read_points(&args.input)?;
-    let out = if points[0].len() == 2 {
-        run_dim::<2>(&points, args.tol)?
-    } else {
-        run_dim::<3>(&points, args.tol)?
-    };
+    let points = parse_points(&args.input, &read_text(&args.input)?)?;
+    let out = flatten_points(&points, args.tol)?;
     if args.json {
         print_json(&out);
     } else {

@@ -3,6 +3,7 @@
 
 use super::prec::{Prec, parse_prec};
 use crate::error::CliError;
+use crate::input::{array_field, input_error, kind, parse_object, read_text};
 use crate::output::print_json;
 use crate::with_real;
 use clap::Args;
@@ -11,7 +12,7 @@ use rug::{Integer, Rational};
 use serde_json::{Value, json};
 use splinelab::qi::{QiError, QiOptions, interpolate};
 use splinelab::scalar::Real;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 /// The convention of the output, stated in the JSON so that anyone can
 /// re-integrate the curve from the paper alone.
@@ -44,17 +45,23 @@ pub struct QiArgs {
     pub json: bool,
 }
 
-/// The parsed input file, as exact rationals (or IEEE specials).
-struct Input {
-    points: Vec<[Coord; 3]>,
-    start: Option<[Coord; 3]>,
-    end: Option<[Coord; 3]>,
+/// The parsed input file of `qi`, as exact rationals (or IEEE specials).
+#[derive(Debug, Clone, PartialEq)]
+pub struct QiInput {
+    /// The points to interpolate.
+    pub points: Vec<[Coord; 3]>,
+    /// The start tangent, if given.
+    pub start: Option<[Coord; 3]>,
+    /// The end tangent, if given.
+    pub end: Option<[Coord; 3]>,
 }
 
 /// A coordinate: exact rational, or a non-finite f64.
-#[derive(Clone)]
-enum Coord {
+#[derive(Debug, Clone, PartialEq)]
+pub enum Coord {
+    /// A finite number, exactly.
     Exact(Rational),
+    /// NaN or ±∞ (given as a string; the solver refuses it with a typed error).
     Special(f64),
 }
 
@@ -97,13 +104,16 @@ fn parse_decimal(s: &str) -> Option<Rational> {
     Some(if neg { -q } else { q })
 }
 
-fn coord(v: &Value) -> Result<Coord, String> {
+fn coord(v: &Value, what: &str) -> Result<Coord, String> {
+    let field = |why: String| format!("{what}: {why}");
     match v {
         Value::Number(n) => {
-            let x = n.as_f64().ok_or("number out of range")?;
+            let x = n
+                .as_f64()
+                .ok_or_else(|| field("number out of range".into()))?;
             Rational::from_f64(x)
                 .map(Coord::Exact)
-                .ok_or_else(|| "non-finite number".into())
+                .ok_or_else(|| field("non-finite number".into()))
         }
         Value::String(s) => match s.trim().to_ascii_lowercase().as_str() {
             "nan" => Ok(Coord::Special(f64::NAN)),
@@ -111,11 +121,12 @@ fn coord(v: &Value) -> Result<Coord, String> {
             "-inf" | "-infinity" => Ok(Coord::Special(f64::NEG_INFINITY)),
             _ => parse_decimal(s)
                 .map(Coord::Exact)
-                .ok_or_else(|| format!("'{s}' is not a decimal number")),
+                .ok_or_else(|| field(format!("'{s}' is not a decimal number"))),
         },
-        other => Err(format!(
-            "expected a number or a decimal string, got {other}"
-        )),
+        other => Err(field(format!(
+            "expected a number or a decimal string, got {}",
+            kind(other)
+        ))),
     }
 }
 
@@ -124,28 +135,43 @@ fn triple(v: &Value, what: &str) -> Result<[Coord; 3], String> {
         .as_array()
         .filter(|a| a.len() == 3)
         .ok_or(format!("{what} must be [x, y, z]"))?;
-    Ok([coord(&a[0])?, coord(&a[1])?, coord(&a[2])?])
+    Ok([
+        coord(&a[0], what)?,
+        coord(&a[1], what)?,
+        coord(&a[2], what)?,
+    ])
 }
 
-fn read_input(path: &PathBuf) -> Result<Input, CliError> {
-    let err = |why: String| CliError::Input {
-        path: path.clone(),
-        why,
-    };
-    let text = std::fs::read_to_string(path).map_err(|e| err(e.to_string()))?;
-    let v: Value = serde_json::from_str(&text).map_err(|e| err(e.to_string()))?;
-    let pts = v
-        .get("points")
-        .and_then(Value::as_array)
-        .ok_or_else(|| err("missing \"points\" array".into()))?;
+/// The keys of the input object.
+const KEYS: [&str; 3] = ["points", "start_tangent", "end_tangent"];
+
+/// Parses and validates the input file's text (`path` names it in errors):
+/// every point and tangent an `[x, y, z]` of numbers or decimal strings,
+/// at most [`MAX_POINTS`] points, no unknown keys. The geometry (count,
+/// coincident points, zero tangents) is left to the solver's typed errors.
+pub fn parse_input(path: &Path, text: &str) -> Result<QiInput, CliError> {
+    let map = parse_object(path, text, &KEYS)?;
+    let pts = array_field(path, &map, "points")?;
+    if pts.len() > MAX_POINTS {
+        return Err(input_error(
+            path,
+            format!("{} points: more than {MAX_POINTS}", pts.len()),
+        ));
+    }
+    let bad = |why| input_error(path, why);
     let points = pts
         .iter()
         .enumerate()
         .map(|(i, p)| triple(p, &format!("points[{i}]")))
         .collect::<Result<_, _>>()
-        .map_err(err)?;
-    let opt = |key: &str| v.get(key).map(|t| triple(t, key)).transpose().map_err(err);
-    Ok(Input {
+        .map_err(bad)?;
+    let opt = |key: &str| {
+        map.get(key)
+            .map(|t| triple(t, key))
+            .transpose()
+            .map_err(bad)
+    };
+    Ok(QiInput {
         points,
         start: opt("start_tangent")?,
         end: opt("end_tangent")?,
@@ -165,8 +191,12 @@ fn out<T: Real>(prec: Prec, x: &T) -> Value {
     }
 }
 
-/// Runs the interpolation at `T`; returns the JSON and the failure if any.
-fn solve<T: Real>(input: &Input, args: &QiArgs) -> Result<(Value, Option<QiError>), CliError> {
+/// Runs the interpolation at `T` (which `args.prec` names); returns the JSON
+/// and Newton's failure if any.
+pub fn solve<T: Real>(
+    input: &QiInput,
+    args: &QiArgs,
+) -> Result<(Value, Option<QiError>), CliError> {
     let points: Vec<Vector3<T>> = input.points.iter().map(vector).collect();
     let opts = QiOptions::<T> {
         damped: args.damped,
@@ -253,13 +283,7 @@ pub fn run(args: &QiArgs) -> Result<(), CliError> {
             format!("{} is outside 1..=1000", args.max_iter),
         ));
     }
-    let input = read_input(&args.input)?;
-    if input.points.len() > MAX_POINTS {
-        return Err(CliError::invalid(
-            "--input",
-            format!("{} points: more than {MAX_POINTS}", input.points.len()),
-        ));
-    }
+    let input = parse_input(&args.input, &read_text(&args.input)?)?;
     let prec = args.prec;
     let (obj, failure) = with_real!(prec, T => solve::<T>(&input, args)?);
     if args.json {

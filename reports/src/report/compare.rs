@@ -9,6 +9,7 @@ use super::figure::{Better, Figure, Kind};
 use crate::chart::{Chart, Series};
 use crate::error::CliError;
 use crate::html::{escape, num};
+use crate::input::read_json;
 use serde_json::Value;
 use std::collections::BTreeMap;
 use std::path::Path;
@@ -42,9 +43,7 @@ pub fn read_figures(path: &Path) -> Result<Vec<Figure>, CliError> {
         path: path.to_path_buf(),
         why,
     };
-    let text = std::fs::read_to_string(path).map_err(|e| bad(e.to_string()))?;
-    let json: Value =
-        serde_json::from_str(&text).map_err(|e| bad(format!("not valid JSON: {e}")))?;
+    let json: Value = read_json(path)?;
     let figures = json
         .get("figures")
         .ok_or_else(|| bad("missing field 'figures'".into()))?;

@@ -1,0 +1,153 @@
+//! Reading the JSON input files of the commands: one reader, so every
+//! command words its failures alike — `cannot read FILE: WHAT at line L
+//! column C` for I/O and syntax errors, `cannot read FILE: FIELD …` for
+//! content errors.
+//!
+//! The steps are separate ([`read_text`], then [`parse_json`] or
+//! [`parse_object`]) so that tests and fuzzers can feed text directly.
+
+use crate::error::CliError;
+use serde::de::DeserializeOwned;
+use serde_json::error::Category;
+use serde_json::{Map, Value};
+use std::path::Path;
+
+/// An input error about `path`.
+pub fn input_error(path: &Path, why: impl Into<String>) -> CliError {
+    CliError::Input {
+        path: path.to_path_buf(),
+        why: why.into(),
+    }
+}
+
+/// Reads `path` as UTF-8 text (no `-` for stdin: every command takes a file).
+pub fn read_text(path: &Path) -> Result<String, CliError> {
+    std::fs::read_to_string(path).map_err(|e| input_error(path, e.to_string()))
+}
+
+/// Parses `text`, the contents of `path`, as a `T` (serde's message names the
+/// field, the expected type and the line and column).
+pub fn parse_json<T: DeserializeOwned>(path: &Path, text: &str) -> Result<T, CliError> {
+    if text.trim().is_empty() {
+        return Err(input_error(path, "the file is empty, expected JSON"));
+    }
+    serde_json::from_str(text).map_err(|e| input_error(path, describe(&e)))
+}
+
+/// [`read_text`] then [`parse_json`].
+pub fn read_json<T: DeserializeOwned>(path: &Path) -> Result<T, CliError> {
+    parse_json(path, &read_text(path)?)
+}
+
+/// Parses `text` as a JSON object whose keys are all in `allowed` (a
+/// misspelt optional key is an error, not silently ignored).
+pub fn parse_object(
+    path: &Path,
+    text: &str,
+    allowed: &[&str],
+) -> Result<Map<String, Value>, CliError> {
+    let Value::Object(map) = parse_json::<Value>(path, text)? else {
+        return Err(input_error(path, "expected a JSON object {…}"));
+    };
+    if let Some(key) = map.keys().find(|k| !allowed.contains(&k.as_str())) {
+        return Err(input_error(
+            path,
+            format!("unknown field \"{key}\", expected one of {allowed:?}"),
+        ));
+    }
+    Ok(map)
+}
+
+/// The array under `key` of an object from [`parse_object`].
+pub fn array_field<'a>(
+    path: &Path,
+    map: &'a Map<String, Value>,
+    key: &str,
+) -> Result<&'a [Value], CliError> {
+    match map.get(key) {
+        Some(Value::Array(a)) => Ok(a),
+        Some(other) => Err(input_error(
+            path,
+            format!("field \"{key}\" must be an array, got {}", kind(other)),
+        )),
+        None => Err(input_error(
+            path,
+            format!("missing field \"{key}\" (an array)"),
+        )),
+    }
+}
+
+/// The JSON type of `v`, for messages.
+pub fn kind(v: &Value) -> &'static str {
+    match v {
+        Value::Null => "null",
+        Value::Bool(_) => "a boolean",
+        Value::Number(_) => "a number",
+        Value::String(_) => "a string",
+        Value::Array(_) => "an array",
+        Value::Object(_) => "an object",
+    }
+}
+
+/// serde's message prefixed by what kind of failure it is.
+fn describe(e: &serde_json::Error) -> String {
+    let what = match e.classify() {
+        Category::Eof => "truncated JSON",
+        Category::Syntax => "malformed JSON",
+        Category::Data => "unexpected JSON content",
+        Category::Io => "I/O error",
+    };
+    format!("{what}: {e}")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn why(r: Result<impl std::fmt::Debug, CliError>) -> String {
+        r.unwrap_err().to_string()
+    }
+
+    #[test]
+    fn each_failure_names_the_file_and_what_is_wrong() {
+        let p = Path::new("in.json");
+        assert_eq!(
+            why(parse_json::<Value>(p, " \n")),
+            "cannot read in.json: the file is empty, expected JSON"
+        );
+        assert_eq!(
+            why(parse_json::<Value>(p, "{\"a\": [1,")),
+            "cannot read in.json: truncated JSON: EOF while parsing a value at line 1 column 9"
+        );
+        assert_eq!(
+            why(parse_json::<Value>(p, "[1e999]")),
+            "cannot read in.json: malformed JSON: number out of range at line 1 column 6"
+        );
+        assert_eq!(
+            why(parse_json::<Vec<f64>>(p, "[1, \"2\"]")),
+            "cannot read in.json: unexpected JSON content: invalid type: string \"2\", \
+             expected f64 at line 1 column 7"
+        );
+        assert_eq!(
+            why(parse_object(p, "[]", &["a"])),
+            "cannot read in.json: expected a JSON object {…}"
+        );
+        assert_eq!(
+            why(parse_object(p, "{\"b\": 1}", &["a"])),
+            "cannot read in.json: unknown field \"b\", expected one of [\"a\"]"
+        );
+        let map = parse_object(p, "{\"a\": 1}", &["a", "c"]).unwrap();
+        assert_eq!(
+            why(array_field(p, &map, "a")),
+            "cannot read in.json: field \"a\" must be an array, got a number"
+        );
+        assert_eq!(
+            why(array_field(p, &map, "c")),
+            "cannot read in.json: missing field \"c\" (an array)"
+        );
+        assert!(
+            why(read_text(Path::new("/nonexistent/in.json")))
+                .starts_with("cannot read /nonexistent/in.json: No such file")
+        );
+    }
+}
