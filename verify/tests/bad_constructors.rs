@@ -32,7 +32,8 @@ use splinelab::sspline::end_conditions::{EndCondition, EndRule};
 use splinelab::sspline::global_cubic::{CubicEnds, control_points as cubic_control_points};
 use splinelab::sspline::surface::{Direction, SsplineSurface};
 use splinelab::sspline::{
-    Criterion, SplineFamily, SsplineError, TruncatedBasis, WidthChooser, truncation_width,
+    Criterion, MAX_HALF_WIDTH, SplineFamily, SsplineError, TruncatedBasis, TruncationAnalysis,
+    WidthChooser, truncation_width,
 };
 use std::fmt::Display;
 use std::panic::{AssertUnwindSafe, catch_unwind};
@@ -861,6 +862,38 @@ fn ssplines<T: Real>(s: &mut Sweep) {
         TruncatedBasis::<T>::new(&cubic, 0),
         SsplineError::ZeroWidth
     );
+    for n in [MAX_HALF_WIDTH + 1, usize::MAX] {
+        refuses!(
+            s,
+            &format!("TruncatedBasis::new(n = {n})"),
+            TruncatedBasis::<T>::new(&cubic, n),
+            SsplineError::WidthTooLarge(_)
+        );
+        refuses!(
+            s,
+            &format!("TruncationAnalysis::new(max_n = {n})"),
+            TruncationAnalysis::<T>::new(&cubic, n),
+            SsplineError::WidthTooLarge(_)
+        );
+        refuses!(
+            s,
+            &format!("SsplineCurve n = {n}"),
+            SsplineCurve::new(&cubic, n, &line::<T>(6), free()),
+            Sspline(SsplineError::WidthTooLarge(_))
+        );
+    }
+    for (nu, nv) in [
+        (1 << 33, 1 << 33),
+        (usize::MAX, 2),
+        (usize::MAX, usize::MAX),
+    ] {
+        refuses!(
+            s,
+            &format!("SsplineSurface {nu} × {nv}"),
+            SsplineSurface::new(&f, &f, nu, nv, &line::<T>(4)),
+            GridSize { .. }
+        );
+    }
 }
 
 fn patches<T: Real>(s: &mut Sweep) {

@@ -260,3 +260,33 @@ fn ulp_metric_sanity_for_the_reference() {
     let r = Mp::<512>::from_f64_exact(0.5);
     assert_eq!(ulps_f64(0.5 + 2.0 * f64::EPSILON / 2.0, &r.to_float()), 2.0);
 }
+
+/// `P(x)` exactly, `P` with the exact node values as coefficients.
+fn euler_frobenius_at(family: &SplineFamily, x: f64) -> Rational {
+    let a = splinelab::sspline::node_values::node_values_exact(family).unwrap();
+    let x = Rational::from_f64(x).unwrap();
+    a.iter().rev().fold(Rational::new(), |acc, c| acc * &x + c)
+}
+
+/// The f64 poles are correctly rounded (to within one ulp): `P` changes
+/// sign, in exact rational arithmetic, between the neighbours of each
+/// returned pole — including orders where Laguerre in f64 itself fails.
+#[test]
+fn rounded_poles_bracket_the_exact_roots_up_to_high_orders() {
+    use splinelab::sspline::coefficients::poles_rounded;
+    for m in [4u32, 7, 12, 40, 100, 130, 150] {
+        let f = SplineFamily::Order(m);
+        let xi: Vec<f64> = poles_rounded(&f).unwrap();
+        assert_eq!(xi.len(), f.pole_count());
+        for x in xi {
+            let (lo, hi) = (
+                euler_frobenius_at(&f, x.next_down()),
+                euler_frobenius_at(&f, x.next_up()),
+            );
+            assert!(
+                lo.cmp0() != hi.cmp0(),
+                "order {m}: no sign change of P around {x:e}"
+            );
+        }
+    }
+}

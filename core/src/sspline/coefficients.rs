@@ -180,24 +180,60 @@ fn solve_band_toeplitz<T: Real>(v: &[T], size: usize, centre: usize) -> Vec<T> {
 }
 
 fn production<T: Real>(family: &SplineFamily, count: usize) -> Result<Vec<T>, SsplineError> {
-    match T::BITS {
-        0..=64 => rounded_from::<T, 192>(family, count),
-        65..=256 => rounded_from::<T, 384>(family, count),
-        257..=960 => rounded_from::<T, 1088>(family, count),
-        _ => partial_fractions(family, count),
+    rounded_from_wide(family, &Coefficients(count))
+}
+
+/// The poles `ξ_r` computed with at least 128 guard bits beyond the
+/// cancellation of high orders and rounded once to `T`: correctly rounded
+/// up to a `2^{−120}` relative perturbation. [`poles`] in `T` itself loses
+/// `≈ 0.65 m` bits and stops converging in `f64` above order ~120.
+pub fn poles_rounded<T: Real>(family: &SplineFamily) -> Result<Vec<T>, SsplineError> {
+    rounded_from_wide(family, &Poles)
+}
+
+/// A list of reals computable in any precision.
+trait WideComputation {
+    fn run<W: Real>(&self, family: &SplineFamily) -> Result<Vec<W>, SsplineError>;
+}
+
+struct Coefficients(usize);
+
+impl WideComputation for Coefficients {
+    fn run<W: Real>(&self, family: &SplineFamily) -> Result<Vec<W>, SsplineError> {
+        partial_fractions(family, self.0)
     }
 }
 
-fn rounded_from<T: Real, const B: u32>(
+struct Poles;
+
+impl WideComputation for Poles {
+    fn run<W: Real>(&self, family: &SplineFamily) -> Result<Vec<W>, SsplineError> {
+        poles(family)
+    }
+}
+
+/// Runs `c` with ≥ 128 guard bits and rounds once to `T`. Evaluating the
+/// Euler–Frobenius polynomial near its dominant root (≈ −1) cancels about
+/// 0.65 bits per order (`|V(−1)| ≈ (2/π)^m`), so the working precision
+/// covers that loss on top of the guard bits.
+fn rounded_from_wide<T: Real, C: WideComputation>(
     family: &SplineFamily,
-    count: usize,
+    c: &C,
 ) -> Result<Vec<T>, SsplineError> {
-    let wide = partial_fractions::<Mp<B>>(family, count)?;
-    Ok(wide
-        .iter()
+    let cancelled = (0.7 * family.spline_order() as f64) as u32;
+    Ok(match T::BITS + cancelled {
+        0..=64 => round(c.run::<Mp<192>>(family)?),
+        65..=256 => round(c.run::<Mp<384>>(family)?),
+        257..=960 => round(c.run::<Mp<1088>>(family)?),
+        _ => c.run::<T>(family)?,
+    })
+}
+
+fn round<T: Real, W: Real>(wide: Vec<W>) -> Vec<T> {
+    wide.iter()
         .map(|c| {
             c.to_rational()
                 .map_or_else(T::zero, |q| T::from_rational(&q))
         })
-        .collect())
+        .collect()
 }

@@ -65,7 +65,7 @@ pub enum CurveError {
     #[error("end condition not supported for surfaces: {0}")]
     Unsupported(&'static str),
     /// The grid does not have `ν_u · ν_v` points.
-    #[error("a {nu}×{nv} grid needs {} points, got {got}", nu * nv)]
+    #[error("a {nu}×{nv} grid needs {} points, got {got}", *nu as u128 * *nv as u128)]
     GridSize {
         /// Points in `u`.
         nu: usize,

@@ -154,7 +154,7 @@ pub fn surface_control_points<T: Real, const D: usize>(
     if nu < 2 || nv < 2 {
         return Err(CurveError::TooFewPoints(nu.min(nv)));
     }
-    if data.len() != nu * nv {
+    if nu.checked_mul(nv) != Some(data.len()) {
         return Err(CurveError::GridSize {
             nu,
             nv,

@@ -49,6 +49,11 @@ use crate::roots::RootsError;
 /// computation have been exercised up to here in MPFR).
 pub const MAX_ORDER: u32 = 200;
 
+/// Largest truncation half-width accepted (2^20): beyond every width a
+/// tolerance above 2^{−10^6} needs (the MPFR ladder's top), and it keeps the
+/// coefficient tables and the per-point cost `O(n)` bounded.
+pub const MAX_HALF_WIDTH: usize = 1 << 20;
+
 /// Why an S-spline computation was refused or failed.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum SsplineError {
@@ -67,6 +72,9 @@ pub enum SsplineError {
     /// A truncation half-width of zero was requested.
     #[error("the truncation half-width n must be at least 1")]
     ZeroWidth,
+    /// A truncation half-width above [`MAX_HALF_WIDTH`] was requested.
+    #[error("the truncation half-width n = {0} exceeds the maximum {MAX_HALF_WIDTH}")]
+    WidthTooLarge(usize),
     /// The node values underflow or cannot be represented in the scalar.
     #[error("node values of {family} are not representable as normal numbers in {scalar}")]
     PrecisionTooLow {

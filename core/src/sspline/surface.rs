@@ -60,15 +60,16 @@ impl<T: Real, const D: usize> SsplineSurface<T, D> {
         if du.rule == EndRule::Reflect || dv.rule == EndRule::Reflect {
             return Err(CurveError::Unsupported("prescribed tangents"));
         }
-        let u = Axis::new(&du.family, du.n, du.rule, nu)?;
-        let v = Axis::new(&dv.family, dv.n, dv.rule, nv)?;
-        if data.len() != nu * nv {
+        // The grid check first: it bounds ν_u and ν_v by the data's length.
+        if nu.checked_mul(nv) != Some(data.len()) {
             return Err(CurveError::GridSize {
                 nu,
                 nv,
                 got: data.len(),
             });
         }
+        let u = Axis::new(&du.family, du.n, du.rule, nu)?;
+        let v = Axis::new(&dv.family, dv.n, dv.rule, nv)?;
         if let Some(index) = data.iter().position(|p| p.iter().any(|x| !x.is_finite())) {
             return Err(CurveError::NonFinite { index });
         }

@@ -43,6 +43,9 @@ impl<T: Real> TruncatedBasis<T> {
         if n == 0 {
             return Err(SsplineError::ZeroWidth);
         }
+        if n > super::MAX_HALF_WIDTH {
+            return Err(SsplineError::WidthTooLarge(n));
+        }
         let c = coefficients(family, n + 1, CoefficientMethod::Production)?;
         Ok(TruncatedBasis {
             family: family.clone(),
@@ -133,6 +136,9 @@ impl<T: Real> TruncationAnalysis<T> {
     /// Precomputes the expansion and `c_0..c_K` (production coefficients).
     /// Cost: one pole computation and `K` coefficients.
     pub fn new(family: &SplineFamily, max_n: usize) -> Result<Self, SsplineError> {
+        if max_n > super::MAX_HALF_WIDTH {
+            return Err(SsplineError::WidthTooLarge(max_n));
+        }
         let expansion = PoleExpansion::<T>::new(family)?;
         let rho = expansion.decay_rate().to_f64();
         let extra = if rho > 0.0 {

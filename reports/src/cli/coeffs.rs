@@ -7,7 +7,7 @@ use crate::output::print_json;
 use crate::with_real;
 use clap::Args;
 use serde_json::json;
-use splinelab::sspline::euler_frobenius::poles;
+use splinelab::sspline::coefficients::poles_rounded;
 use splinelab::sspline::{CoefficientMethod, SplineFamily, coefficients};
 
 /// Largest `--count` accepted.
@@ -68,7 +68,7 @@ pub fn run(args: &CoeffsArgs) -> Result<(), CliError> {
     let prec = args.prec;
     let (c, xi) = with_real!(prec, T => {
         let c: Vec<T> = coefficients(&family, args.count, args.method).map_err(CliError::numerical)?;
-        let xi: Vec<T> = poles(&family).map_err(CliError::numerical)?;
+        let xi: Vec<T> = poles_rounded(&family).map_err(CliError::numerical)?;
         (
             c.iter().map(|x| prec.format(x)).collect::<Vec<_>>(),
             xi.iter().map(|x| prec.format(x)).collect::<Vec<_>>(),

@@ -200,7 +200,15 @@ fn figures(d: &UpdateCostData) -> Vec<Figure> {
     let (lo, hi) = local
         .iter()
         .fold((f64::INFINITY, 0f64), |(a, b), &x| (a.min(x), b.max(x)));
-    f.push(Figure::cost("update_cost.local_max_over_min", hi / lo, "ratio", 2.0).with_floor(1.0));
+    f.push(
+        Figure::cost(
+            "update_cost.local_max_over_min",
+            hi / lo,
+            "ratio",
+            TIME_BAND,
+        )
+        .with_floor(1.0),
+    );
     if let Some(r) = d.edits.last() {
         let speedup = r.global_ns / r.local_ns;
         f.push(Figure::new(
