@@ -100,6 +100,19 @@ pub fn line_chart(
     }
 }
 
+impl Chart {
+    /// The same chart with a logarithmic x axis.
+    pub fn with_log_x(mut self) -> Self {
+        self.x_log = true;
+        self
+    }
+}
+
+/// `[x, y]` pairs as chart points.
+pub fn xy(points: &[[f64; 2]]) -> Vec<(f64, f64)> {
+    points.iter().map(|p| (p[0], p[1])).collect()
+}
+
 /// Why a chart could not be drawn.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum ChartError {

@@ -287,33 +287,37 @@ fn signal(len: usize, seed: u64) -> Vec<f64> {
     (0..len).map(|_| r.range(-1.0, 1.0)).collect()
 }
 
-fn build_f64(
-    family: &SplineFamily,
-    width: Option<usize>,
-    s: &[f64],
-) -> Result<Vec<f64>, PrefilterError> {
-    match width {
-        None => RecursivePrefilter::<f64>::new(family)?.apply(s, EndRule::Reflect),
-        Some(n) => ConvolutionPrefilter::<f64>::new(family, n)?.apply(s, EndRule::Reflect),
+/// One full-build route: the recursive filter or a convolution of a width.
+enum Prefilter {
+    Recursive(RecursivePrefilter<f64>),
+    Convolution(ConvolutionPrefilter<f64>),
+}
+
+impl Prefilter {
+    fn new(family: &SplineFamily, width: Option<usize>) -> Result<Self, PrefilterError> {
+        Ok(match width {
+            None => Prefilter::Recursive(RecursivePrefilter::new(family)?),
+            Some(n) => Prefilter::Convolution(ConvolutionPrefilter::new(family, n)?),
+        })
+    }
+
+    fn apply(&self, s: &[f64]) -> Result<Vec<f64>, PrefilterError> {
+        match self {
+            Prefilter::Recursive(r) => r.apply(s, EndRule::Reflect),
+            Prefilter::Convolution(c) => c.apply(s, EndRule::Reflect),
+        }
     }
 }
 
 fn build_rows(p: &UpdateCostParams) -> Result<Vec<BuildRow>, UpdateCostError> {
     let mut rows = Vec::new();
     for (name, family) in build_families() {
-        let rec = RecursivePrefilter::<f64>::new(&family)?;
         for (method, width) in build_methods(&family, p.tol)? {
-            let conv = width
-                .map(|n| ConvolutionPrefilter::<f64>::new(&family, n))
-                .transpose()?;
+            let filter = Prefilter::new(&family, width)?;
             for &len in &p.build_sizes {
                 let s = signal(len, 11);
                 let ns = median_ns(p.repeats.min(5), || {
-                    let d = match &conv {
-                        None => rec.apply(&s, EndRule::Reflect),
-                        Some(c) => c.apply(&s, EndRule::Reflect),
-                    };
-                    black_box(d.map(|d| d.len()).unwrap_or(0));
+                    black_box(filter.apply(&s).map(|d| d.len()).unwrap_or(0));
                 });
                 rows.push(BuildRow {
                     family: name.into(),
@@ -335,11 +339,12 @@ fn accuracy_rows(p: &UpdateCostParams) -> Result<Vec<BuildAccuracy>, UpdateCostE
     let mut rows = Vec::new();
     for (name, family) in build_families() {
         let reference = RecursivePrefilter::<Ref>::new(&family)?.apply(&exact, EndRule::Reflect)?;
-        let scale = inverse_norm(&family)? * s.iter().fold(0f64, |m, x| m.max(x.abs()));
+        let norm = inverse_norm(&family)?;
+        let scale = norm * s.iter().fold(0f64, |m, x| m.max(x.abs()));
         let expansion =
             splinelab::sspline::euler_frobenius::PoleExpansion::<Mp<128>>::new(&family)?;
         for (method, width) in build_methods(&family, p.tol)? {
-            let d = build_f64(&family, width, &s)?;
+            let d = Prefilter::new(&family, width)?.apply(&s)?;
             let err = d
                 .iter()
                 .zip(&reference)
@@ -352,7 +357,7 @@ fn accuracy_rows(p: &UpdateCostParams) -> Result<Vec<BuildAccuracy>, UpdateCostE
                 method,
                 half_width: width.unwrap_or(0),
                 error_u: err / scale / u,
-                tail_u: tail / inverse_norm(&family)? / u,
+                tail_u: tail / norm / u,
             });
         }
     }

@@ -9,7 +9,7 @@ use splinelab::qi::tangent::tangent;
 use splinelab::qi::{QiOptions, interpolate};
 use splinelab::quadrature::GaussLegendre;
 use splinelab::scalar::prelude::*;
-use splinelab_verify::qi::{QiCase, check_fit, points_in};
+use splinelab_verify::qi::{QiCase, check_fit, points_in, pole_angle_deg};
 
 /// T(α, β) closed form = q v_x q⁻¹ by quaternion products.
 fn tangent_is_rotated_x<T: Real>(a: f64, b: f64) -> Result<(), TestCaseError> {
@@ -48,17 +48,6 @@ fn rule_is_exact<T: Real>(m: usize, coeffs: &[i32]) -> Result<(), TestCaseError>
     let err = (q - T::from_rational(&exact)).abs();
     prop_assert!(err <= T::unit_roundoff().scale_by_pow2(4) * T::from_int(scale * m as i64));
     Ok(())
-}
-
-/// Smallest angle (degrees) between a chord and the chart's poles ±v_x.
-fn pole_angle_deg(case: &QiCase) -> f64 {
-    case.points
-        .windows(2)
-        .map(|w| {
-            let d = Vector3::new(w[1][0] - w[0][0], w[1][1] - w[0][1], w[1][2] - w[0][2]);
-            (d.x.abs() / d.norm()).acos().to_degrees()
-        })
-        .fold(90.0, f64::min)
 }
 
 /// A random smooth walk: 3–6 points, turning at most ~35° per point, every

@@ -5,7 +5,7 @@
 //! and solver timings.
 
 use super::{Figure, Profile, ReportError, Section, TIME_BAND};
-use crate::chart::{Chart, Series};
+use crate::chart::{Chart, Series, line_chart};
 use crate::error::CliError;
 use crate::html::{num, paragraph, table};
 use serde_json::json;
@@ -197,18 +197,17 @@ fn cond_chart(rows: &[BvRow]) -> Chart {
         (a.min(r.cond2_tensor), b.max(r.cond2_tensor))
     });
     series.push(Series::line("cond₂·u", vec![(lo, lo * U), (hi, hi * U)]));
-    Chart {
-        id: "bv_error_vs_cond".into(),
-        title: "Solver error against cond₂(B̃), every node family and degree".into(),
-        x_label: "cond₂(B_u ⊗ B_u)".into(),
-        y_label: "relative error".into(),
-        x_log: true,
-        y_log: true,
+    line_chart(
+        "bv_error_vs_cond",
+        "Solver error against cond₂(B̃), every node family and degree",
+        "cond₂(B_u ⊗ B_u)",
+        "relative error",
+        true,
         series,
-        caption: "Componentwise error for sign-alternating, normwise for random data; the line is cond₂·u, \
-                  the error a backward-stable solver may make."
-            .into(),
-    }
+        "Componentwise error for sign-alternating, normwise for random data; the line is cond₂·u, \
+         the error a backward-stable solver may make.",
+    )
+    .with_log_x()
 }
 
 fn headline_table(rows: &[BvRow]) -> String {
@@ -263,18 +262,17 @@ fn timing_chart(t: &[TimingRow]) -> Chart {
             )
         })
         .collect();
-    Chart {
-        id: "bv_solver_times".into(),
-        title: "Solver wall-clock time, 3 right-hand-side columns (x, y, z)".into(),
-        x_label: "degree n".into(),
-        y_label: "seconds (fastest run)".into(),
-        x_log: true,
-        y_log: true,
+    line_chart(
+        "bv_solver_times",
+        "Solver wall-clock time, 3 right-hand-side columns (x, y, z)",
+        "degree n",
+        "seconds (fastest run)",
+        true,
         series,
-        caption: "Fastest of several runs including the factorisation; full LU grows like n⁶, the Kronecker \
-                  solvers like n³. Indicative only: the criterion benches are the reference."
-            .into(),
-    }
+        "Fastest of several runs including the factorisation; full LU grows like n⁶, the Kronecker \
+         solvers like n³. Indicative only: the criterion benches are the reference.",
+    )
+    .with_log_x()
 }
 
 fn defects_table(s: &PushStudy) -> String {

@@ -3,7 +3,7 @@
 //! exactly against rational de Casteljau on the same f64 inputs.
 
 use super::{Figure, Profile, ReportError, Section};
-use crate::chart::{Chart, Series};
+use crate::chart::{Chart, Series, line_chart};
 use crate::error::CliError;
 use crate::html::{escape, num, paragraph, table};
 use serde_json::json;
@@ -62,16 +62,9 @@ fn chart(
     series: Vec<Series>,
     caption: &str,
 ) -> Chart {
-    Chart {
-        id: id.into(),
-        title: title.into(),
-        x_label: x_label.into(),
-        y_label: "relative error".into(),
-        x_log,
-        y_log: true,
-        series,
-        caption: format!("{caption} Exact results (error 0) are drawn at {FLOOR:e}."),
-    }
+    let caption = format!("{caption} Exact results (error 0) are drawn at {FLOOR:e}.");
+    let c = line_chart(id, title, x_label, "relative error", true, series, &caption);
+    Chart { x_log, ..c }
 }
 
 fn near_root_charts(d: &BezierEvalData) -> Vec<Chart> {

@@ -5,17 +5,13 @@
 
 use super::figure::slug;
 use super::{Figure, Profile, ReportError, Section};
-use crate::chart::{Chart, Series};
+use crate::chart::{Chart, Series, xy};
 use crate::error::CliError;
 use crate::html::{num, paragraph, table};
 use serde_json::json;
 use splinelab_verify::curves::{
     CurvesData, CurvesParams, DEVIATION_SAMPLES, PropertyRow, Sampled, run_curves,
 };
-
-fn xy(points: &[[f64; 2]]) -> Vec<(f64, f64)> {
-    points.iter().map(|p| (p[0], p[1])).collect()
-}
 
 fn lines(samples: &[Sampled]) -> Vec<Series> {
     samples

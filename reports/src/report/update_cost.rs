@@ -5,22 +5,13 @@
 
 use super::figure::{Better, Kind, slug};
 use super::{Figure, Profile, ReportError, Section, TIME_BAND};
-use crate::chart::{Chart, Series, line_chart};
+use crate::chart::{Chart, Series, line_chart, xy};
 use crate::error::CliError;
 use crate::html::{num, paragraph, table};
 use serde_json::json;
 use splinelab_verify::update_cost::{
     BuildAccuracy, BuildRow, EditRow, Polyline, UpdateCostData, UpdateCostParams, run_update_cost,
 };
-
-fn log_log(mut c: Chart) -> Chart {
-    c.x_log = true;
-    c
-}
-
-fn xy(p: &[[f64; 2]]) -> Vec<(f64, f64)> {
-    p.iter().map(|q| (q[0], q[1])).collect()
-}
 
 fn lines(p: &[Polyline]) -> Vec<Series> {
     p.iter()
@@ -32,7 +23,7 @@ fn cost_chart(e: &[EditRow]) -> Chart {
     let s = |name: &str, f: fn(&EditRow) -> f64| {
         Series::line_points(name, e.iter().map(|r| (r.n as f64, f(r))).collect())
     };
-    log_log(line_chart(
+    line_chart(
         "update_cost_vs_n",
         "Cost of one point edit vs data size N (cubic, free ends)",
         "data points N",
@@ -47,7 +38,8 @@ fn cost_chart(e: &[EditRow]) -> Chart {
             s("Boehm knot insertion (copies the net)", |r| r.insertion_ns),
         ],
         "Local edits stay flat in N; the global re-solve and knot insertion (which copies the control net) grow linearly.",
-    ))
+    )
+    .with_log_x()
 }
 
 fn build_chart(b: &[BuildRow]) -> Chart {
@@ -69,7 +61,7 @@ fn build_chart(b: &[BuildRow]) -> Chart {
             Series::line_points(format!("{f}, {m}"), pts)
         })
         .collect();
-    log_log(line_chart(
+    line_chart(
         "update_cost_full_build",
         "Full build of the coefficients from N samples (f64, mirror ends)",
         "samples N",
@@ -77,7 +69,8 @@ fn build_chart(b: &[BuildRow]) -> Chart {
         true,
         series,
         "Throughput of the exact recursive prefilter against the truncated convolution at two widths.",
-    ))
+    )
+    .with_log_x()
 }
 
 fn picture_charts(d: &UpdateCostData) -> Vec<Chart> {
