@@ -76,9 +76,7 @@ impl<T: Real> RecursivePrefilter<T> {
         let poles: Vec<T> = poles(family)?;
         let v: Vec<T> = polynomial(family)?;
         let v1 = v.iter().fold(T::zero(), |a, b| a + b.clone());
-        let gain = poles.iter().fold(T::one() / v1, |g, z| {
-            g * (T::one() - z.clone()) * (T::one() - T::one() / z.clone())
-        });
+        let gain = pair_product(&poles, T::one() / v1);
         let bits = T::BITS as f64 + 8.0;
         let horizons = poles
             .iter()
@@ -120,7 +118,10 @@ impl<T: Real> RecursivePrefilter<T> {
             .collect();
         if c.len() == 1 {
             // Both extensions of one sample are constant: D = s / V(1).
-            return Ok(c.into_iter().map(|x| x / self.unit_gain()).collect());
+            return Ok(c
+                .into_iter()
+                .map(|x| x / pair_product(&self.poles, T::one()))
+                .collect());
         }
         for (z, &k) in self.poles.iter().zip(&self.horizons) {
             c[0] = match end {
@@ -142,13 +143,14 @@ impl<T: Real> RecursivePrefilter<T> {
         }
         Ok(c)
     }
+}
 
-    /// `Λ · V(1) = Π_r (1 − ξ_r)(1 − 1/ξ_r)`: what the recursions divide a constant by.
-    fn unit_gain(&self) -> T {
-        self.poles.iter().fold(T::one(), |g, z| {
-            g * (T::one() - z.clone()) * (T::one() - T::one() / z.clone())
-        })
-    }
+/// `init · Π_r (1 − ξ_r)(1 − 1/ξ_r)`; with `init = 1`, what the recursions
+/// divide a constant by.
+fn pair_product<T: Real>(poles: &[T], init: T) -> T {
+    poles.iter().fold(init, |g, z| {
+        g * (T::one() - z.clone()) * (T::one() - T::one() / z.clone())
+    })
 }
 
 /// `Σ_{j≥0} ξ^j s_{−j}` for the mirror extension of period `2ν − 2`.
