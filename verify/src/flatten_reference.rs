@@ -1,7 +1,7 @@
 //! References for judging flattening: the greedy longest-step optimum with a
 //! sampled distance check (the count the near-optimal method is measured
-//! against), and the deviation of an f64 polyline judged independently in
-//! 256-bit MPFR.
+//! against), and the deviation of a polyline judged independently in 256-bit
+//! MPFR.
 
 use nalgebra::SVector;
 use splinelab::bernstein::bezier::Bezier;
@@ -67,25 +67,27 @@ pub fn greedy_reference_segments<const D: usize>(
     Ok(count)
 }
 
-/// The largest distance from the curve to an f64 polyline, judged in
-/// 256-bit MPFR: the curve's exact control points and each chord's exact
-/// f64 vertices are converted losslessly, the curve is evaluated in MPFR at
-/// `samples` interior points of every chord's parameter interval (and at the
+/// The largest distance from the curve to a polyline, judged in 256-bit
+/// MPFR independently of core's sampled `max_deviation`: the curve's control
+/// points and each chord's vertices are lifted exactly (`T` has at most 256
+/// bits: f64 or `Mp<B ≤ 256>`), the curve is evaluated in MPFR at `samples`
+/// interior points of every chord's parameter interval (and at the
 /// vertices' parameters), and each point's distance to its own chord is
-/// taken in MPFR. Returned as f64 (rounded up).
-pub fn deviation_in_mpfr<const D: usize>(
-    curve: &Bezier<f64, D>,
-    poly: &Polyline<f64, D>,
+/// taken in MPFR. Returned as f64, rounded up.
+pub fn deviation_in_mpfr<T: Real, const D: usize>(
+    curve: &Bezier<T, D>,
+    poly: &Polyline<T, D>,
     samples: usize,
 ) -> Result<f64, CurveError> {
     type M = Mp<256>;
-    let lift = |p: &SVector<f64, D>| p.map(M::from_f64_exact);
+    debug_assert!(T::BITS <= M::BITS, "the lift to 256 bits must be exact");
+    let lift = |p: &SVector<T, D>| p.map(|x| x.convert::<M>());
     let exact = Bezier::new(curve.points().iter().map(lift).collect())?;
     let mut worst = M::zero();
     for j in 0..poly.segments() {
         let (t0, t1) = (
-            M::from_f64_exact(poly.params[j]),
-            M::from_f64_exact(poly.params[j + 1]),
+            poly.params[j].convert::<M>(),
+            poly.params[j + 1].convert::<M>(),
         );
         let (a, b) = (lift(&poly.points[j]), lift(&poly.points[j + 1]));
         for i in 0..=samples + 1 {

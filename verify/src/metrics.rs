@@ -4,6 +4,7 @@
 //! claim needs; the value under test is converted to the reference's
 //! precision exactly (an f64 always fits in 53 bits).
 
+use nalgebra::SVector;
 use rug::Float;
 use splinelab::scalar::Real;
 
@@ -52,6 +53,52 @@ pub fn ulps_f64(x: f64, reference: &Float) -> f64 {
     };
     let diff = Float::with_val(reference.prec().max(64), x - reference).abs();
     (diff / ulp).to_f64()
+}
+
+// ---- errors of geometric results, in units of `u` ------------------------
+//
+// Computed in MPFR at `2·BITS + 64` bits from the exact values of the
+// computed result, so the measurement adds no rounding of its own.
+
+/// Precision of the references for `T`: `2·BITS + 64`.
+pub fn ref_prec<T: Real>() -> u32 {
+    2 * T::BITS + 64
+}
+
+/// `x` as an MPFR float of the reference precision (exact).
+pub fn fl<T: Real>(x: &T) -> Float {
+    Float::with_val(ref_prec::<T>(), x.to_float())
+}
+
+/// `‖a − b‖₂` in the reference precision from the exact values of `a`, `b`.
+pub fn dist_ref<T: Real, const D: usize>(a: &SVector<T, D>, b: &SVector<T, D>) -> Float {
+    let p = ref_prec::<T>();
+    let mut s = Float::with_val(p, 0);
+    for (x, y) in a.iter().zip(b.iter()) {
+        let d = Float::with_val(p, fl(x) - fl(y));
+        s += d.square();
+    }
+    s.sqrt()
+}
+
+/// `‖a‖_∞` over a set of points (the data scale), as f64, at least 1e-300.
+pub fn scale<T: Real, const D: usize>(points: &[SVector<T, D>]) -> f64 {
+    points
+        .iter()
+        .flat_map(|p| p.iter())
+        .map(|x| x.to_f64().abs())
+        .fold(1e-300, f64::max)
+}
+
+/// An error in units of `u` of `T` relative to `scale`.
+pub fn in_u<T: Real>(err: &Float, scale: f64) -> f64 {
+    (err.clone() / scale / T::unit_roundoff().to_float()).to_f64()
+}
+
+/// `|‖p − c‖ − r| / r` in units of `u` (computed in the reference precision).
+pub fn radial_error_u<T: Real, const D: usize>(p: &SVector<T, D>, c: &SVector<T, D>, r: &T) -> f64 {
+    let d = dist_ref(p, c) - fl(r);
+    in_u::<T>(&d.abs(), r.to_f64())
 }
 
 #[cfg(test)]

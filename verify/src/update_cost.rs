@@ -141,7 +141,16 @@ pub struct Polyline {
     pub points: Vec<[f64; 2]>,
 }
 
-/// The locally edited surface, as projected wireframes.
+/// A sampled space curve, in world coordinates (the report projects it).
+#[derive(Debug, Clone, Serialize)]
+pub struct Wireframe {
+    /// Label.
+    pub name: String,
+    /// Points `[x, y, z]`.
+    pub points: Vec<[f64; 3]>,
+}
+
+/// The locally edited surface, as wireframes.
 #[derive(Debug, Clone, Serialize)]
 pub struct SurfaceEdit {
     /// Grid side.
@@ -150,8 +159,8 @@ pub struct SurfaceEdit {
     pub half_width: usize,
     /// Control points changed by the edit (expected `(2n + 1)²`).
     pub changed_control_points: usize,
-    /// Wireframe of the surface before and after the edit (oblique projection).
-    pub wireframes: Vec<Polyline>,
+    /// Wireframe of the surface before and after the edit.
+    pub wireframes: Vec<Wireframe>,
 }
 
 /// Everything the report shows.
@@ -456,19 +465,14 @@ fn end_condition_curves(n: usize) -> Result<Vec<Polyline>, CurveError> {
         .collect()
 }
 
-/// Oblique projection of a surface point for a wireframe picture.
-fn project(p: &Vector3<f64>) -> [f64; 2] {
-    [p.x + 0.45 * p.y, 0.35 * p.y + p.z]
-}
-
 /// The wireframe of `s` sampled at half-integer steps, as one polyline that
 /// snakes along the rows, then back along the columns: every drawn segment
 /// is a grid edge, so one series draws the whole net.
-fn wireframe(s: &SsplineSurface<f64, 3>, side: usize, name: &str) -> Result<Polyline, CurveError> {
+fn wireframe(s: &SsplineSurface<f64, 3>, side: usize, name: &str) -> Result<Wireframe, CurveError> {
     let m = 2 * (side - 1);
     let at = |i: usize, j: usize| {
         s.eval(&(i as f64 / 2.0), &(j as f64 / 2.0))
-            .map(|p| project(&p))
+            .map(|p| [p.x, p.y, p.z])
     };
     let mut points = Vec::with_capacity(2 * (m + 1) * (m + 1));
     for i in 0..=m {
@@ -484,7 +488,7 @@ fn wireframe(s: &SsplineSurface<f64, 3>, side: usize, name: &str) -> Result<Poly
             points.push(at(i, m - jj)?);
         }
     }
-    Ok(Polyline {
+    Ok(Wireframe {
         name: name.into(),
         points,
     })

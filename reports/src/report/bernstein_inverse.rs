@@ -4,6 +4,7 @@
 //! bicubic surface of §3 before and after the §2.3 continuity correction,
 //! and solver timings.
 
+use super::projection::{X_LABEL, Y_LABEL, project};
 use super::{Figure, Profile, ReportError, Section, TIME_BAND};
 use crate::chart::{Chart, Series, line_chart};
 use crate::error::CliError;
@@ -23,14 +24,6 @@ const U: f64 = f64::EPSILON / 2.0;
 const LINES_PER_PATCH: usize = 2;
 /// Points per patch along each iso-parameter line.
 const POINTS_PER_PATCH: usize = 8;
-
-/// The oblique view of the wireframes: azimuth 35°, elevation 30°.
-fn project(p: &Point3<f64>) -> (f64, f64) {
-    let (a, e) = (35f64.to_radians(), 30f64.to_radians());
-    let x = p.x * a.cos() - p.y * a.sin();
-    let depth = p.x * a.sin() + p.y * a.cos();
-    (x, depth * e.sin() + p.z * e.cos())
-}
 
 /// A wireframe picture of a patch grid (control nets row-major over
 /// `(p, q)`, `nv` patches in `v`): the iso-parameter lines `u = const` and
@@ -65,7 +58,7 @@ pub fn surface_chart(
         let r = patches[p * nv + q]
             .eval(&(s - p as f64), &(t - q as f64))
             .map_err(CliError::numerical)?;
-        Ok(project(&r))
+        Ok(project([r.x, r.y, r.z]))
     };
     let lines = |count: usize, len: usize, swap: bool| -> Result<Vec<(f64, f64)>, CliError> {
         let mut pts = Vec::new();
@@ -83,8 +76,8 @@ pub fn surface_chart(
     Ok(Chart {
         id: id.into(),
         title: title.into(),
-        x_label: "oblique projection (azimuth 35°)".into(),
-        y_label: "height (elevation 30°)".into(),
+        x_label: X_LABEL.into(),
+        y_label: Y_LABEL.into(),
         x_log: false,
         y_log: false,
         series: vec![

@@ -1,6 +1,7 @@
 //! Report section: quaternion-integral curves, G2 interpolation by Newton
 //! (seed 004).
 
+use super::projection::{X_LABEL, Y_LABEL, project};
 use super::{Figure, Profile, ReportError, Section};
 use crate::chart::{Chart, Series};
 use crate::html::{escape, num, paragraph, table};
@@ -162,25 +163,20 @@ fn curvature_chart(c: &CurvaturePlot) -> Chart {
     )
 }
 
-/// Isometric projection `(x, y, z) ↦ ((x − y) cos 30°, z + (x + y) sin 30°)`.
+/// The QI space curve and its data in the report's 3-D view.
 fn curve_chart(c: &Curve3d) -> Chart {
-    let proj = |p: &[f64; 3]| {
-        (
-            (p[0] - p[1]) * 30f64.to_radians().cos(),
-            p[2] + (p[0] + p[1]) * 0.5,
-        )
-    };
+    let proj = |p: &[f64; 3]| project(*p);
     chart(
         "qi_curve_3d",
-        &format!("{}: QI interpolant (isometric view)", c.case),
-        "(x − y)·cos 30°",
-        "z + (x + y)/2",
+        &format!("{}: QI interpolant (oblique view)", c.case),
+        X_LABEL,
+        Y_LABEL,
         false,
         vec![
             Series::line("QI curve", c.samples.iter().map(proj).collect()),
             Series::points("data points", c.points.iter().map(proj).collect()),
         ],
-        "Isometric projection of the interpolating curve and its data points.",
+        "Oblique view of the interpolating curve and its data points.",
     )
 }
 

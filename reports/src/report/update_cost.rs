@@ -4,18 +4,32 @@
 //! and pictures of the end conditions and of a locally edited surface.
 
 use super::figure::{Better, Kind, slug};
+use super::projection::{X_LABEL, Y_LABEL, project};
 use super::{Figure, Profile, ReportError, Section, TIME_BAND};
 use crate::chart::{Chart, Series, line_chart, xy};
 use crate::error::CliError;
 use crate::html::{num, paragraph, paragraph_with_code, table};
 use serde_json::json;
 use splinelab_verify::update_cost::{
-    BuildAccuracy, BuildRow, EditRow, Polyline, UpdateCostData, UpdateCostParams, run_update_cost,
+    BuildAccuracy, BuildRow, EditRow, Polyline, UpdateCostData, UpdateCostParams, Wireframe,
+    run_update_cost,
 };
 
 fn lines(p: &[Polyline]) -> Vec<Series> {
     p.iter()
         .map(|l| Series::line(l.name.clone(), xy(&l.points)))
+        .collect()
+}
+
+/// Wireframes in the report's 3-D view.
+fn projected(w: &[Wireframe]) -> Vec<Series> {
+    w.iter()
+        .map(|l| {
+            Series::line(
+                l.name.clone(),
+                l.points.iter().map(|p| project(*p)).collect(),
+            )
+        })
         .collect()
 }
 
@@ -98,10 +112,10 @@ fn picture_charts(d: &UpdateCostData) -> Vec<Chart> {
                 "{0}×{0} S-spline surface, one data point moved: {1} control points change",
                 d.surface.side, d.surface.changed_control_points
             ),
-            "x + 0.45 y",
-            "0.35 y + z",
+            X_LABEL,
+            Y_LABEL,
             false,
-            lines(&d.surface.wireframes),
+            projected(&d.surface.wireframes),
             "Oblique wireframe before (drawn on top) and after the edit: the changed surface shows only within the (2n + 1)² support around the moved point.",
         ),
     ]
