@@ -103,6 +103,7 @@ pub mod quadrature;
 pub mod roots;
 pub mod scalar;
 pub mod sspline;
+pub mod surface_deformation;
 
 pub use nalgebra;
 pub use ndarray;

@@ -24,7 +24,6 @@
 //! | [`Patch`], [`SsplineSurface`], [`NurbsSurface`] | surface | [`Patch`] |
 
 use crate::bernstein::bezier::{Bezier, BezierError};
-use crate::bernstein::patch::{Patch, PatchError};
 use crate::bspline::de_boor::{BSpline, BSplineError};
 use crate::bspline::nurbs::{NurbsCurve, NurbsSurface};
 use crate::curves::CurveError;
@@ -36,6 +35,7 @@ use crate::qi::interpolate::QiInterpolation;
 use crate::scalar::Real;
 use crate::sspline::curve::{CurveError as SsplineCurveError, SsplineCurve};
 use crate::sspline::surface::SsplineSurface;
+use crate::surface_deformation::patch::{Patch, PatchError};
 use nalgebra::SVector;
 use std::convert::Infallible;
 

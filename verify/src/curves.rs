@@ -15,7 +15,6 @@ use nalgebra::{SVector, Vector2, Vector3};
 use rug::Float;
 use serde::{Deserialize, Serialize};
 use splinelab::bernstein::bezier::Bezier;
-use splinelab::bernstein::patch::Patch;
 use splinelab::bspline::de_boor::BSpline;
 use splinelab::bspline::knots::KnotVector;
 use splinelab::bspline::nurbs::{NurbsCurve, NurbsSurface};
@@ -25,6 +24,7 @@ use splinelab::curves::greedy_flatten::flatten_greedy;
 use splinelab::curves::hermite::Hermite;
 use splinelab::curves::rational_bezier::RationalBezier;
 use splinelab::scalar::prelude::*;
+use splinelab::surface_deformation::patch::Patch;
 
 /// Why a curves measurement failed (a core error, reported as text).
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]

@@ -8,12 +8,6 @@
 use nalgebra::{Vector2, Vector3};
 use rug::Rational;
 use splinelab::bernstein::bezier::{BernsteinPoly, Bezier, BezierError};
-use splinelab::bernstein::bv_solve::{BvBidiagonal, BvError, Factorised, Method1d, TensorSolver};
-use splinelab::bernstein::inverse_mapping::{
-    InverseMappingError, SampleGrid, control_points as patch_from_samples, deform_grid,
-};
-use splinelab::bernstein::patch::{Patch, PatchError, PatchGrid, Point3};
-use splinelab::bernstein::vandermonde::{NodeFamily, VandermondeError};
 use splinelab::bspline::de_boor::{BSpline, BSplineData, BSplineError};
 use splinelab::bspline::knots::{KnotError, KnotVector};
 use splinelab::bspline::nurbs::{NurbsCurve, NurbsSurface};
@@ -35,6 +29,14 @@ use splinelab::sspline::{
     Criterion, MAX_HALF_WIDTH, SplineFamily, SsplineError, TruncatedBasis, TruncationAnalysis,
     WidthChooser, truncation_width,
 };
+use splinelab::surface_deformation::bv_solve::{
+    BvBidiagonal, BvError, Factorised, Method1d, TensorSolver,
+};
+use splinelab::surface_deformation::inverse_mapping::{
+    InverseMappingError, SampleGrid, control_points as patch_from_samples, deform_grid,
+};
+use splinelab::surface_deformation::patch::{Patch, PatchError, PatchGrid, Point3};
+use splinelab::surface_deformation::vandermonde::{NodeFamily, VandermondeError};
 use std::fmt::Display;
 use std::panic::{AssertUnwindSafe, catch_unwind};
 

@@ -4,12 +4,7 @@
 pub mod basis;
 pub mod bernstein_sum;
 pub mod bezier;
-pub mod bv_solve;
 pub mod compensated;
 pub mod condition;
-pub mod continuity;
-pub mod inverse_mapping;
-pub mod patch;
 pub mod power_form;
-pub mod vandermonde;
 pub mod volk_schumaker;

@@ -4,7 +4,7 @@
 //! de Casteljau subdivision.
 //!
 //! Polynomial Bézier curves themselves ([`Bezier`](crate::bernstein::bezier::Bezier)),
-//! tensor Bézier patches ([`Patch`](crate::bernstein::patch::Patch)) and
+//! tensor Bézier patches ([`Patch`](crate::surface_deformation::patch::Patch)) and
 //! B-splines / NURBS ([`bspline`](crate::bspline)) live in their own modules
 //! and are reused here, never re-implemented.
 //!

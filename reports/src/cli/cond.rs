@@ -8,9 +8,9 @@ use crate::output::{emit, print_json};
 use crate::with_real;
 use clap::Args;
 use serde_json::json;
-use splinelab::bernstein::vandermonde::NodeFamily;
 use splinelab::conditioning::ConditionError;
 use splinelab::scalar::Real;
+use splinelab::surface_deformation::vandermonde::NodeFamily;
 use splinelab_verify::conditioning::{Basis, CondCase, StudyError, condition_numbers};
 
 /// Largest degree accepted: a 501 × 501 matrix, already minutes in MPFR.
@@ -53,7 +53,7 @@ pub enum BasisArg {
 
 fn parse_nodes(s: &str) -> Result<NodeFamily, String> {
     s.parse()
-        .map_err(|e: splinelab::bernstein::vandermonde::VandermondeError| e.to_string())
+        .map_err(|e: splinelab::surface_deformation::vandermonde::VandermondeError| e.to_string())
 }
 
 /// The cost of `cond`: an SVD and an inverse of the (n+1)×(n+1) matrix

@@ -16,9 +16,9 @@ use super::format::UserFormat;
 use super::summary::{CheckSummary, Context, summarize};
 use super::{CheckError, require_finite, require_len};
 use crate::conditioning::Basis;
-use splinelab::bernstein::vandermonde::{bernstein_vandermonde, monomial_vandermonde};
 use splinelab::conditioning::{cond_inf, cond2};
 use splinelab::scalar::Real;
+use splinelab::surface_deformation::vandermonde::{bernstein_vandermonde, monomial_vandermonde};
 
 /// Largest number of nodes in one set (a 501 × 501 matrix, as `splinelab cond`).
 pub const MAX_NODES: usize = 501;

@@ -8,7 +8,7 @@
 //! control net, so a per-patch deformation may break the joins;
 //! [`continuity`](super::continuity) measures and restores them.
 
-use super::basis::bernstein_basis;
+use crate::bernstein::basis::bernstein_basis;
 use crate::scalar::Real;
 use nalgebra::Vector3;
 use rug::Rational;
@@ -193,7 +193,7 @@ impl<T: Real> Patch<T> {
     ///
     /// ```
     /// use nalgebra::Vector3;
-    /// use splinelab::bernstein::patch::Patch;
+    /// use splinelab::surface_deformation::patch::Patch;
     /// let z = Vector3::zeros();
     /// let p = Patch::bilinear(3, &z, &Vector3::new(2.0, 0.0, 0.0), &Vector3::new(0.0, 4.0, 0.0)).unwrap();
     /// assert_eq!(p.eval(&0.25, &0.5).unwrap(), Vector3::new(0.5, 2.0, 0.0));

@@ -171,9 +171,9 @@ fn to_points<T: Real>(m: &DMatrix<T>) -> Vec<Point3<T>> {
 ///
 /// ```
 /// use nalgebra::Vector3;
-/// use splinelab::bernstein::bv_solve::TensorSolver;
-/// use splinelab::bernstein::inverse_mapping::{SampleGrid, control_points};
-/// use splinelab::bernstein::vandermonde::NodeFamily;
+/// use splinelab::surface_deformation::bv_solve::TensorSolver;
+/// use splinelab::surface_deformation::inverse_mapping::{SampleGrid, control_points};
+/// use splinelab::surface_deformation::vandermonde::NodeFamily;
 /// let grid = SampleGrid::<f64>::from_family(NodeFamily::Equispaced, 1).unwrap();
 /// let s = [Vector3::zeros(), Vector3::y(), Vector3::x(), Vector3::new(1.0, 1.0, 1.0)];
 /// let p = control_points(&grid, &s, TensorSolver::KroneckerMarcoMartinez).unwrap();
