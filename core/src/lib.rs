@@ -93,9 +93,9 @@
 
 pub mod bernstein;
 pub mod bspline;
-pub mod conditioning;
 pub mod curves;
 pub mod equations;
+pub mod matrix_condition;
 pub mod param_curve;
 pub mod prelude;
 pub mod qi;

@@ -10,7 +10,7 @@
 use crate::metrics::{F64_DIGITS, correct_digits, relative_error};
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
-use splinelab::conditioning::{ConditionError, cond_inf, cond2};
+use splinelab::matrix_condition::{ConditionError, cond_inf, cond2};
 use splinelab::scalar::{Mp, Real};
 use splinelab::surface_deformation::vandermonde::{
     NodeFamily, VandermondeError, bernstein_vandermonde, monomial_vandermonde,

@@ -6,7 +6,7 @@ use proptest::prelude::*;
 use rug::Rational;
 use rug::ops::Pow;
 use splinelab::bernstein::basis::binomial;
-use splinelab::conditioning::cond_inf;
+use splinelab::matrix_condition::cond_inf;
 use splinelab::scalar::prelude::*;
 use splinelab::surface_deformation::bv_solve::{
     BvError, Method1d, TensorSolver, solve_1d, solve_tensor,

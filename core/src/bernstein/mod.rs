@@ -10,6 +10,6 @@ pub mod basis;
 pub mod bernstein_sum;
 pub mod bezier;
 pub mod compensated;
-pub mod condition;
+pub mod poly_condition;
 pub mod power_form;
 pub mod volk_schumaker;

@@ -8,7 +8,7 @@ use crate::output::{emit, print_json};
 use crate::with_real;
 use clap::Args;
 use serde_json::json;
-use splinelab::conditioning::ConditionError;
+use splinelab::matrix_condition::ConditionError;
 use splinelab::scalar::Real;
 use splinelab::surface_deformation::vandermonde::NodeFamily;
 use splinelab_verify::conditioning::{Basis, CondCase, StudyError, condition_numbers};
@@ -70,7 +70,7 @@ pub fn estimate(degree: usize, bits: u32) -> Estimate {
 
 /// How far the printed condition numbers can be trusted: the SVD's `σ_min`
 /// is only known to `≈ N·u·cond₂` relative (backward stability, see
-/// [`splinelab::conditioning::cond2`]), so `cond₂` has about
+/// [`splinelab::matrix_condition::cond2`]), so `cond₂` has about
 /// `−log10(N·u·cond₂)` correct digits at unit roundoff `u`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Trust {
