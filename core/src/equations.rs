@@ -48,7 +48,7 @@
 //! | 3 | inverse mapping `P̃ = B̃⁻¹ R̃` | [`control_points`](crate::surface_deformation::inverse_mapping::control_points) |
 //! | 4 | deformation `P̃' = P̃ + B̃⁻¹ F` | [`deform`](crate::surface_deformation::inverse_mapping::deform), [`deform_grid`](crate::surface_deformation::inverse_mapping::deform_grid) |
 //! | 5–6 (§2.3) | continuity correction at the joins | [`correct_continuity`](crate::surface_deformation::continuity::correct_continuity), [`join_defects`](crate::surface_deformation::continuity::join_defects) |
-//! | (conditioning) | `cond(B̃) = cond(B_u) cond(B_v)` | [`conditioning`](crate::matrix_condition) |
+//! | (conditioning) | `cond(B̃) = cond(B_u) cond(B_v)` | [`matrix_condition`](crate::matrix_condition) |
 //!
 //! ## 002 — Curves lecture
 //!
