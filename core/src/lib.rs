@@ -104,6 +104,7 @@ pub mod roots;
 pub mod scalar;
 pub mod sspline;
 pub mod surface_deformation;
+pub mod validation;
 
 pub use nalgebra;
 pub use ndarray;

@@ -6,6 +6,7 @@
 use super::de_boor::{BSpline, BSplineError, check_structure, de_boor_window, find_span};
 use super::knots::KnotVector;
 use crate::scalar::Real;
+use crate::validation::{finite, finite_points};
 use nalgebra::{SVector, Vector2, Vector3};
 use rug::Rational;
 use std::ops::{Add, Mul};
@@ -264,9 +265,7 @@ impl<T: Real, const D: usize> NurbsSurface<T, D> {
                 return Err(BSplineError::NetSize { nu, nv, got });
             }
         }
-        if let Some(index) = points.iter().position(|p| p.iter().any(|x| !x.is_finite())) {
-            return Err(BSplineError::NonFinitePoint { index });
-        }
+        finite_points("control point", &points)?;
         check_weights(&weights)?;
         let homogeneous = points
             .iter()
@@ -324,9 +323,7 @@ impl<T: Real> NurbsSurface<T, 3> {
     /// non-finite height.
     pub fn cylinder(r: &T, height: &T) -> Result<Self, BSplineError> {
         check_radius(r)?;
-        if !height.is_finite() {
-            return Err(BSplineError::NonFinitePoint { index: 0 });
-        }
+        finite("height", height)?;
         // The circle's net, each point once at z = 0 and once at z = height.
         let (s, knots_u) = circle_data::<T>();
         let mut points = Vec::with_capacity(18);

@@ -122,6 +122,7 @@ impl<T: Real, const D: usize> Hermite<T, D> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::validation::InputError;
     use nalgebra::{Vector2, Vector3};
 
     #[test]
@@ -140,7 +141,10 @@ mod tests {
         let z = Vector2::<f64>::zeros();
         assert_eq!(
             Hermite::new(z, z, Vector2::new(f64::NAN, 0.0), z),
-            Err(CurveError::NonFinitePoint { index: 2 })
+            Err(CurveError::Input(InputError::NonFiniteAt {
+                what: "point",
+                index: 2
+            }))
         );
         let quad = Bezier::new(vec![z, z, z]).unwrap();
         assert_eq!(

@@ -6,6 +6,7 @@
 use super::{CurveError, check_points};
 use crate::bernstein::bezier::{check_parameter, de_casteljau};
 use crate::scalar::Real;
+use crate::validation::{at_least, finite, finite_vector};
 use nalgebra::{SVector, Vector2};
 
 /// A rational Bézier curve of degree `n`, stored in homogeneous form
@@ -72,13 +73,7 @@ impl<T: Real, const D: usize> RationalBezier<T, D> {
     }
 
     fn check_lengths(points: usize, weights: usize) -> Result<(), CurveError> {
-        if points == 0 {
-            return Err(CurveError::TooFewPoints {
-                what: "a rational Bézier curve",
-                needed: 1,
-                got: 0,
-            });
-        }
+        at_least("a rational Bézier curve", 1, points)?;
         if points != weights {
             return Err(CurveError::LengthMismatch { points, weights });
         }
@@ -138,8 +133,7 @@ impl<T: Real, const D: usize> RationalBezier<T, D> {
             return Err(CurveError::VanishingDenominator { t: t.to_f64() });
         }
         let p = h / w;
-        check_points(std::slice::from_ref(&p))
-            .map_err(|_| CurveError::NonFinite { name: "P(t)" })?;
+        finite_vector("P(t)", &p)?;
         Ok(p)
     }
 
@@ -200,9 +194,7 @@ impl<T: Real> RationalBezier<T, 2> {
             ("start", start),
             ("sweep", sweep),
         ] {
-            if !x.is_finite() {
-                return Err(CurveError::NonFinite { name });
-            }
+            finite(name, x)?;
         }
         if *r <= T::zero() {
             return Err(CurveError::OutOfRange {

@@ -20,6 +20,7 @@
 
 use super::{QiError, finite_positive};
 use crate::scalar::Real;
+use crate::validation::{at_least, finite_points};
 use nalgebra::Vector3;
 
 /// How the spline's knots are placed.
@@ -50,12 +51,8 @@ impl<T: Real> ClampedCubicSpline<T> {
         d_start: &Vector3<T>,
         d_end: &Vector3<T>,
     ) -> Result<Self, QiError> {
-        if points.len() < 2 {
-            return Err(QiError::TooFewPoints(points.len()));
-        }
-        if let Some(index) = points.iter().position(|p| !p.iter().all(|c| c.is_finite())) {
-            return Err(QiError::NonFinitePoint { index });
-        }
+        at_least("a clamped cubic spline", 2, points.len())?;
+        finite_points("point", points)?;
         for (which, d) in [("start", d_start), ("end", d_end)] {
             if !d.iter().all(|c| c.is_finite()) {
                 return Err(QiError::InvalidTangent { which });

@@ -34,6 +34,7 @@ use super::tangent::{nearest_angles, principal_angles, unit_direction};
 use super::{QiError, finite_positive};
 use crate::quadrature::{GaussLegendre, choose_order};
 use crate::scalar::Real;
+use crate::validation::{at_least, finite_points};
 use nalgebra::Vector3;
 
 /// Options of [`interpolate`]; [`QiOptions::default`] gives the documented
@@ -118,7 +119,7 @@ impl<T: Real> QiInterpolation<T> {
 /// Cost: per Newton step one dense `7n × 7n` LU (`≈ 230 n³` flops) and
 /// `n m` tangent evaluations; typically 4–7 steps in f64 on smooth data.
 ///
-/// Errors: [`QiError::TooFewPoints`], [`QiError::NonFinitePoint`],
+/// Errors: [`QiError::Input`] (too few or non-finite points),
 /// [`QiError::CoincidentPoints`], [`QiError::InvalidTangent`],
 /// [`QiError::InvalidOption`], [`QiError::Quadrature`], and
 /// [`QiError::NotConverged`] carrying the residual history.
@@ -252,12 +253,8 @@ fn validate_options<T: Real>(opts: &QiOptions<T>) -> Result<(), QiError> {
 
 /// Checks the points; returns the mean chord length `h`.
 fn validate_points<T: Real>(points: &[Vector3<T>]) -> Result<T, QiError> {
-    if points.len() < 3 {
-        return Err(QiError::TooFewPoints(points.len()));
-    }
-    if let Some(index) = points.iter().position(|p| !p.iter().all(|c| c.is_finite())) {
-        return Err(QiError::NonFinitePoint { index });
-    }
+    at_least("QI interpolation", 3, points.len())?;
+    finite_points("point", points)?;
     let mut total = T::zero();
     for (index, w) in points.windows(2).enumerate() {
         let d = (&w[1] - &w[0]).norm();
@@ -326,6 +323,7 @@ mod tests {
     use super::*;
     #[allow(unused_imports)]
     use crate::scalar::prelude::*;
+    use crate::validation::InputError;
 
     fn helix(n: usize) -> Vec<Vector3<f64>> {
         (0..n)
@@ -341,19 +339,29 @@ mod tests {
         let o = QiOptions::<f64>::default();
         assert_eq!(
             interpolate(&helix(2), &o).unwrap_err(),
-            QiError::TooFewPoints(2)
+            QiError::Input(InputError::TooFewPoints {
+                what: "QI interpolation",
+                needed: 3,
+                got: 2
+            })
         );
         let mut p = helix(5);
         p[3].y = f64::NAN;
         assert_eq!(
             interpolate(&p, &o).unwrap_err(),
-            QiError::NonFinitePoint { index: 3 }
+            QiError::Input(InputError::NonFiniteAt {
+                what: "point",
+                index: 3
+            })
         );
         let mut p = helix(5);
         p[2].z = f64::INFINITY;
         assert_eq!(
             interpolate(&p, &o).unwrap_err(),
-            QiError::NonFinitePoint { index: 2 }
+            QiError::Input(InputError::NonFiniteAt {
+                what: "point",
+                index: 2
+            })
         );
         let mut p = helix(5);
         p[2] = p[1];

@@ -10,6 +10,7 @@
 
 use crate::bernstein::basis::bernstein_basis;
 use crate::scalar::Real;
+use crate::validation::{InputError, finite_points};
 use nalgebra::Vector3;
 use rug::Rational;
 
@@ -32,12 +33,10 @@ pub enum PatchError {
         /// Points given.
         got: usize,
     },
-    /// A control point has a NaN or infinite coordinate.
-    #[error("control point {index} is not finite")]
-    NonFinitePoint {
-        /// Index `i(n+1) + j` of `P_ij`.
-        index: usize,
-    },
+    /// A control point (index `i(n+1) + j` of `P_ij`) has a NaN or infinite
+    /// coordinate.
+    #[error(transparent)]
+    Input(#[from] InputError),
     /// A parameter is NaN or outside `[0, 1]`.
     #[error("parameter {name} = {value} is not in [0, 1]")]
     Parameter {
@@ -141,12 +140,7 @@ impl<T: Real> Patch<T> {
                 got: control.len(),
             });
         }
-        if let Some(index) = control
-            .iter()
-            .position(|p| p.iter().any(|x| !x.is_finite()))
-        {
-            return Err(PatchError::NonFinitePoint { index });
-        }
+        finite_points("control point", &control)?;
         Ok(Patch { degree, control })
     }
 
@@ -408,7 +402,10 @@ mod tests {
         c[2].y = f64::NAN;
         assert_eq!(
             Patch::new(1, c),
-            Err(PatchError::NonFinitePoint { index: 2 })
+            Err(PatchError::Input(InputError::NonFiniteAt {
+                what: "control point",
+                index: 2
+            }))
         );
         let p = saddle();
         assert!(matches!(
