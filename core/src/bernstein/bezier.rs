@@ -15,6 +15,7 @@
 //! [`Evaluation`].
 
 use super::basis::binomial;
+use crate::param_curve::{ParamCurve, ParamCurveDeriv, unit};
 use crate::scalar::Real;
 use crate::scalar::running_error::{RoundingModel, Running};
 use nalgebra::SVector;
@@ -352,6 +353,30 @@ impl<T: Real, const D: usize> Bezier<T, D> {
         (k < D)
             .then(|| BernsteinPoly::new(self.points.iter().map(|p| p[k].clone()).collect()))?
             .ok()
+    }
+}
+
+impl<T: Real, const D: usize> ParamCurve<T, D> for Bezier<T, D> {
+    type Error = BezierError;
+    fn domain(&self) -> (T, T) {
+        unit()
+    }
+    fn eval(&self, t: &T) -> Result<SVector<T, D>, BezierError> {
+        Bezier::eval(self, t)
+    }
+}
+
+impl<T: Real, const D: usize> ParamCurveDeriv<T, D> for Bezier<T, D> {
+    /// The hodograph `n Σ (P_{i+1} − P_i) B_i^{n−1}(t)` by de Casteljau;
+    /// zero for a point (degree 0).
+    fn deriv(&self, t: &T) -> Result<SVector<T, D>, BezierError> {
+        let p = self.points();
+        let n = p.len() - 1;
+        if n == 0 {
+            return Ok(SVector::zeros());
+        }
+        let diff: Vec<_> = p.windows(2).map(|w| &w[1] - &w[0]).collect();
+        Ok(de_casteljau(&diff, t)? * T::from_int(n as i64))
     }
 }
 

@@ -2,6 +2,7 @@
 //! the Cox–de Boor basis, and derivatives (seed 003 eq 1–2).
 
 use super::knots::{KnotError, KnotVector};
+use crate::param_curve::{ParamCurve, ParamCurveDeriv};
 use crate::scalar::Real;
 use crate::validation::{InputError, at_least, finite_points};
 use nalgebra::SVector;
@@ -408,6 +409,22 @@ pub(crate) fn basis_functions<T: Real>(order: usize, knots: &[T], s: usize, t: &
         n[j] = saved;
     }
     n
+}
+
+impl<T: Real, const D: usize> ParamCurve<T, D> for BSpline<T, D> {
+    type Error = BSplineError;
+    fn domain(&self) -> (T, T) {
+        BSpline::domain(self)
+    }
+    fn eval(&self, t: &T) -> Result<SVector<T, D>, BSplineError> {
+        BSpline::eval(self, t)
+    }
+}
+
+impl<T: Real, const D: usize> ParamCurveDeriv<T, D> for BSpline<T, D> {
+    fn deriv(&self, t: &T) -> Result<SVector<T, D>, BSplineError> {
+        self.eval_derivative(t, 1)
+    }
 }
 
 #[cfg(test)]

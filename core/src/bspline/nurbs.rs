@@ -5,6 +5,7 @@
 
 use super::de_boor::{BSpline, BSplineError, check_structure, de_boor_window, find_span};
 use super::knots::KnotVector;
+use crate::param_curve::{ParamCurve, ParamSurface};
 use crate::scalar::Real;
 use crate::validation::{finite, finite_points};
 use nalgebra::{SVector, Vector2, Vector3};
@@ -336,6 +337,26 @@ impl<T: Real> NurbsSurface<T, 3> {
         }
         let knots_v = KnotVector::new(vec![T::zero(), T::zero(), T::one(), T::one()])?;
         Self::new((3, 2), (9, 2), points, weights, (knots_u, knots_v))
+    }
+}
+
+impl<T: Real, const D: usize> ParamCurve<T, D> for NurbsCurve<T, D> {
+    type Error = BSplineError;
+    fn domain(&self) -> (T, T) {
+        NurbsCurve::domain(self)
+    }
+    fn eval(&self, t: &T) -> Result<SVector<T, D>, BSplineError> {
+        NurbsCurve::eval(self, t)
+    }
+}
+
+impl<T: Real, const D: usize> ParamSurface<T, D> for NurbsSurface<T, D> {
+    type Error = BSplineError;
+    fn domain(&self) -> ((T, T), (T, T)) {
+        self.domains()
+    }
+    fn eval(&self, u: &T, v: &T) -> Result<SVector<T, D>, BSplineError> {
+        NurbsSurface::eval(self, u, v)
     }
 }
 

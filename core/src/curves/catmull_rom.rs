@@ -3,6 +3,7 @@
 //! uniform, centripetal and chordal knot spacing.
 
 use super::{CurveError, check_points};
+use crate::param_curve::{ParamCurve, ParamCurveDeriv};
 use crate::scalar::Real;
 use crate::validation::{at_least, finite};
 use nalgebra::SVector;
@@ -254,6 +255,23 @@ impl<T: Real, const D: usize> CatmullRom<T, D> {
         let (a, b) = (&self.knots[s], &self.knots[s + 1]);
         let u = ((t.clone() - a.clone()) / (b.clone() - a.clone())).clamp(T::zero(), T::one());
         self.eval_segment(s, &u)
+    }
+}
+
+impl<T: Real, const D: usize> ParamCurve<T, D> for CatmullRom<T, D> {
+    type Error = CurveError;
+    fn domain(&self) -> (T, T) {
+        let k = self.knots();
+        (k[0].clone(), k[k.len() - 1].clone())
+    }
+    fn eval(&self, t: &T) -> Result<SVector<T, D>, CurveError> {
+        CatmullRom::eval(self, t).map(|(p, _)| p)
+    }
+}
+
+impl<T: Real, const D: usize> ParamCurveDeriv<T, D> for CatmullRom<T, D> {
+    fn deriv(&self, t: &T) -> Result<SVector<T, D>, CurveError> {
+        CatmullRom::eval(self, t).map(|(_, d)| d)
     }
 }
 

@@ -3,8 +3,10 @@
 
 use super::{CurveError, check_points};
 use crate::bernstein::bezier::Bezier;
+use crate::param_curve::{ParamCurve, ParamCurveDeriv, unit};
 use crate::scalar::Real;
 use nalgebra::SVector;
+use std::convert::Infallible;
 
 /// The cubic `x(t) = a_0 + a_1 t + a_2 t² + a_3 t³`, `t ∈ [0, 1]`, with
 /// `x(0) = p0`, `x(1) = p1`, `x'(0) = d0`, `x'(1) = d1` (Hermite interpolation).
@@ -116,6 +118,22 @@ impl<T: Real, const D: usize> Hermite<T, D> {
             (&p[1] - &p[0]) * three.clone(),
             (&p[3] - &p[2]) * three,
         )
+    }
+}
+
+impl<T: Real, const D: usize> ParamCurve<T, D> for Hermite<T, D> {
+    type Error = Infallible;
+    fn domain(&self) -> (T, T) {
+        unit()
+    }
+    fn eval(&self, t: &T) -> Result<SVector<T, D>, Infallible> {
+        Ok(Hermite::eval(self, t))
+    }
+}
+
+impl<T: Real, const D: usize> ParamCurveDeriv<T, D> for Hermite<T, D> {
+    fn deriv(&self, t: &T) -> Result<SVector<T, D>, Infallible> {
+        Ok(Hermite::derivative(self, t))
     }
 }
 

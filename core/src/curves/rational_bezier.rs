@@ -5,6 +5,7 @@
 
 use super::{CurveError, check_points};
 use crate::bernstein::bezier::{check_parameter, de_casteljau};
+use crate::param_curve::{ParamCurve, unit};
 use crate::scalar::Real;
 use crate::validation::{at_least, finite, finite_vector};
 use nalgebra::{SVector, Vector2};
@@ -217,6 +218,16 @@ impl<T: Real> RationalBezier<T, 2> {
         let h1 = centre * w1.clone() + on_circle(start.clone() + h);
         let h2 = centre + on_circle(start.clone() + sweep.clone());
         Self::from_homogeneous(vec![h0, h1, h2], vec![T::one(), w1, T::one()])
+    }
+}
+
+impl<T: Real, const D: usize> ParamCurve<T, D> for RationalBezier<T, D> {
+    type Error = CurveError;
+    fn domain(&self) -> (T, T) {
+        unit()
+    }
+    fn eval(&self, t: &T) -> Result<SVector<T, D>, CurveError> {
+        RationalBezier::eval(self, t)
     }
 }
 

@@ -32,6 +32,7 @@ use super::newton::{Iteration, NewtonOptions, newton};
 use super::segment::QiSegment;
 use super::tangent::{nearest_angles, principal_angles, unit_direction};
 use super::{QiError, finite_positive};
+use crate::param_curve::{OutOfDomain, ParamCurve, ParamCurveDeriv, check_domain};
 use crate::quadrature::{GaussLegendre, choose_order};
 use crate::scalar::Real;
 use crate::validation::{at_least, finite_points};
@@ -316,6 +317,36 @@ fn start_guess<T: Real>(
     let (ae, be) = angles[2 * n].clone();
     let (a_s, b_s) = angles[0].clone();
     Ok((segments, [a_s, b_s, ae, be]))
+}
+
+/// The QI curve on `[0, n]`: segment `i` on `[i, i + 1]`.
+impl<T: Real> ParamCurve<T, 3> for QiInterpolation<T> {
+    type Error = OutOfDomain;
+    fn domain(&self) -> (T, T) {
+        (T::zero(), T::from_int(self.segments.len() as i64))
+    }
+    fn eval(&self, t: &T) -> Result<Vector3<T>, OutOfDomain> {
+        let (i, tau) = self.segment_at(t)?;
+        Ok(self.point(i, &tau))
+    }
+}
+
+impl<T: Real> ParamCurveDeriv<T, 3> for QiInterpolation<T> {
+    /// `l_i T_i(τ)`: each segment has speed `l_i` in its local parameter.
+    fn deriv(&self, t: &T) -> Result<Vector3<T>, OutOfDomain> {
+        let (i, tau) = self.segment_at(t)?;
+        let s = &self.segments[i];
+        Ok(s.tangent_at(&tau) * s.length.clone())
+    }
+}
+
+impl<T: Real> QiInterpolation<T> {
+    fn segment_at(&self, t: &T) -> Result<(usize, T), OutOfDomain> {
+        let (lo, hi) = ParamCurve::domain(self);
+        check_domain(t, &lo, &hi)?;
+        let i = (t.clone().floor().to_f64() as usize).min(self.segments.len() - 1);
+        Ok((i, t.clone() - T::from_int(i as i64)))
+    }
 }
 
 #[cfg(test)]

@@ -17,6 +17,7 @@ use super::end_conditions::{EndCondition, EndRule};
 use super::{SplineFamily, TruncatedBasis};
 use crate::bspline::de_boor::BSpline;
 use crate::bspline::knots::KnotVector;
+use crate::param_curve::{ParamCurve, widen};
 use crate::scalar::Real;
 use crate::validation::{at_least, finite_point_at, finite_points, finite_vector};
 use nalgebra::SVector;
@@ -323,5 +324,15 @@ impl<T: Real, const D: usize> SsplineCurve<T, D> {
             });
         }
         Ok(finite_point_at("data point", k, p)?)
+    }
+}
+
+impl<T: Real, const D: usize> ParamCurve<T, D> for SsplineCurve<T, D> {
+    type Error = CurveError;
+    fn domain(&self) -> (T, T) {
+        widen(SsplineCurve::domain(self))
+    }
+    fn eval(&self, t: &T) -> Result<SVector<T, D>, CurveError> {
+        SsplineCurve::eval(self, t)
     }
 }

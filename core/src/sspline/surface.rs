@@ -16,6 +16,7 @@
 use super::SplineFamily;
 use super::curve::{Axis, CurveError, convolve_at};
 use super::end_conditions::EndRule;
+use crate::param_curve::{ParamSurface, widen};
 use crate::scalar::Real;
 use crate::validation::{finite_point_at, finite_points};
 use nalgebra::SVector;
@@ -222,5 +223,16 @@ impl<T: Real, const D: usize> SsplineSurface<T, D> {
             });
         }
         Ok(finite_point_at("data point", a * nv + b, p)?)
+    }
+}
+
+impl<T: Real, const D: usize> ParamSurface<T, D> for SsplineSurface<T, D> {
+    type Error = CurveError;
+    fn domain(&self) -> ((T, T), (T, T)) {
+        let (u, v) = SsplineSurface::domain(self);
+        (widen(u), widen(v))
+    }
+    fn eval(&self, u: &T, v: &T) -> Result<SVector<T, D>, CurveError> {
+        SsplineSurface::eval(self, u, v)
     }
 }

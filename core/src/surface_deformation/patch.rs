@@ -9,6 +9,7 @@
 //! [`continuity`](super::continuity) measures and restores them.
 
 use crate::bernstein::basis::bernstein_basis;
+use crate::param_curve::{ParamSurface, ParamSurfaceDeriv, unit};
 use crate::scalar::Real;
 use crate::validation::{InputError, finite_points};
 use nalgebra::Vector3;
@@ -323,6 +324,22 @@ impl<T: Real> PatchGrid<T> {
     /// Consumes the grid, returning its patches.
     pub fn into_patches(self) -> Vec<Patch<T>> {
         self.patches
+    }
+}
+
+impl<T: Real> ParamSurface<T, 3> for Patch<T> {
+    type Error = PatchError;
+    fn domain(&self) -> ((T, T), (T, T)) {
+        (unit(), unit())
+    }
+    fn eval(&self, u: &T, v: &T) -> Result<Vector3<T>, PatchError> {
+        Patch::eval(self, u, v)
+    }
+}
+
+impl<T: Real> ParamSurfaceDeriv<T, 3> for Patch<T> {
+    fn partials(&self, u: &T, v: &T) -> Result<(Vector3<T>, Vector3<T>), PatchError> {
+        self.derivatives(u, v)
     }
 }
 
