@@ -6,6 +6,7 @@
 //! matrices, their solvers, tensor patches, the inverse mapping) lives in
 //! [`crate::surface_deformation`].
 
+pub mod affine_step;
 pub mod basis;
 pub mod bernstein_sum;
 pub mod bezier;
