@@ -8,8 +8,8 @@
 
 use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
 use nalgebra::DMatrix;
-use splinelab::bernstein::bv_solve::{Method1d, TensorSolver, solve_1d, solve_tensor};
-use splinelab::bernstein::vandermonde::NodeFamily;
+use splinelab::surface_deformation::bv_solve::{Method1d, TensorSolver, solve_1d, solve_tensor};
+use splinelab::surface_deformation::vandermonde::NodeFamily;
 use std::hint::black_box;
 
 /// Deterministic right-hand side in [−1, 1] (a fixed LCG: no rand dependency).

@@ -42,13 +42,13 @@
 //!
 //! | eq | what | item |
 //! |---|---|---|
-//! | 1 | tensor Bézier patch `R(u, v)` | [`Patch`](crate::bernstein::patch::Patch) |
-//! | 2 | samples `R̃ = B̃ P̃`, the Bernstein–Vandermonde matrix | [`bernstein_vandermonde`](crate::bernstein::vandermonde::bernstein_vandermonde), [`tensor_bernstein_vandermonde`](crate::bernstein::vandermonde::tensor_bernstein_vandermonde), [`sample`](crate::bernstein::inverse_mapping::sample) |
-//! | 2–3 | `B̃ = B_u ⊗ B_v` and its solvers | [`solve_tensor`](crate::bernstein::bv_solve::solve_tensor), [`BvBidiagonal`](crate::bernstein::bv_solve::BvBidiagonal) |
-//! | 3 | inverse mapping `P̃ = B̃⁻¹ R̃` | [`control_points`](crate::bernstein::inverse_mapping::control_points) |
-//! | 4 | deformation `P̃' = P̃ + B̃⁻¹ F` | [`deform`](crate::bernstein::inverse_mapping::deform), [`deform_grid`](crate::bernstein::inverse_mapping::deform_grid) |
-//! | 5–6 (§2.3) | continuity correction at the joins | [`correct_continuity`](crate::bernstein::continuity::correct_continuity), [`join_defects`](crate::bernstein::continuity::join_defects) |
-//! | (conditioning) | `cond(B̃) = cond(B_u) cond(B_v)` | [`conditioning`](crate::conditioning) |
+//! | 1 | tensor Bézier patch `R(u, v)` | [`Patch`](crate::surface_deformation::patch::Patch) |
+//! | 2 | samples `R̃ = B̃ P̃`, the Bernstein–Vandermonde matrix | [`bernstein_vandermonde`](crate::surface_deformation::vandermonde::bernstein_vandermonde), [`tensor_bernstein_vandermonde`](crate::surface_deformation::vandermonde::tensor_bernstein_vandermonde), [`sample`](crate::surface_deformation::inverse_mapping::sample) |
+//! | 2–3 | `B̃ = B_u ⊗ B_v` and its solvers | [`solve_tensor`](crate::surface_deformation::bv_solve::solve_tensor), [`BvBidiagonal`](crate::surface_deformation::bv_solve::BvBidiagonal) |
+//! | 3 | inverse mapping `P̃ = B̃⁻¹ R̃` | [`control_points`](crate::surface_deformation::inverse_mapping::control_points) |
+//! | 4 | deformation `P̃' = P̃ + B̃⁻¹ F` | [`deform`](crate::surface_deformation::inverse_mapping::deform), [`deform_grid`](crate::surface_deformation::inverse_mapping::deform_grid) |
+//! | 5–6 (§2.3) | continuity correction at the joins | [`correct_continuity`](crate::surface_deformation::continuity::correct_continuity), [`join_defects`](crate::surface_deformation::continuity::join_defects) |
+//! | (conditioning) | `cond(B̃) = cond(B_u) cond(B_v)` | [`matrix_condition`](crate::matrix_condition) |
 //!
 //! ## 002 — Curves lecture
 //!
@@ -63,7 +63,7 @@
 //! | Catmull–Rom, uniform / centripetal / chordal | [`CatmullRom`](crate::curves::catmull_rom::CatmullRom) |
 //! | B-splines, de Boor | [`BSpline`](crate::bspline::de_boor::BSpline) |
 //! | NURBS, the exact circle and cylinder | [`NurbsCurve`](crate::bspline::nurbs::NurbsCurve), [`NurbsSurface`](crate::bspline::nurbs::NurbsSurface) |
-//! | bicubic Bézier surfaces | [`Patch`](crate::bernstein::patch::Patch) |
+//! | bicubic Bézier surfaces | [`Patch`](crate::surface_deformation::patch::Patch) |
 //!
 //! ## 003 — Knot insertion
 //!

@@ -93,9 +93,9 @@
 
 pub mod bernstein;
 pub mod bspline;
-pub mod conditioning;
 pub mod curves;
 pub mod equations;
+pub mod matrix_condition;
 pub mod param_curve;
 pub mod prelude;
 pub mod qi;
@@ -103,6 +103,8 @@ pub mod quadrature;
 pub mod roots;
 pub mod scalar;
 pub mod sspline;
+pub mod surface_deformation;
+pub mod validation;
 
 pub use nalgebra;
 pub use ndarray;

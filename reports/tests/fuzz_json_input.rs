@@ -11,9 +11,9 @@
 use nalgebra::Vector3;
 use proptest::prelude::*;
 use serde_json::{Value, json};
-use splinelab::bernstein::inverse_mapping::SampleGrid;
-use splinelab::bernstein::patch::{Patch, PatchGrid};
 use splinelab::scalar::prelude::*;
+use splinelab::surface_deformation::inverse_mapping::SampleGrid;
+use splinelab::surface_deformation::patch::{Patch, PatchGrid};
 use splinelab_reports::cli::prec::Prec;
 use splinelab_reports::cli::{bezier_eval, deform, flatten, qi};
 use splinelab_reports::error::CliError;

@@ -17,9 +17,11 @@ use nalgebra::DMatrix;
 use rayon::prelude::*;
 use rug::Float;
 use serde::{Deserialize, Serialize};
-use splinelab::bernstein::bv_solve::{BvError, Method1d, TensorSolver, solve_1d, solve_tensor};
-use splinelab::bernstein::vandermonde::{NodeFamily, VandermondeError};
 use splinelab::scalar::{Mp, Real};
+use splinelab::surface_deformation::bv_solve::{
+    BvError, Method1d, TensorSolver, solve_1d, solve_tensor,
+};
+use splinelab::surface_deformation::vandermonde::{NodeFamily, VandermondeError};
 
 /// Bits of the MPFR reference.
 pub const REF_BITS: u32 = 256;

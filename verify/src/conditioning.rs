@@ -10,11 +10,11 @@
 use crate::metrics::{F64_DIGITS, correct_digits, relative_error};
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
-use splinelab::bernstein::vandermonde::{
+use splinelab::matrix_condition::{ConditionError, cond_inf, cond2};
+use splinelab::scalar::{Mp, Real};
+use splinelab::surface_deformation::vandermonde::{
     NodeFamily, VandermondeError, bernstein_vandermonde, monomial_vandermonde,
 };
-use splinelab::conditioning::{ConditionError, cond_inf, cond2};
-use splinelab::scalar::{Mp, Real};
 
 /// Bits of the MPFR reference: 256 bits carry 77 digits, more than enough
 /// for condition numbers up to 1e40 to be right to 30+ digits.

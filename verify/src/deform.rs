@@ -8,12 +8,16 @@
 //! points are from an MPFR twin of the whole computation.
 
 use serde::{Deserialize, Serialize};
-use splinelab::bernstein::bv_solve::TensorSolver;
-use splinelab::bernstein::continuity::{ContinuityError, correct_continuity, join_defects};
-use splinelab::bernstein::inverse_mapping::{InverseMappingError, SampleGrid, deform_grid, sample};
-use splinelab::bernstein::patch::{PatchError, PatchGrid, Point3};
-use splinelab::bernstein::vandermonde::NodeFamily;
 use splinelab::scalar::{Mp, Real};
+use splinelab::surface_deformation::bv_solve::TensorSolver;
+use splinelab::surface_deformation::continuity::{
+    ContinuityError, correct_continuity, join_defects,
+};
+use splinelab::surface_deformation::inverse_mapping::{
+    InverseMappingError, SampleGrid, deform_grid, sample,
+};
+use splinelab::surface_deformation::patch::{PatchError, PatchGrid, Point3};
+use splinelab::surface_deformation::vandermonde::NodeFamily;
 
 /// Errors of the experiment.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -116,7 +120,7 @@ pub fn push_surfaces<T: Real>(params: &PushParams) -> Result<PushSurfaces<T>, De
     })
 }
 
-/// Join defects in f64 (see [`splinelab::bernstein::continuity::JoinDefects`]).
+/// Join defects in f64 (see [`splinelab::surface_deformation::continuity::JoinDefects`]).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct Defects {
     /// Largest C⁰ gap.

@@ -8,12 +8,6 @@
 use nalgebra::{Vector2, Vector3};
 use rug::Rational;
 use splinelab::bernstein::bezier::{BernsteinPoly, Bezier, BezierError};
-use splinelab::bernstein::bv_solve::{BvBidiagonal, BvError, Factorised, Method1d, TensorSolver};
-use splinelab::bernstein::inverse_mapping::{
-    InverseMappingError, SampleGrid, control_points as patch_from_samples, deform_grid,
-};
-use splinelab::bernstein::patch::{Patch, PatchError, PatchGrid, Point3};
-use splinelab::bernstein::vandermonde::{NodeFamily, VandermondeError};
 use splinelab::bspline::de_boor::{BSpline, BSplineData, BSplineError};
 use splinelab::bspline::knots::{KnotError, KnotVector};
 use splinelab::bspline::nurbs::{NurbsCurve, NurbsSurface};
@@ -27,7 +21,7 @@ use splinelab::qi::tangent::unit_direction;
 use splinelab::qi::{QiError, QiOptions, interpolate};
 use splinelab::quadrature::{GaussLegendre, QuadratureError, choose_order};
 use splinelab::scalar::prelude::*;
-use splinelab::sspline::curve::{CurveError as SCurveError, SsplineCurve};
+use splinelab::sspline::curve::SsplineCurve;
 use splinelab::sspline::end_conditions::{EndCondition, EndRule};
 use splinelab::sspline::global_cubic::{CubicEnds, control_points as cubic_control_points};
 use splinelab::sspline::surface::{Direction, SsplineSurface};
@@ -35,6 +29,15 @@ use splinelab::sspline::{
     Criterion, MAX_HALF_WIDTH, SplineFamily, SsplineError, TruncatedBasis, TruncationAnalysis,
     WidthChooser, truncation_width,
 };
+use splinelab::surface_deformation::bv_solve::{
+    BvBidiagonal, BvError, Factorised, Method1d, TensorSolver,
+};
+use splinelab::surface_deformation::inverse_mapping::{
+    InverseMappingError, SampleGrid, control_points as patch_from_samples, deform_grid,
+};
+use splinelab::surface_deformation::patch::{Patch, PatchError, PatchGrid, Point3};
+use splinelab::surface_deformation::vandermonde::{NodeFamily, VandermondeError};
+use splinelab::validation::InputError;
 use std::fmt::Display;
 use std::panic::{AssertUnwindSafe, catch_unwind};
 
@@ -133,7 +136,7 @@ fn knots<T: Real>(s: &mut Sweep) {
             s,
             &format!("KnotVector::new([0, {x}, 1])"),
             KnotVector::<T>::new(reals(&[0.0, x, 1.0])),
-            NonFinite { index: 1 }
+            Input(InputError::NonFiniteAt { index: 1, .. })
         );
     }
     refuses!(
@@ -193,13 +196,13 @@ fn bsplines<T: Real>(s: &mut Sweep) {
         s,
         "BSpline no points",
         BSpline::new(2, line::<T>(0), k(2)),
-        TooFewPoints { .. }
+        Input(InputError::TooFewPoints { .. })
     );
     refuses!(
         s,
         "BSpline one point, order 2",
         BSpline::new(2, line::<T>(1), k(3)),
-        TooFewPoints { .. }
+        Input(InputError::TooFewPoints { .. })
     );
     refuses!(
         s,
@@ -219,7 +222,7 @@ fn bsplines<T: Real>(s: &mut Sweep) {
             s,
             &format!("BSpline point {x}"),
             BSpline::new(2, with_bad::<T>(3, 1, x), k(5)),
-            NonFinitePoint { index: 1 }
+            Input(InputError::NonFiniteAt { index: 1, .. })
         );
     }
     let data = BSplineData {
@@ -250,7 +253,7 @@ fn nurbs<T: Real>(s: &mut Sweep) {
         s,
         "NurbsCurve NaN point",
         NurbsCurve::new(2, with_bad::<T>(3, 2, f64::NAN), reals(&[1.0; 3]), k(5)),
-        NonFinitePoint { index: 2 }
+        Input(InputError::NonFiniteAt { index: 2, .. })
     );
     refuses!(
         s,
@@ -268,7 +271,7 @@ fn nurbs<T: Real>(s: &mut Sweep) {
         s,
         "NurbsCurve no points",
         NurbsCurve::new(2, line::<T>(0), vec![], k(2)),
-        TooFewPoints { .. }
+        Input(InputError::TooFewPoints { .. })
     );
     if overflows::<T>(1e300, 1e300) {
         refuses!(
@@ -280,7 +283,7 @@ fn nurbs<T: Real>(s: &mut Sweep) {
                 reals(&[1.0, 1e300, 1.0]),
                 k(5)
             ),
-            NonFinitePoint { index: 1 }
+            Input(InputError::NonFiniteAt { index: 1, .. })
         );
     }
     refuses!(
@@ -301,7 +304,7 @@ fn nurbs<T: Real>(s: &mut Sweep) {
         s,
         "NurbsCurve::circle NaN centre",
         NurbsCurve::circle(&v2::<T>(f64::NAN, 0.0), &r(1.0)),
-        NonFinitePoint { .. }
+        Input(InputError::NonFiniteAt { .. })
     );
     let surface = |counts: (usize, usize), points: Vec<Vector2<T>>, w: Vec<T>| {
         NurbsSurface::new((2, 2), counts, points, w, (k(4), k(4)))
@@ -316,7 +319,7 @@ fn nurbs<T: Real>(s: &mut Sweep) {
         s,
         "NurbsSurface NaN point",
         surface((2, 2), with_bad(4, 3, f64::NAN), reals(&[1.0; 4])),
-        NonFinitePoint { index: 3 }
+        Input(InputError::NonFiniteAt { index: 3, .. })
     );
     refuses!(
         s,
@@ -342,7 +345,7 @@ fn nurbs<T: Real>(s: &mut Sweep) {
         s,
         "NurbsSurface::cylinder infinite height",
         NurbsSurface::<T, 3>::cylinder(&r(1.0), &r(f64::INFINITY)),
-        NonFinitePoint { .. }
+        Input(InputError::NonFinite { name: "height" })
     );
 }
 
@@ -390,7 +393,7 @@ fn rational_and_hermite<T: Real>(s: &mut Sweep, quadratic: &Bezier<T, 2>) {
         s,
         "RationalBezier empty",
         rb(vec![], &[]),
-        TooFewPoints { .. }
+        Input(InputError::TooFewPoints { .. })
     );
     refuses!(
         s,
@@ -402,7 +405,7 @@ fn rational_and_hermite<T: Real>(s: &mut Sweep, quadratic: &Bezier<T, 2>) {
         s,
         "RationalBezier NaN point",
         rb(with_bad(3, 1, f64::NAN), &[1.0; 3]),
-        NonFinitePoint { index: 1 }
+        Input(InputError::NonFiniteAt { index: 1, .. })
     );
     for w in [0.0, -1.0, f64::NAN, f64::INFINITY] {
         refuses!(
@@ -425,13 +428,13 @@ fn rational_and_hermite<T: Real>(s: &mut Sweep, quadratic: &Bezier<T, 2>) {
             s,
             &format!("Hermite p1 {x}"),
             Hermite::new(p(), bad.clone(), p(), p()),
-            NonFinitePoint { index: 1 }
+            Input(InputError::NonFiniteAt { index: 1, .. })
         );
         refuses!(
             s,
             &format!("Hermite d1 {x}"),
             Hermite::new(p(), p(), p(), bad),
-            NonFinitePoint { index: 3 }
+            Input(InputError::NonFiniteAt { index: 3, .. })
         );
     }
     refuses!(
@@ -452,25 +455,25 @@ fn catmull_rom<T: Real>(s: &mut Sweep) {
             s,
             &format!("CatmullRom {spacing:?} open, 3 points"),
             CatmullRom::new(line::<T>(3), spacing, false),
-            TooFewPoints { .. }
+            Input(InputError::TooFewPoints { .. })
         );
         refuses!(
             s,
             &format!("CatmullRom {spacing:?} closed, 2 points"),
             CatmullRom::new(line::<T>(2), spacing, true),
-            TooFewPoints { .. }
+            Input(InputError::TooFewPoints { .. })
         );
         refuses!(
             s,
             &format!("CatmullRom {spacing:?} empty"),
             CatmullRom::new(line::<T>(0), spacing, false),
-            TooFewPoints { .. }
+            Input(InputError::TooFewPoints { .. })
         );
         refuses!(
             s,
             &format!("CatmullRom {spacing:?} NaN"),
             CatmullRom::new(with_bad::<T>(5, 2, f64::NAN), spacing, false),
-            NonFinitePoint { index: 2 }
+            Input(InputError::NonFiniteAt { index: 2, .. })
         );
     }
     for spacing in [Spacing::Centripetal, Spacing::Chordal] {
@@ -501,7 +504,7 @@ fn catmull_rom<T: Real>(s: &mut Sweep) {
                 s,
                 &format!("CatmullRom {spacing:?} chord overflows"),
                 CatmullRom::new(far, spacing, false),
-                NonFinite { .. }
+                Input(InputError::NonFinite { .. })
             );
         }
     }
@@ -524,7 +527,7 @@ fn qi<T: Real>(s: &mut Sweep) {
             s,
             &format!("ClampedCubicSpline {param:?} 1 point"),
             ClampedCubicSpline::new(&helix(1), param, &d, &d),
-            TooFewPoints(1)
+            Input(InputError::TooFewPoints { got: 1, .. })
         );
         for x in NON_FINITE {
             let mut p = helix(4);
@@ -533,7 +536,7 @@ fn qi<T: Real>(s: &mut Sweep) {
                 s,
                 &format!("ClampedCubicSpline {param:?} point {x}"),
                 ClampedCubicSpline::new(&p, param, &d, &d),
-                NonFinitePoint { index: 2 }
+                Input(InputError::NonFiniteAt { index: 2, .. })
             );
             refuses!(
                 s,
@@ -557,7 +560,7 @@ fn qi<T: Real>(s: &mut Sweep) {
             s,
             &format!("interpolate {n} points"),
             interpolate(&helix(n), &opts()),
-            TooFewPoints(_)
+            Input(InputError::TooFewPoints { .. })
         );
     }
     for x in NON_FINITE {
@@ -567,7 +570,7 @@ fn qi<T: Real>(s: &mut Sweep) {
             s,
             &format!("interpolate point {x}"),
             interpolate(&p, &opts()),
-            NonFinitePoint { index: 3 }
+            Input(InputError::NonFiniteAt { index: 3, .. })
         );
         let o = QiOptions {
             start_tangent: Some(v3(x, 1.0, 0.0)),
@@ -753,20 +756,20 @@ fn families(s: &mut Sweep) {
 }
 
 fn ssplines<T: Real>(s: &mut Sweep) {
-    use SCurveError::*;
+    use CurveError::*;
     let cubic = SplineFamily::Order(4);
     let free = || EndCondition::<T, 2>::Free;
     refuses!(
         s,
         "SsplineCurve 0 points",
         SsplineCurve::new(&cubic, 8, &line::<T>(0), free()),
-        TooFewPoints(0)
+        Input(InputError::TooFewPoints { got: 0, .. })
     );
     refuses!(
         s,
         "SsplineCurve 1 point",
         SsplineCurve::new(&cubic, 8, &line::<T>(1), free()),
-        TooFewPoints(1)
+        Input(InputError::TooFewPoints { got: 1, .. })
     );
     refuses!(
         s,
@@ -791,7 +794,7 @@ fn ssplines<T: Real>(s: &mut Sweep) {
             s,
             &format!("SsplineCurve point {x}"),
             SsplineCurve::new(&cubic, 8, &with_bad::<T>(6, 4, x), free()),
-            NonFinite { index: 4 }
+            Input(InputError::NonFiniteAt { index: 4, .. })
         );
         let t = EndCondition::Tangents {
             start: v2::<T>(0.0, x),
@@ -801,13 +804,13 @@ fn ssplines<T: Real>(s: &mut Sweep) {
             s,
             &format!("SsplineCurve tangent {x}"),
             SsplineCurve::new(&cubic, 8, &line::<T>(6), t),
-            NonFinite { .. }
+            Input(InputError::NonFinite { .. })
         );
         refuses!(
             s,
             &format!("global_cubic point {x}"),
             cubic_control_points(&with_bad::<T>(5, 0, x), &CubicEnds::Natural),
-            NonFinite { index: 0 }
+            Input(InputError::NonFiniteAt { index: 0, .. })
         );
         let c = CubicEnds::Clamped {
             start: v2::<T>(x, 0.0),
@@ -817,20 +820,20 @@ fn ssplines<T: Real>(s: &mut Sweep) {
             s,
             &format!("global_cubic tangent {x}"),
             cubic_control_points(&line::<T>(5), &c),
-            NonFinite { .. }
+            Input(InputError::NonFinite { .. })
         );
     }
     refuses!(
         s,
         "global_cubic 1 point",
         cubic_control_points(&line::<T>(1), &CubicEnds::Natural),
-        TooFewPoints(1)
+        Input(InputError::TooFewPoints { got: 1, .. })
     );
     refuses!(
         s,
         "global_cubic 0 points",
         cubic_control_points(&line::<T>(0), &CubicEnds::Natural),
-        TooFewPoints(0)
+        Input(InputError::TooFewPoints { got: 0, .. })
     );
     let dir = |rule| Direction {
         family: cubic.clone(),
@@ -848,7 +851,7 @@ fn ssplines<T: Real>(s: &mut Sweep) {
         s,
         "SsplineSurface 1 × 4",
         SsplineSurface::new(&f, &p, 1, 4, &line::<T>(4)),
-        TooFewPoints(1)
+        Input(InputError::TooFewPoints { got: 1, .. })
     );
     refuses!(
         s,
@@ -860,7 +863,7 @@ fn ssplines<T: Real>(s: &mut Sweep) {
         s,
         "SsplineSurface NaN",
         SsplineSurface::new(&f, &f, 4, 4, &with_bad::<T>(16, 7, f64::NAN)),
-        NonFinite { index: 7 }
+        Input(InputError::NonFiniteAt { index: 7, .. })
     );
     refuses!(
         s,
@@ -940,7 +943,7 @@ fn patches<T: Real>(s: &mut Sweep) {
             s,
             &format!("Patch point {x}"),
             Patch::new(1, p),
-            NonFinitePoint { index: 3 }
+            Input(InputError::NonFiniteAt { index: 3, .. })
         );
     }
     let one = || Patch::new(1, net(4)).unwrap();
@@ -973,7 +976,7 @@ fn patches<T: Real>(s: &mut Sweep) {
         s,
         "PatchGrid::planar NaN size",
         PatchGrid::planar(1, 1, 1, &r::<T>(f64::NAN)),
-        NonFinitePoint { .. }
+        Input(InputError::NonFiniteAt { .. })
     );
     refuses!(
         s,
@@ -1086,7 +1089,7 @@ fn samples<T: Real>(s: &mut Sweep) {
         s,
         "control_points NaN sample",
         patch_from_samples(&g, &pts(4, f64::NAN), solver),
-        I::NonFinite { .. }
+        I::Input(InputError::NonFiniteAt { .. })
     );
     let surface = PatchGrid::planar(1, 1, 1, &r::<T>(1.0)).unwrap();
     refuses!(
@@ -1099,7 +1102,7 @@ fn samples<T: Real>(s: &mut Sweep) {
         s,
         "deform_grid NaN flow",
         deform_grid(&surface, &g, &[pts(4, f64::INFINITY)], solver),
-        I::NonFinite { .. }
+        I::Input(InputError::NonFiniteAt { .. })
     );
 }
 

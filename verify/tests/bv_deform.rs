@@ -1,11 +1,11 @@
 //! Patch deformation by the Bernstein inverse mapping (seed 001 eq 4) and the
 //! continuity correction (§2.3), checked by evaluating the surfaces.
 
-use splinelab::bernstein::bv_solve::TensorSolver;
-use splinelab::bernstein::continuity::{correct_continuity, join_defects};
-use splinelab::bernstein::inverse_mapping::sample;
-use splinelab::bernstein::vandermonde::NodeFamily;
 use splinelab::scalar::prelude::*;
+use splinelab::surface_deformation::bv_solve::TensorSolver;
+use splinelab::surface_deformation::continuity::{correct_continuity, join_defects};
+use splinelab::surface_deformation::inverse_mapping::sample;
+use splinelab::surface_deformation::vandermonde::NodeFamily;
 use splinelab_verify::deform::{PushParams, push_surfaces, run_push};
 
 fn params(patches: usize, degree: usize, nodes: NodeFamily, solver: TensorSolver) -> PushParams {

@@ -6,12 +6,14 @@ use proptest::prelude::*;
 use rug::Rational;
 use rug::ops::Pow;
 use splinelab::bernstein::basis::binomial;
-use splinelab::bernstein::bv_solve::{BvError, Method1d, TensorSolver, solve_1d, solve_tensor};
-use splinelab::bernstein::inverse_mapping::{SampleGrid, control_points, sample};
-use splinelab::bernstein::patch::{Patch, Point3};
-use splinelab::bernstein::vandermonde::{NodeFamily, bernstein_vandermonde};
-use splinelab::conditioning::cond_inf;
+use splinelab::matrix_condition::cond_inf;
 use splinelab::scalar::prelude::*;
+use splinelab::surface_deformation::bv_solve::{
+    BvError, Method1d, TensorSolver, solve_1d, solve_tensor,
+};
+use splinelab::surface_deformation::inverse_mapping::{SampleGrid, control_points, sample};
+use splinelab::surface_deformation::patch::{Patch, Point3};
+use splinelab::surface_deformation::vandermonde::{NodeFamily, bernstein_vandermonde};
 use splinelab_verify::bv_solvers::{RhsKind, measure, right_hand_sides};
 use splinelab_verify::exact::solve_rational;
 use splinelab_verify::metrics::ulps_f64;

@@ -2,9 +2,9 @@
 
 use nalgebra::DMatrix;
 use rug::{Integer, Rational};
-use splinelab::bernstein::vandermonde::{NodeFamily, tensor_bernstein_vandermonde};
-use splinelab::conditioning::{cond_inf, cond2};
+use splinelab::matrix_condition::{cond_inf, cond2};
 use splinelab::scalar::prelude::*;
+use splinelab::surface_deformation::vandermonde::{NodeFamily, tensor_bernstein_vandermonde};
 use splinelab_verify::conditioning::{Basis, CondCase, condition_numbers, measure};
 use splinelab_verify::metrics::relative_error;
 

@@ -5,10 +5,10 @@
 
 use nalgebra::{Vector2, Vector3};
 use proptest::prelude::*;
-use splinelab::bernstein::patch::Patch;
 use splinelab::bspline::de_boor::{BSpline, BSplineError};
 use splinelab::bspline::knots::{KnotError, KnotVector};
 use splinelab::scalar::prelude::*;
+use splinelab::surface_deformation::patch::Patch;
 use splinelab_verify::curves::{bounds, bspline_vs_bezier, de_boor_vs_basis, patch_vs_nurbs};
 use splinelab_verify::strategies::grid_points;
 

@@ -9,6 +9,7 @@ use splinelab::bspline::nurbs::{NurbsCurve, NurbsSurface};
 use splinelab::curves::CurveError;
 use splinelab::curves::rational_bezier::RationalBezier;
 use splinelab::scalar::prelude::*;
+use splinelab::validation::InputError;
 use splinelab_verify::curves::{arc_error, bounds, elevation_error, frac, nurbs_circle_errors};
 
 fn circle_bound<T: Real>() -> f64 {
@@ -117,7 +118,7 @@ fn bad_weights_and_arcs_are_typed_errors() {
     ));
     assert!(matches!(
         RationalBezier::circular_arc(&z, &1.0, &f64::NAN, &1.0),
-        Err(CurveError::NonFinite { name: "start" })
+        Err(CurveError::Input(InputError::NonFinite { name: "start" }))
     ));
     assert!(matches!(
         RationalBezier::circular_arc(&z, &1.0, &0.0, &0.0),

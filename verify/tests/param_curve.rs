@@ -9,7 +9,6 @@
 
 use nalgebra::{Vector2, Vector3};
 use splinelab::bernstein::bezier::Bezier;
-use splinelab::bernstein::patch::Patch;
 use splinelab::bspline::de_boor::BSpline;
 use splinelab::bspline::knots::KnotVector;
 use splinelab::curves::catmull_rom::{CatmullRom, Spacing};
@@ -18,6 +17,7 @@ use splinelab::param_curve::{ParamCurveDeriv, ParamSurface, ParamSurfaceDeriv, s
 use splinelab::qi::cubic_spline::{ClampedCubicSpline, Parameterization};
 use splinelab::qi::{QiOptions, interpolate};
 use splinelab::scalar::prelude::*;
+use splinelab::surface_deformation::patch::Patch;
 
 type M = Mp<256>;
 

@@ -4,6 +4,7 @@
 
 use splinelab::qi::{NewtonFailure, QiError, QiOptions, interpolate};
 use splinelab::scalar::prelude::*;
+use splinelab::validation::InputError;
 use splinelab_verify::qi::{
     check_fit, circle, convergence_run, helix, paper_like, points_in, wave,
 };
@@ -127,19 +128,29 @@ fn bad_inputs_are_typed_errors_not_panics() {
     let pts = points_in::<Mp<128>>(&helix(6));
     assert_eq!(
         interpolate(&pts[..2], &o).unwrap_err(),
-        QiError::TooFewPoints(2)
+        QiError::Input(InputError::TooFewPoints {
+            what: "QI interpolation",
+            needed: 3,
+            got: 2
+        })
     );
     let mut p = pts.clone();
     p[4].x = Mp::new(f64::NAN);
     assert_eq!(
         interpolate(&p, &o).unwrap_err(),
-        QiError::NonFinitePoint { index: 4 }
+        QiError::Input(InputError::NonFiniteAt {
+            what: "point",
+            index: 4
+        })
     );
     let mut p = pts.clone();
     p[0].z = Mp::new(f64::NEG_INFINITY);
     assert_eq!(
         interpolate(&p, &o).unwrap_err(),
-        QiError::NonFinitePoint { index: 0 }
+        QiError::Input(InputError::NonFiniteAt {
+            what: "point",
+            index: 0
+        })
     );
     let mut p = pts.clone();
     p[3] = p[2].clone();

@@ -13,6 +13,7 @@ use splinelab::sspline::end_conditions::{EndCondition, EndRule};
 use splinelab::sspline::global_cubic::{CubicEnds, control_points, interpolant};
 use splinelab::sspline::surface::{Direction, SsplineSurface};
 use splinelab::sspline::{SplineFamily, TruncatedBasis};
+use splinelab::validation::InputError;
 
 fn pts<T: Real>(raw: &[[i32; 2]]) -> Vec<Vector2<T>> {
     raw.iter()
@@ -291,7 +292,11 @@ fn bad_input_is_refused() {
     let one = vec![Vector2::new(0.0, 0.0)];
     assert_eq!(
         SsplineCurve::new(&f, 3, &one, EndCondition::Free),
-        Err(CurveError::TooFewPoints(1))
+        Err(CurveError::Input(InputError::TooFewPoints {
+            what: "an S-spline curve",
+            needed: 2,
+            got: 1
+        }))
     );
     let three = pts::<f64>(&[[0, 0], [1, 1], [2, 0]]);
     assert!(matches!(
@@ -302,7 +307,10 @@ fn bad_input_is_refused() {
     bad[2].x = f64::NAN;
     assert_eq!(
         SsplineCurve::new(&f, 3, &bad, EndCondition::Free),
-        Err(CurveError::NonFinite { index: 2 })
+        Err(CurveError::Input(InputError::NonFiniteAt {
+            what: "data point",
+            index: 2
+        }))
     );
     assert!(bad[2].x.is_nan());
     let good = pts::<f64>(&[[0, 0], [1, 1], [2, 0], [3, 3], [4, 4]]);

@@ -14,12 +14,13 @@
 //! [`compensated`](super::compensated); all share [`BezierError`] and
 //! [`Evaluation`].
 
+use super::affine_step::AffineStep;
 use super::basis::binomial;
+use crate::param_curve::{ParamCurve, ParamCurveDeriv, unit};
 use crate::scalar::Real;
 use crate::scalar::running_error::{RoundingModel, Running};
 use nalgebra::SVector;
 use rug::Rational;
-use std::ops::{Add, Mul};
 
 /// Why a Bernstein polynomial or Bézier curve could not be built or evaluated.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -113,16 +114,23 @@ pub(crate) fn finite<T: Real>(x: T, method: &'static str, degree: usize) -> Resu
 pub(crate) fn de_casteljau_lerp<T, V>(points: &[V], r: &T, t: &T) -> V
 where
     T: Real,
-    V: Clone + Add<Output = V> + Mul<T, Output = V>,
+    V: Clone + AffineStep<T>,
 {
     let mut b = points.to_vec();
     let n = b.len() - 1;
     for j in 1..=n {
-        for i in 0..=n - j {
-            b[i] = b[i].clone() * r.clone() + b[i + 1].clone() * t.clone();
-        }
+        de_casteljau_row(&mut b[..=n - j + 1], r, t);
     }
     b.swap_remove(0)
+}
+
+/// One level of the triangle: `b_i ← b_i·r + b_{i+1}·t` for every `i` but
+/// the last, in place.
+fn de_casteljau_row<T, V: AffineStep<T>>(b: &mut [V], r: &T, t: &T) {
+    for i in 0..b.len() - 1 {
+        let (lo, hi) = b.split_at_mut(i + 1);
+        lo[i].affine_step(r, &hi[0], t);
+    }
 }
 
 /// de Casteljau evaluation of the Bézier curve with control points `points`
@@ -141,13 +149,13 @@ where
 pub fn de_casteljau<T, V>(points: &[V], t: &T) -> Result<V, BezierError>
 where
     T: Real,
-    V: Clone + Add<Output = V> + Mul<T, Output = V>,
+    V: Clone + AffineStep<T>,
 {
     if points.is_empty() {
         return Err(BezierError::Empty);
     }
     check_parameter(t)?;
-    Ok(de_casteljau_lerp(points, &(T::one() - t.clone()), t))
+    Ok(de_casteljau_lerp(points, &(T::one() - t), t))
 }
 
 /// Subdivision at `t` by de Casteljau's triangle: the left edge
@@ -161,13 +169,13 @@ where
 pub fn subdivide<T, V>(points: &[V], t: &T) -> Result<(Vec<V>, Vec<V>), BezierError>
 where
     T: Real,
-    V: Clone + Add<Output = V> + Mul<T, Output = V>,
+    V: Clone + AffineStep<T>,
 {
     if points.is_empty() {
         return Err(BezierError::Empty);
     }
     check_parameter(t)?;
-    let r = T::one() - t.clone();
+    let r = T::one() - t;
     let mut b = points.to_vec();
     let n = b.len() - 1;
     let mut left = Vec::with_capacity(n + 1);
@@ -175,9 +183,7 @@ where
     left.push(b[0].clone());
     right.push(b[n].clone());
     for j in 1..=n {
-        for i in 0..=n - j {
-            b[i] = b[i].clone() * r.clone() + b[i + 1].clone() * t.clone();
-        }
+        de_casteljau_row(&mut b[..=n - j + 1], &r, t);
         left.push(b[0].clone());
         right.push(b[n - j].clone());
     }
@@ -247,7 +253,7 @@ impl<T: Real> BernsteinPoly<T> {
 
     /// de Casteljau without checking `t`.
     pub(crate) fn de_casteljau_unchecked(&self, t: &T) -> T {
-        de_casteljau_lerp(&self.coeffs, &(T::one() - t.clone()), t)
+        de_casteljau_lerp(&self.coeffs, &(T::one() - t), t)
     }
 
     /// `p(t)` by de Casteljau's algorithm (see [`de_casteljau`]).
@@ -352,6 +358,30 @@ impl<T: Real, const D: usize> Bezier<T, D> {
         (k < D)
             .then(|| BernsteinPoly::new(self.points.iter().map(|p| p[k].clone()).collect()))?
             .ok()
+    }
+}
+
+impl<T: Real, const D: usize> ParamCurve<T, D> for Bezier<T, D> {
+    type Error = BezierError;
+    fn domain(&self) -> (T, T) {
+        unit()
+    }
+    fn eval(&self, t: &T) -> Result<SVector<T, D>, BezierError> {
+        Bezier::eval(self, t)
+    }
+}
+
+impl<T: Real, const D: usize> ParamCurveDeriv<T, D> for Bezier<T, D> {
+    /// The hodograph `n Σ (P_{i+1} − P_i) B_i^{n−1}(t)` by de Casteljau;
+    /// zero for a point (degree 0).
+    fn deriv(&self, t: &T) -> Result<SVector<T, D>, BezierError> {
+        let p = self.points();
+        let n = p.len() - 1;
+        if n == 0 {
+            return Ok(SVector::zeros());
+        }
+        let diff: Vec<_> = p.windows(2).map(|w| &w[1] - &w[0]).collect();
+        Ok(de_casteljau(&diff, t)? * T::from_int(n as i64))
     }
 }
 

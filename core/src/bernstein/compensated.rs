@@ -3,7 +3,7 @@
 //!
 //! **Method** (Jiang, Li, Cheng & Su, *Accurate evaluation of a polynomial in
 //! Bernstein form*, Comput. Math. Appl. 60 (2010), Algorithm `CompDeCasteljau`):
-//! with the error-free transformations [`two_sum`] and [`two_prod`],
+//! with the error-free transformations [`two_sum`] and [`two_prod`](crate::scalar::two_prod),
 //! `1 − t = r + ρ` exactly, and each de Casteljau step
 //! `(1 − t) b_i + t b_{i+1} = b_i' + w_i` exactly, where
 //! `(s, π₁) = TwoProd(r, b_i)`, `(v, π₂) = TwoProd(t, b_{i+1})`,

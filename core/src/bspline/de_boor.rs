@@ -2,7 +2,9 @@
 //! the Cox–de Boor basis, and derivatives (seed 003 eq 1–2).
 
 use super::knots::{KnotError, KnotVector};
+use crate::param_curve::{ParamCurve, ParamCurveDeriv};
 use crate::scalar::Real;
+use crate::validation::{InputError, at_least, finite_points};
 use nalgebra::SVector;
 use serde::{Deserialize, Serialize};
 use std::ops::{Add, Mul};
@@ -16,14 +18,10 @@ pub enum BSplineError {
     /// The knot vector is invalid.
     #[error(transparent)]
     Knots(#[from] KnotError),
-    /// Fewer control points than the order.
-    #[error("a B-spline of order {order} needs at least {order} control points, got {got}")]
-    TooFewPoints {
-        /// The order `k`.
-        order: usize,
-        /// Points given.
-        got: usize,
-    },
+    /// Fewer control points than the order, or a control point that is not
+    /// finite.
+    #[error(transparent)]
+    Input(#[from] InputError),
     /// `#knots ≠ #points + order`.
     #[error("{points} points of order {order} need {} knots, got {got}", points.saturating_add(*order))]
     KnotCount {
@@ -33,12 +31,6 @@ pub enum BSplineError {
         order: usize,
         /// Knots given.
         got: usize,
-    },
-    /// A control point (or weight) is not finite.
-    #[error("control point {index} is not finite")]
-    NonFinitePoint {
-        /// Its position.
-        index: usize,
     },
     /// A weight is zero, negative or not finite.
     #[error("weight {index} = {value} is not a positive finite number")]
@@ -118,9 +110,7 @@ pub(crate) fn check_structure<T: Real>(
     if order == 0 {
         return Err(BSplineError::ZeroOrder);
     }
-    if points < order {
-        return Err(BSplineError::TooFewPoints { order, got: points });
-    }
+    at_least("a B-spline of this order", order, points)?;
     if points.checked_add(order) != Some(knots.len()) {
         return Err(BSplineError::KnotCount {
             points,
@@ -266,9 +256,7 @@ impl<T: Real, const D: usize> BSpline<T, D> {
         knots: KnotVector<T>,
     ) -> Result<Self, BSplineError> {
         check_structure(order, points.len(), &knots)?;
-        if let Some(index) = points.iter().position(|p| p.iter().any(|x| !x.is_finite())) {
-            return Err(BSplineError::NonFinitePoint { index });
-        }
+        finite_points("control point", &points)?;
         Ok(BSpline {
             order,
             points,
@@ -423,6 +411,22 @@ pub(crate) fn basis_functions<T: Real>(order: usize, knots: &[T], s: usize, t: &
     n
 }
 
+impl<T: Real, const D: usize> ParamCurve<T, D> for BSpline<T, D> {
+    type Error = BSplineError;
+    fn domain(&self) -> (T, T) {
+        BSpline::domain(self)
+    }
+    fn eval(&self, t: &T) -> Result<SVector<T, D>, BSplineError> {
+        BSpline::eval(self, t)
+    }
+}
+
+impl<T: Real, const D: usize> ParamCurveDeriv<T, D> for BSpline<T, D> {
+    fn deriv(&self, t: &T) -> Result<SVector<T, D>, BSplineError> {
+        self.eval_derivative(t, 1)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -441,7 +445,7 @@ mod tests {
         );
         assert!(matches!(
             BSpline::new(3, vec![v(0.0, 0.0), v(1.0, 0.0)], k.clone()),
-            Err(BSplineError::TooFewPoints { .. })
+            Err(BSplineError::Input(InputError::TooFewPoints { .. }))
         ));
         assert!(matches!(
             BSpline::new(2, vec![v(0.0, 0.0); 3], k.clone()),
@@ -449,7 +453,10 @@ mod tests {
         ));
         assert_eq!(
             BSpline::new(2, vec![v(0.0, 0.0), v(f64::NAN, 0.0)], k.clone()),
-            Err(BSplineError::NonFinitePoint { index: 1 })
+            Err(BSplineError::Input(InputError::NonFiniteAt {
+                what: "control point",
+                index: 1
+            }))
         );
         let flat = KnotVector::new(vec![1.0; 4]).unwrap();
         assert_eq!(

@@ -1,6 +1,7 @@
 //! Knot vectors: finite, non-decreasing sequences `t_0 ≤ t_1 ≤ … ≤ t_m`.
 
 use crate::scalar::Real;
+use crate::validation::{InputError, finite_scalars};
 use rug::Rational;
 use serde::{Deserialize, Serialize};
 
@@ -10,12 +11,9 @@ pub enum KnotError {
     /// Fewer than two knots.
     #[error("a knot vector needs at least 2 knots, got {0}")]
     TooFew(usize),
-    /// Knot `index` is NaN or infinite.
-    #[error("knot {index} is not finite")]
-    NonFinite {
-        /// Position of the knot.
-        index: usize,
-    },
+    /// A knot is NaN or infinite.
+    #[error(transparent)]
+    Input(#[from] InputError),
     /// `t_index < t_{index−1}`.
     #[error("knot {index} is smaller than knot {}", index - 1)]
     Decreasing {
@@ -66,9 +64,7 @@ impl<T: Real> KnotVector<T> {
         if knots.len() < 2 {
             return Err(KnotError::TooFew(knots.len()));
         }
-        if let Some(index) = knots.iter().position(|t| !t.is_finite()) {
-            return Err(KnotError::NonFinite { index });
-        }
+        finite_scalars("knot", &knots)?;
         if let Some(w) = knots.windows(2).position(|w| w[1] < w[0]) {
             return Err(KnotError::Decreasing { index: w + 1 });
         }
@@ -169,7 +165,10 @@ mod tests {
         assert_eq!(KnotVector::<f64>::new(vec![0.0]), Err(KnotError::TooFew(1)));
         assert_eq!(
             KnotVector::new(vec![0.0, f64::NAN]),
-            Err(KnotError::NonFinite { index: 1 })
+            Err(KnotError::Input(InputError::NonFiniteAt {
+                what: "knot",
+                index: 1
+            }))
         );
         assert_eq!(
             KnotVector::new(vec![0.0, 1.0, 0.5]),

@@ -5,7 +5,9 @@
 
 use super::de_boor::{BSpline, BSplineError, check_structure, de_boor_window, find_span};
 use super::knots::KnotVector;
+use crate::param_curve::{ParamCurve, ParamSurface};
 use crate::scalar::Real;
+use crate::validation::{finite, finite_points};
 use nalgebra::{SVector, Vector2, Vector3};
 use rug::Rational;
 use std::ops::{Add, Mul};
@@ -264,9 +266,7 @@ impl<T: Real, const D: usize> NurbsSurface<T, D> {
                 return Err(BSplineError::NetSize { nu, nv, got });
             }
         }
-        if let Some(index) = points.iter().position(|p| p.iter().any(|x| !x.is_finite())) {
-            return Err(BSplineError::NonFinitePoint { index });
-        }
+        finite_points("control point", &points)?;
         check_weights(&weights)?;
         let homogeneous = points
             .iter()
@@ -324,9 +324,7 @@ impl<T: Real> NurbsSurface<T, 3> {
     /// non-finite height.
     pub fn cylinder(r: &T, height: &T) -> Result<Self, BSplineError> {
         check_radius(r)?;
-        if !height.is_finite() {
-            return Err(BSplineError::NonFinitePoint { index: 0 });
-        }
+        finite("height", height)?;
         // The circle's net, each point once at z = 0 and once at z = height.
         let (s, knots_u) = circle_data::<T>();
         let mut points = Vec::with_capacity(18);
@@ -339,6 +337,26 @@ impl<T: Real> NurbsSurface<T, 3> {
         }
         let knots_v = KnotVector::new(vec![T::zero(), T::zero(), T::one(), T::one()])?;
         Self::new((3, 2), (9, 2), points, weights, (knots_u, knots_v))
+    }
+}
+
+impl<T: Real, const D: usize> ParamCurve<T, D> for NurbsCurve<T, D> {
+    type Error = BSplineError;
+    fn domain(&self) -> (T, T) {
+        NurbsCurve::domain(self)
+    }
+    fn eval(&self, t: &T) -> Result<SVector<T, D>, BSplineError> {
+        NurbsCurve::eval(self, t)
+    }
+}
+
+impl<T: Real, const D: usize> ParamSurface<T, D> for NurbsSurface<T, D> {
+    type Error = BSplineError;
+    fn domain(&self) -> ((T, T), (T, T)) {
+        self.domains()
+    }
+    fn eval(&self, u: &T, v: &T) -> Result<SVector<T, D>, BSplineError> {
+        NurbsSurface::eval(self, u, v)
     }
 }
 

@@ -3,7 +3,9 @@
 //! uniform, centripetal and chordal knot spacing.
 
 use super::{CurveError, check_points};
+use crate::param_curve::{ParamCurve, ParamCurveDeriv};
 use crate::scalar::Real;
+use crate::validation::{at_least, finite};
 use nalgebra::SVector;
 
 /// Knot spacing `t_k = t_{k−1} + |P_k − P_{k−1}|^α` (seed 002).
@@ -101,17 +103,10 @@ impl<T: Real, const D: usize> CatmullRom<T, D> {
         spacing: Spacing,
         closed: bool,
     ) -> Result<Self, CurveError> {
-        let needed = if closed { 3 } else { 4 };
-        if points.len() < needed {
-            return Err(CurveError::TooFewPoints {
-                what: if closed {
-                    "a closed Catmull–Rom spline"
-                } else {
-                    "an open Catmull–Rom spline"
-                },
-                needed,
-                got: points.len(),
-            });
+        if closed {
+            at_least("a closed Catmull–Rom spline", 3, points.len())?;
+        } else {
+            at_least("an open Catmull–Rom spline", 4, points.len())?;
         }
         check_points(&points)?;
         let n = points.len();
@@ -121,12 +116,8 @@ impl<T: Real, const D: usize> CatmullRom<T, D> {
             let next = (k + 1) % n;
             let len = (&points[next] - &points[k]).norm();
             let d = spacing.interval(len);
-            if !d.is_finite() {
-                // Finite points whose distance overflows the precision.
-                return Err(CurveError::NonFinite {
-                    name: "knot interval (chord length)",
-                });
-            }
+            // Finite points whose distance overflows the precision.
+            finite("knot interval (chord length)", &d)?;
             if d <= T::zero() {
                 return Err(CurveError::CoincidentPoints { index: k, next });
             }
@@ -267,9 +258,27 @@ impl<T: Real, const D: usize> CatmullRom<T, D> {
     }
 }
 
+impl<T: Real, const D: usize> ParamCurve<T, D> for CatmullRom<T, D> {
+    type Error = CurveError;
+    fn domain(&self) -> (T, T) {
+        let k = self.knots();
+        (k[0].clone(), k[k.len() - 1].clone())
+    }
+    fn eval(&self, t: &T) -> Result<SVector<T, D>, CurveError> {
+        CatmullRom::eval(self, t).map(|(p, _)| p)
+    }
+}
+
+impl<T: Real, const D: usize> ParamCurveDeriv<T, D> for CatmullRom<T, D> {
+    fn deriv(&self, t: &T) -> Result<SVector<T, D>, CurveError> {
+        CatmullRom::eval(self, t).map(|(_, d)| d)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::validation::InputError;
     use nalgebra::Vector2;
 
     #[test]
@@ -292,16 +301,19 @@ mod tests {
         );
         assert!(matches!(
             CatmullRom::new(pts[..3].to_vec(), Spacing::Uniform, false),
-            Err(CurveError::TooFewPoints {
+            Err(CurveError::Input(InputError::TooFewPoints {
                 needed: 4,
                 got: 3,
                 ..
-            })
+            }))
         ));
         let bad = vec![p(0.0, 0.0), p(f64::INFINITY, 0.0), p(1.0, 1.0)];
         assert_eq!(
             CatmullRom::new(bad, Spacing::Uniform, true),
-            Err(CurveError::NonFinitePoint { index: 1 })
+            Err(CurveError::Input(InputError::NonFiniteAt {
+                what: "point",
+                index: 1
+            }))
         );
     }
 

@@ -3,8 +3,10 @@
 
 use super::{CurveError, check_points};
 use crate::bernstein::bezier::Bezier;
+use crate::param_curve::{ParamCurve, ParamCurveDeriv, unit};
 use crate::scalar::Real;
 use nalgebra::SVector;
+use std::convert::Infallible;
 
 /// The cubic `x(t) = a_0 + a_1 t + a_2 t² + a_3 t³`, `t ∈ [0, 1]`, with
 /// `x(0) = p0`, `x(1) = p1`, `x'(0) = d0`, `x'(1) = d1` (Hermite interpolation).
@@ -119,9 +121,26 @@ impl<T: Real, const D: usize> Hermite<T, D> {
     }
 }
 
+impl<T: Real, const D: usize> ParamCurve<T, D> for Hermite<T, D> {
+    type Error = Infallible;
+    fn domain(&self) -> (T, T) {
+        unit()
+    }
+    fn eval(&self, t: &T) -> Result<SVector<T, D>, Infallible> {
+        Ok(Hermite::eval(self, t))
+    }
+}
+
+impl<T: Real, const D: usize> ParamCurveDeriv<T, D> for Hermite<T, D> {
+    fn deriv(&self, t: &T) -> Result<SVector<T, D>, Infallible> {
+        Ok(Hermite::derivative(self, t))
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::validation::InputError;
     use nalgebra::{Vector2, Vector3};
 
     #[test]
@@ -140,7 +159,10 @@ mod tests {
         let z = Vector2::<f64>::zeros();
         assert_eq!(
             Hermite::new(z, z, Vector2::new(f64::NAN, 0.0), z),
-            Err(CurveError::NonFinitePoint { index: 2 })
+            Err(CurveError::Input(InputError::NonFiniteAt {
+                what: "point",
+                index: 2
+            }))
         );
         let quad = Bezier::new(vec![z, z, z]).unwrap();
         assert_eq!(

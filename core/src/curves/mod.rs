@@ -4,7 +4,7 @@
 //! de Casteljau subdivision.
 //!
 //! Polynomial Bézier curves themselves ([`Bezier`](crate::bernstein::bezier::Bezier)),
-//! tensor Bézier patches ([`Patch`](crate::bernstein::patch::Patch)) and
+//! tensor Bézier patches ([`Patch`](crate::surface_deformation::patch::Patch)) and
 //! B-splines / NURBS ([`bspline`](crate::bspline)) live in their own modules
 //! and are reused here, never re-implemented.
 //!
@@ -18,32 +18,17 @@ pub mod hermite;
 pub mod rational_bezier;
 
 use crate::bernstein::bezier::BezierError;
+use crate::bspline::de_boor::BSplineError;
+use crate::sspline::SsplineError;
+use crate::validation::InputError;
 
-/// Why a curve of this module could not be built or evaluated.
+/// Why a curve (of this module, or an S-spline curve or surface of
+/// [`sspline`](crate::sspline)) could not be built, evaluated or edited.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum CurveError {
-    /// Not enough points for the construction.
-    #[error("{what} needs at least {needed} points, got {got}")]
-    TooFewPoints {
-        /// The construction.
-        what: &'static str,
-        /// Minimum number of points.
-        needed: usize,
-        /// Points given.
-        got: usize,
-    },
-    /// A point (or vector) has a NaN or infinite coordinate.
-    #[error("point {index} is not finite")]
-    NonFinitePoint {
-        /// Position of the offending point.
-        index: usize,
-    },
-    /// A scalar input (parameter, radius, angle) is NaN or infinite.
-    #[error("{name} is not finite")]
-    NonFinite {
-        /// Which input.
-        name: &'static str,
-    },
+    /// Too few points, or a point, tangent or scalar input that is not finite.
+    #[error(transparent)]
+    Input(#[from] InputError),
     /// A weight is zero, negative or not finite.
     #[error("weight {index} = {value} is not a positive finite number")]
     BadWeight {
@@ -117,14 +102,50 @@ pub enum CurveError {
     /// An error of the underlying Bézier code.
     #[error(transparent)]
     Bezier(#[from] BezierError),
+    /// S-spline: more basis order than data points.
+    #[error("order {order} exceeds the number of data points {points}")]
+    OrderTooHigh {
+        /// The spline order `m`.
+        order: u32,
+        /// Data points given.
+        points: usize,
+    },
+    /// S-spline: an edited index is outside the data.
+    #[error("point index {index} is outside 0..{len}")]
+    IndexOutOfRange {
+        /// The index given.
+        index: usize,
+        /// The number of points.
+        len: usize,
+    },
+    /// S-spline: the operation needs a B-spline family (not Beta2).
+    #[error("this operation needs a B-spline family, not {0}")]
+    NotBSpline(String),
+    /// S-spline: the end condition is not available here (tangents on
+    /// surfaces).
+    #[error("end condition not supported for surfaces: {0}")]
+    Unsupported(&'static str),
+    /// S-spline surface: the grid does not have `ν_u · ν_v` points.
+    #[error("a {nu}×{nv} grid needs {} points, got {got}", *nu as u128 * *nv as u128)]
+    GridSize {
+        /// Points in `u`.
+        nu: usize,
+        /// Points in `v`.
+        nv: usize,
+        /// Points given.
+        got: usize,
+    },
+    /// S-spline coefficient computation failed.
+    #[error(transparent)]
+    Sspline(#[from] SsplineError),
+    /// The B-spline view of a curve could not be built.
+    #[error(transparent)]
+    BSpline(#[from] BSplineError),
 }
 
 /// Checks that every coordinate of every point is finite.
 pub(crate) fn check_points<T: crate::scalar::Real, const D: usize>(
     points: &[nalgebra::SVector<T, D>],
 ) -> Result<(), CurveError> {
-    match points.iter().position(|p| p.iter().any(|x| !x.is_finite())) {
-        Some(index) => Err(CurveError::NonFinitePoint { index }),
-        None => Ok(()),
-    }
+    Ok(crate::validation::finite_points("point", points)?)
 }

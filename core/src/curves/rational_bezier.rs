@@ -5,7 +5,9 @@
 
 use super::{CurveError, check_points};
 use crate::bernstein::bezier::{check_parameter, de_casteljau};
+use crate::param_curve::{ParamCurve, unit};
 use crate::scalar::Real;
+use crate::validation::{at_least, finite, finite_vector};
 use nalgebra::{SVector, Vector2};
 
 /// A rational Bézier curve of degree `n`, stored in homogeneous form
@@ -72,13 +74,7 @@ impl<T: Real, const D: usize> RationalBezier<T, D> {
     }
 
     fn check_lengths(points: usize, weights: usize) -> Result<(), CurveError> {
-        if points == 0 {
-            return Err(CurveError::TooFewPoints {
-                what: "a rational Bézier curve",
-                needed: 1,
-                got: 0,
-            });
-        }
+        at_least("a rational Bézier curve", 1, points)?;
         if points != weights {
             return Err(CurveError::LengthMismatch { points, weights });
         }
@@ -138,8 +134,7 @@ impl<T: Real, const D: usize> RationalBezier<T, D> {
             return Err(CurveError::VanishingDenominator { t: t.to_f64() });
         }
         let p = h / w;
-        check_points(std::slice::from_ref(&p))
-            .map_err(|_| CurveError::NonFinite { name: "P(t)" })?;
+        finite_vector("P(t)", &p)?;
         Ok(p)
     }
 
@@ -200,9 +195,7 @@ impl<T: Real> RationalBezier<T, 2> {
             ("start", start),
             ("sweep", sweep),
         ] {
-            if !x.is_finite() {
-                return Err(CurveError::NonFinite { name });
-            }
+            finite(name, x)?;
         }
         if *r <= T::zero() {
             return Err(CurveError::OutOfRange {
@@ -225,6 +218,16 @@ impl<T: Real> RationalBezier<T, 2> {
         let h1 = centre * w1.clone() + on_circle(start.clone() + h);
         let h2 = centre + on_circle(start.clone() + sweep.clone());
         Self::from_homogeneous(vec![h0, h1, h2], vec![T::one(), w1, T::one()])
+    }
+}
+
+impl<T: Real, const D: usize> ParamCurve<T, D> for RationalBezier<T, D> {
+    type Error = CurveError;
+    fn domain(&self) -> (T, T) {
+        unit()
+    }
+    fn eval(&self, t: &T) -> Result<SVector<T, D>, CurveError> {
+        RationalBezier::eval(self, t)
     }
 }
 

@@ -19,7 +19,9 @@
 //! paper's spline curvature spike at the end (both are offered).
 
 use super::{QiError, finite_positive};
+use crate::param_curve::{OutOfDomain, ParamCurve, ParamCurveDeriv, check_domain};
 use crate::scalar::Real;
+use crate::validation::{at_least, finite_points};
 use nalgebra::Vector3;
 
 /// How the spline's knots are placed.
@@ -50,12 +52,8 @@ impl<T: Real> ClampedCubicSpline<T> {
         d_start: &Vector3<T>,
         d_end: &Vector3<T>,
     ) -> Result<Self, QiError> {
-        if points.len() < 2 {
-            return Err(QiError::TooFewPoints(points.len()));
-        }
-        if let Some(index) = points.iter().position(|p| !p.iter().all(|c| c.is_finite())) {
-            return Err(QiError::NonFinitePoint { index });
-        }
+        at_least("a clamped cubic spline", 2, points.len())?;
+        finite_points("point", points)?;
         for (which, d) in [("start", d_start), ("end", d_end)] {
             if !d.iter().all(|c| c.is_finite()) {
                 return Err(QiError::InvalidTangent { which });
@@ -191,6 +189,40 @@ fn solve_slopes<T: Real>(
         m[i] = &r_prime[i - 1] - &m[i + 1] * c_prime[i - 1].clone();
     }
     m
+}
+
+/// The piece `i` and local `τ ∈ [0, 1]` of the global parameter `t` on the
+/// knots `k` (the last piece takes `t = k_last`).
+fn piece<T: Real>(k: &[T], t: &T) -> Result<(usize, T), OutOfDomain> {
+    let last = k.len() - 1;
+    check_domain(t, &k[0], &k[last])?;
+    let i = k
+        .partition_point(|x| x <= t)
+        .saturating_sub(1)
+        .min(last - 1);
+    let tau = (t.clone() - k[i].clone()) / (k[i + 1].clone() - k[i].clone());
+    Ok((i, tau))
+}
+
+impl<T: Real> ParamCurve<T, 3> for ClampedCubicSpline<T> {
+    type Error = OutOfDomain;
+    fn domain(&self) -> (T, T) {
+        let k = self.knots();
+        (k[0].clone(), k[k.len() - 1].clone())
+    }
+    fn eval(&self, t: &T) -> Result<Vector3<T>, OutOfDomain> {
+        let (i, tau) = piece(self.knots(), t)?;
+        let [p, _, _] = self.jet(i, &tau);
+        Ok(p)
+    }
+}
+
+impl<T: Real> ParamCurveDeriv<T, 3> for ClampedCubicSpline<T> {
+    fn deriv(&self, t: &T) -> Result<Vector3<T>, OutOfDomain> {
+        let (i, tau) = piece(self.knots(), t)?;
+        let [_, d, _] = self.jet(i, &tau);
+        Ok(d)
+    }
 }
 
 #[cfg(test)]

@@ -32,8 +32,10 @@ use super::newton::{Iteration, NewtonOptions, newton};
 use super::segment::QiSegment;
 use super::tangent::{nearest_angles, principal_angles, unit_direction};
 use super::{QiError, finite_positive};
+use crate::param_curve::{OutOfDomain, ParamCurve, ParamCurveDeriv, check_domain};
 use crate::quadrature::{GaussLegendre, choose_order};
 use crate::scalar::Real;
+use crate::validation::{at_least, finite_points};
 use nalgebra::Vector3;
 
 /// Options of [`interpolate`]; [`QiOptions::default`] gives the documented
@@ -118,7 +120,7 @@ impl<T: Real> QiInterpolation<T> {
 /// Cost: per Newton step one dense `7n × 7n` LU (`≈ 230 n³` flops) and
 /// `n m` tangent evaluations; typically 4–7 steps in f64 on smooth data.
 ///
-/// Errors: [`QiError::TooFewPoints`], [`QiError::NonFinitePoint`],
+/// Errors: [`QiError::Input`] (too few or non-finite points),
 /// [`QiError::CoincidentPoints`], [`QiError::InvalidTangent`],
 /// [`QiError::InvalidOption`], [`QiError::Quadrature`], and
 /// [`QiError::NotConverged`] carrying the residual history.
@@ -252,12 +254,8 @@ fn validate_options<T: Real>(opts: &QiOptions<T>) -> Result<(), QiError> {
 
 /// Checks the points; returns the mean chord length `h`.
 fn validate_points<T: Real>(points: &[Vector3<T>]) -> Result<T, QiError> {
-    if points.len() < 3 {
-        return Err(QiError::TooFewPoints(points.len()));
-    }
-    if let Some(index) = points.iter().position(|p| !p.iter().all(|c| c.is_finite())) {
-        return Err(QiError::NonFinitePoint { index });
-    }
+    at_least("QI interpolation", 3, points.len())?;
+    finite_points("point", points)?;
     let mut total = T::zero();
     for (index, w) in points.windows(2).enumerate() {
         let d = (&w[1] - &w[0]).norm();
@@ -321,11 +319,42 @@ fn start_guess<T: Real>(
     Ok((segments, [a_s, b_s, ae, be]))
 }
 
+/// The QI curve on `[0, n]`: segment `i` on `[i, i + 1]`.
+impl<T: Real> ParamCurve<T, 3> for QiInterpolation<T> {
+    type Error = OutOfDomain;
+    fn domain(&self) -> (T, T) {
+        (T::zero(), T::from_int(self.segments.len() as i64))
+    }
+    fn eval(&self, t: &T) -> Result<Vector3<T>, OutOfDomain> {
+        let (i, tau) = self.segment_at(t)?;
+        Ok(self.point(i, &tau))
+    }
+}
+
+impl<T: Real> ParamCurveDeriv<T, 3> for QiInterpolation<T> {
+    /// `l_i T_i(τ)`: each segment has speed `l_i` in its local parameter.
+    fn deriv(&self, t: &T) -> Result<Vector3<T>, OutOfDomain> {
+        let (i, tau) = self.segment_at(t)?;
+        let s = &self.segments[i];
+        Ok(s.tangent_at(&tau) * s.length.clone())
+    }
+}
+
+impl<T: Real> QiInterpolation<T> {
+    fn segment_at(&self, t: &T) -> Result<(usize, T), OutOfDomain> {
+        let (lo, hi) = ParamCurve::domain(self);
+        check_domain(t, &lo, &hi)?;
+        let i = (t.clone().floor().to_f64() as usize).min(self.segments.len() - 1);
+        Ok((i, t.clone() - T::from_int(i as i64)))
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
     #[allow(unused_imports)]
     use crate::scalar::prelude::*;
+    use crate::validation::InputError;
 
     fn helix(n: usize) -> Vec<Vector3<f64>> {
         (0..n)
@@ -341,19 +370,29 @@ mod tests {
         let o = QiOptions::<f64>::default();
         assert_eq!(
             interpolate(&helix(2), &o).unwrap_err(),
-            QiError::TooFewPoints(2)
+            QiError::Input(InputError::TooFewPoints {
+                what: "QI interpolation",
+                needed: 3,
+                got: 2
+            })
         );
         let mut p = helix(5);
         p[3].y = f64::NAN;
         assert_eq!(
             interpolate(&p, &o).unwrap_err(),
-            QiError::NonFinitePoint { index: 3 }
+            QiError::Input(InputError::NonFiniteAt {
+                what: "point",
+                index: 3
+            })
         );
         let mut p = helix(5);
         p[2].z = f64::INFINITY;
         assert_eq!(
             interpolate(&p, &o).unwrap_err(),
-            QiError::NonFinitePoint { index: 2 }
+            QiError::Input(InputError::NonFiniteAt {
+                what: "point",
+                index: 2
+            })
         );
         let mut p = helix(5);
         p[2] = p[1];

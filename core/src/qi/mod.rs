@@ -30,6 +30,7 @@ pub mod tangent;
 
 use crate::quadrature::QuadratureError;
 use crate::scalar::Real;
+use crate::validation::InputError;
 use thiserror::Error;
 
 pub use interpolate::{QiInterpolation, QiOptions, interpolate};
@@ -39,16 +40,11 @@ pub use segment::QiSegment;
 /// Why a QI construction or interpolation failed.
 #[derive(Debug, Clone, PartialEq, Error)]
 pub enum QiError {
-    /// The G2 system needs at least 3 points (two segments' worth of end
-    /// conditions come from circles through three points).
-    #[error("QI interpolation needs at least 3 points, got {0}")]
-    TooFewPoints(usize),
-    /// A coordinate is NaN or infinite.
-    #[error("point {index} has a non-finite coordinate")]
-    NonFinitePoint {
-        /// Index of the offending point.
-        index: usize,
-    },
+    /// Too few points (the G2 system needs 3: two segments' worth of end
+    /// conditions come from circles through three points), or a point with a
+    /// NaN or infinite coordinate.
+    #[error(transparent)]
+    Input(#[from] InputError),
     /// Consecutive points coincide (chord length zero at working precision).
     #[error("points {index} and {next} coincide", next = index + 1)]
     CoincidentPoints {

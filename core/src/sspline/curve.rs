@@ -14,73 +14,16 @@
 //! `D_{k−n..=k+n}` — the paper's local-modification claim.
 
 use super::end_conditions::{EndCondition, EndRule};
-use super::{SplineFamily, SsplineError, TruncatedBasis};
-use crate::bspline::de_boor::{BSpline, BSplineError};
+use super::{SplineFamily, TruncatedBasis};
+use crate::bspline::de_boor::BSpline;
 use crate::bspline::knots::KnotVector;
+use crate::param_curve::{ParamCurve, widen};
 use crate::scalar::Real;
+use crate::validation::{at_least, finite_point_at, finite_points, finite_vector};
 use nalgebra::SVector;
 
-/// Why an S-spline curve or surface could not be built, evaluated or edited.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
-pub enum CurveError {
-    /// Fewer than 2 data points (in some direction).
-    #[error("an S-spline curve needs at least 2 data points, got {0}")]
-    TooFewPoints(usize),
-    /// More basis order than data points.
-    #[error("order {order} exceeds the number of data points {points}")]
-    OrderTooHigh {
-        /// The spline order `m`.
-        order: u32,
-        /// Data points given.
-        points: usize,
-    },
-    /// A data point or tangent has a NaN or infinite coordinate.
-    #[error("data point {index} is not finite")]
-    NonFinite {
-        /// Index of the point (tangents: `usize::MAX`).
-        index: usize,
-    },
-    /// An edited index is outside the data.
-    #[error("point index {index} is outside 0..{len}")]
-    IndexOutOfRange {
-        /// The index given.
-        index: usize,
-        /// The number of points.
-        len: usize,
-    },
-    /// A parameter outside the curve's domain or not finite.
-    #[error("parameter {u} is outside the domain [{lo}, {hi}]")]
-    OutOfDomain {
-        /// The parameter (as f64).
-        u: f64,
-        /// Domain start.
-        lo: f64,
-        /// Domain end.
-        hi: f64,
-    },
-    /// The operation needs a B-spline family (not Beta2).
-    #[error("this operation needs a B-spline family, not {0}")]
-    NotBSpline(String),
-    /// The end condition is not available here (tangents on surfaces).
-    #[error("end condition not supported for surfaces: {0}")]
-    Unsupported(&'static str),
-    /// The grid does not have `ν_u · ν_v` points.
-    #[error("a {nu}×{nv} grid needs {} points, got {got}", *nu as u128 * *nv as u128)]
-    GridSize {
-        /// Points in `u`.
-        nu: usize,
-        /// Points in `v`.
-        nv: usize,
-        /// Points given.
-        got: usize,
-    },
-    /// Coefficient computation failed.
-    #[error(transparent)]
-    Sspline(#[from] SsplineError),
-    /// The B-spline view could not be built.
-    #[error(transparent)]
-    BSpline(#[from] BSplineError),
-}
+/// S-spline curves and surfaces share [`crate::curves::CurveError`].
+pub use crate::curves::CurveError;
 
 /// One direction of an S-spline: basis family, coefficients `c_0..c_n`, end
 /// rule, data count, and the range of control indices it needs.
@@ -103,9 +46,7 @@ impl<T: Real> Axis<T> {
         rule: EndRule,
         len: usize,
     ) -> Result<Self, CurveError> {
-        if len < 2 {
-            return Err(CurveError::TooFewPoints(len));
-        }
+        at_least("an S-spline curve", 2, len)?;
         let m = family.spline_order();
         if m as usize > len {
             return Err(CurveError::OrderTooHigh {
@@ -146,7 +87,7 @@ impl<T: Real> Axis<T> {
         let (lo, hi) = self.domain();
         let uf = u.to_f64();
         if !u.is_finite() || *u < T::zero() || *u > T::from_int(hi as i64) {
-            return Err(CurveError::OutOfDomain { u: uf, lo, hi });
+            return Err(CurveError::OutOfDomain { t: uf, lo, hi });
         }
         Ok(())
     }
@@ -196,7 +137,7 @@ impl<T: Real> Axis<T> {
         let t = (0..self.count as i64 + m)
             .map(|j| T::from_int(start + 2 * j).scale_by_pow2(-1))
             .collect();
-        Ok(KnotVector::new(t).map_err(BSplineError::from)?)
+        Ok(KnotVector::new(t).map_err(crate::bspline::de_boor::BSplineError::from)?)
     }
 }
 
@@ -223,13 +164,6 @@ pub struct SsplineCurve<T: Real, const D: usize> {
     end: EndCondition<T, D>,
     data: Vec<SVector<T, D>>,
     control: Vec<SVector<T, D>>,
-}
-
-fn check_finite<T: Real, const D: usize>(p: &[SVector<T, D>]) -> Result<(), CurveError> {
-    match p.iter().position(|q| q.iter().any(|x| !x.is_finite())) {
-        Some(index) => Err(CurveError::NonFinite { index }),
-        None => Ok(()),
-    }
 }
 
 impl<T: Real, const D: usize> SsplineCurve<T, D> {
@@ -260,10 +194,10 @@ impl<T: Real, const D: usize> SsplineCurve<T, D> {
         end: EndCondition<T, D>,
     ) -> Result<Self, CurveError> {
         let axis = Axis::new(family, n, end.rule(), data.len())?;
-        check_finite(data)?;
+        finite_points("data point", data)?;
         if let EndCondition::Tangents { start, end } = &end {
-            check_finite(&[start.clone(), end.clone()])
-                .map_err(|_| CurveError::NonFinite { index: usize::MAX })?;
+            finite_vector("the start tangent", start)?;
+            finite_vector("the end tangent", end)?;
         }
         let mut curve = SsplineCurve {
             axis,
@@ -389,6 +323,16 @@ impl<T: Real, const D: usize> SsplineCurve<T, D> {
                 len: self.data.len(),
             });
         }
-        check_finite(std::slice::from_ref(p)).map_err(|_| CurveError::NonFinite { index: k })
+        Ok(finite_point_at("data point", k, p)?)
+    }
+}
+
+impl<T: Real, const D: usize> ParamCurve<T, D> for SsplineCurve<T, D> {
+    type Error = CurveError;
+    fn domain(&self) -> (T, T) {
+        widen(SsplineCurve::domain(self))
+    }
+    fn eval(&self, t: &T) -> Result<SVector<T, D>, CurveError> {
+        SsplineCurve::eval(self, t)
     }
 }

@@ -24,6 +24,7 @@ use super::curve::CurveError;
 use crate::bspline::de_boor::BSpline;
 use crate::bspline::knots::KnotVector;
 use crate::scalar::Real;
+use crate::validation::{InputError, at_least, finite_points, finite_vector};
 use nalgebra::SVector;
 
 /// End conditions of the global cubic spline.
@@ -57,16 +58,11 @@ pub fn control_points<T: Real, const D: usize>(
     ends: &CubicEnds<T, D>,
 ) -> Result<Vec<SVector<T, D>>, CurveError> {
     let n = data.len();
-    if n < 2 {
-        return Err(CurveError::TooFewPoints(n));
-    }
-    if let Some(index) = data.iter().position(|p| p.iter().any(|x| !x.is_finite())) {
-        return Err(CurveError::NonFinite { index });
-    }
-    if let CubicEnds::Clamped { start, end } = ends
-        && start.iter().chain(end.iter()).any(|x| !x.is_finite())
-    {
-        return Err(CurveError::NonFinite { index: usize::MAX });
+    at_least("a global cubic interpolant", 2, n)?;
+    finite_points("data point", data)?;
+    if let CubicEnds::Clamped { start, end } = ends {
+        finite_vector("the start tangent", start)?;
+        finite_vector("the end tangent", end)?;
     }
     Ok(solve(data, ends))
 }
@@ -152,7 +148,12 @@ pub fn surface_control_points<T: Real, const D: usize>(
     ends: &CubicEnds<T, D>,
 ) -> Result<Vec<SVector<T, D>>, CurveError> {
     if nu < 2 || nv < 2 {
-        return Err(CurveError::TooFewPoints(nu.min(nv)));
+        return Err(InputError::TooFewPoints {
+            what: "a global cubic surface (per direction)",
+            needed: 2,
+            got: nu.min(nv),
+        }
+        .into());
     }
     if nu.checked_mul(nv) != Some(data.len()) {
         return Err(CurveError::GridSize {

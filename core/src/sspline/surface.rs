@@ -16,7 +16,9 @@
 use super::SplineFamily;
 use super::curve::{Axis, CurveError, convolve_at};
 use super::end_conditions::EndRule;
+use crate::param_curve::{ParamSurface, widen};
 use crate::scalar::Real;
+use crate::validation::{finite_point_at, finite_points};
 use nalgebra::SVector;
 
 /// One direction of a surface: family, half-width, end rule.
@@ -70,9 +72,7 @@ impl<T: Real, const D: usize> SsplineSurface<T, D> {
         }
         let u = Axis::new(&du.family, du.n, du.rule, nu)?;
         let v = Axis::new(&dv.family, dv.n, dv.rule, nv)?;
-        if let Some(index) = data.iter().position(|p| p.iter().any(|x| !x.is_finite())) {
-            return Err(CurveError::NonFinite { index });
-        }
+        finite_points("data point", data)?;
         let mut s = SsplineSurface {
             u,
             v,
@@ -222,9 +222,17 @@ impl<T: Real, const D: usize> SsplineSurface<T, D> {
                 len: if a >= nu { nu } else { nv },
             });
         }
-        if p.iter().any(|x| !x.is_finite()) {
-            return Err(CurveError::NonFinite { index: a * nv + b });
-        }
-        Ok(())
+        Ok(finite_point_at("data point", a * nv + b, p)?)
+    }
+}
+
+impl<T: Real, const D: usize> ParamSurface<T, D> for SsplineSurface<T, D> {
+    type Error = CurveError;
+    fn domain(&self) -> ((T, T), (T, T)) {
+        let (u, v) = SsplineSurface::domain(self);
+        (widen(u), widen(v))
+    }
+    fn eval(&self, u: &T, v: &T) -> Result<SVector<T, D>, CurveError> {
+        SsplineSurface::eval(self, u, v)
     }
 }

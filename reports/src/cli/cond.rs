@@ -8,9 +8,9 @@ use crate::output::{emit, print_json};
 use crate::with_real;
 use clap::Args;
 use serde_json::json;
-use splinelab::bernstein::vandermonde::NodeFamily;
-use splinelab::conditioning::ConditionError;
+use splinelab::matrix_condition::ConditionError;
 use splinelab::scalar::Real;
+use splinelab::surface_deformation::vandermonde::NodeFamily;
 use splinelab_verify::conditioning::{Basis, CondCase, StudyError, condition_numbers};
 
 /// Largest degree accepted: a 501 × 501 matrix, already minutes in MPFR.
@@ -53,7 +53,7 @@ pub enum BasisArg {
 
 fn parse_nodes(s: &str) -> Result<NodeFamily, String> {
     s.parse()
-        .map_err(|e: splinelab::bernstein::vandermonde::VandermondeError| e.to_string())
+        .map_err(|e: splinelab::surface_deformation::vandermonde::VandermondeError| e.to_string())
 }
 
 /// The cost of `cond`: an SVD and an inverse of the (n+1)×(n+1) matrix
@@ -70,7 +70,7 @@ pub fn estimate(degree: usize, bits: u32) -> Estimate {
 
 /// How far the printed condition numbers can be trusted: the SVD's `σ_min`
 /// is only known to `≈ N·u·cond₂` relative (backward stability, see
-/// [`splinelab::conditioning::cond2`]), so `cond₂` has about
+/// [`splinelab::matrix_condition::cond2`]), so `cond₂` has about
 /// `−log10(N·u·cond₂)` correct digits at unit roundoff `u`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Trust {

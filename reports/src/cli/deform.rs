@@ -24,11 +24,11 @@ use crate::report::bernstein_inverse::surface_chart;
 use clap::Args;
 use serde::Deserialize;
 use serde_json::json;
-use splinelab::bernstein::bv_solve::TensorSolver;
-use splinelab::bernstein::continuity::correct_continuity;
-use splinelab::bernstein::inverse_mapping::{SampleGrid, deform_grid};
-use splinelab::bernstein::patch::{Patch, PatchGrid, Point3};
-use splinelab::bernstein::vandermonde::NodeFamily;
+use splinelab::surface_deformation::bv_solve::TensorSolver;
+use splinelab::surface_deformation::continuity::correct_continuity;
+use splinelab::surface_deformation::inverse_mapping::{SampleGrid, deform_grid};
+use splinelab::surface_deformation::patch::{Patch, PatchGrid, Point3};
+use splinelab::surface_deformation::vandermonde::NodeFamily;
 use splinelab_verify::deform::{
     Defects, PushParams, defects, grid_to_f64, push_surfaces, sample_residual,
 };

@@ -10,8 +10,8 @@ use crate::chart::{Chart, Series, line_chart};
 use crate::error::CliError;
 use crate::html::{num, paragraph, table};
 use serde_json::json;
-use splinelab::bernstein::patch::{Patch, Point3};
-use splinelab::bernstein::vandermonde::NodeFamily;
+use splinelab::surface_deformation::patch::{Patch, Point3};
+use splinelab::surface_deformation::vandermonde::NodeFamily;
 use splinelab_verify::bv_solvers::{
     BvRow, REF_BITS, RHS_SAMPLES, RhsKind, SolveError, TimingRow, run_bv_solvers, time_solvers,
 };

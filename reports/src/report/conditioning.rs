@@ -5,7 +5,7 @@ use crate::chart::{Chart, Series, line_chart};
 use crate::error::CliError;
 use crate::html::{num, paragraph, table};
 use serde_json::json;
-use splinelab::bernstein::vandermonde::NodeFamily;
+use splinelab::surface_deformation::vandermonde::NodeFamily;
 use splinelab_verify::conditioning::{Basis, CondRow, REF_BITS, run_conditioning};
 
 const HEADLINE_DEGREES: [usize; 3] = [10, 20, 30];

@@ -5,7 +5,7 @@
 //! `B_{ji} = B_i^n(t_j)` (Bernstein) or `t_jⁱ` (monomial) is formed in `T`
 //! and `cond₂ = σ_max / σ_min` (singular values) or
 //! `cond_∞ = ‖A‖_∞ ‖A⁻¹‖_∞` (LU inverse) computed in `T`
-//! ([`splinelab::conditioning`]), certified by the `p / p + 64` agreement
+//! ([`splinelab::matrix_condition`]), certified by the `p / p + 64` agreement
 //! of the whole computation — so the reference's own rounding, amplified by
 //! the condition number, is shown to be far below one ulp of what is
 //! reported, raising `p` as far as the conditioning needs. Cost `O(n³)` per
@@ -16,9 +16,9 @@ use super::format::UserFormat;
 use super::summary::{CheckSummary, Context, summarize};
 use super::{CheckError, require_finite, require_len};
 use crate::conditioning::Basis;
-use splinelab::bernstein::vandermonde::{bernstein_vandermonde, monomial_vandermonde};
-use splinelab::conditioning::{cond_inf, cond2};
+use splinelab::matrix_condition::{cond_inf, cond2};
 use splinelab::scalar::Real;
+use splinelab::surface_deformation::vandermonde::{bernstein_vandermonde, monomial_vandermonde};
 
 /// Largest number of nodes in one set (a 501 × 501 matrix, as `splinelab cond`).
 pub const MAX_NODES: usize = 501;

@@ -10,7 +10,6 @@ use nalgebra::{SVector, Vector2, Vector3};
 use rug::Float;
 use serde::{Deserialize, Serialize};
 use splinelab::bernstein::bezier::Bezier;
-use splinelab::bernstein::patch::Patch;
 use splinelab::bspline::de_boor::BSpline;
 use splinelab::bspline::knots::KnotVector;
 use splinelab::bspline::nurbs::{NurbsCurve, NurbsSurface};
@@ -19,6 +18,7 @@ use splinelab::curves::flatten::flatten;
 use splinelab::curves::hermite::Hermite;
 use splinelab::curves::rational_bezier::RationalBezier;
 use splinelab::scalar::prelude::*;
+use splinelab::surface_deformation::patch::Patch;
 
 /// Worst errors of cubic Hermite segments, in units of `u` relative to the
 /// data scale: end values, end derivatives, and Hermite vs its Bézier form

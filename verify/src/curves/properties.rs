@@ -7,13 +7,13 @@ use super::{CurvesStudyError, err};
 use crate::rng::SplitMix64;
 use nalgebra::{Vector2, Vector3};
 use serde::{Deserialize, Serialize};
-use splinelab::bernstein::patch::Patch;
 use splinelab::bspline::de_boor::BSpline;
 use splinelab::bspline::knots::KnotVector;
 use splinelab::curves::catmull_rom::{CatmullRom, Spacing};
 use splinelab::curves::hermite::Hermite;
 use splinelab::curves::rational_bezier::RationalBezier;
 use splinelab::scalar::prelude::*;
+use splinelab::surface_deformation::patch::Patch;
 
 /// One verified property with its measured worst error.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]

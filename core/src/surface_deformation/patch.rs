@@ -8,8 +8,10 @@
 //! control net, so a per-patch deformation may break the joins;
 //! [`continuity`](super::continuity) measures and restores them.
 
-use super::basis::bernstein_basis;
+use crate::bernstein::basis::bernstein_basis;
+use crate::param_curve::{ParamSurface, ParamSurfaceDeriv, unit};
 use crate::scalar::Real;
+use crate::validation::{InputError, finite_points};
 use nalgebra::Vector3;
 use rug::Rational;
 
@@ -32,12 +34,10 @@ pub enum PatchError {
         /// Points given.
         got: usize,
     },
-    /// A control point has a NaN or infinite coordinate.
-    #[error("control point {index} is not finite")]
-    NonFinitePoint {
-        /// Index `i(n+1) + j` of `P_ij`.
-        index: usize,
-    },
+    /// A control point (index `i(n+1) + j` of `P_ij`) has a NaN or infinite
+    /// coordinate.
+    #[error(transparent)]
+    Input(#[from] InputError),
     /// A parameter is NaN or outside `[0, 1]`.
     #[error("parameter {name} = {value} is not in [0, 1]")]
     Parameter {
@@ -141,12 +141,7 @@ impl<T: Real> Patch<T> {
                 got: control.len(),
             });
         }
-        if let Some(index) = control
-            .iter()
-            .position(|p| p.iter().any(|x| !x.is_finite()))
-        {
-            return Err(PatchError::NonFinitePoint { index });
-        }
+        finite_points("control point", &control)?;
         Ok(Patch { degree, control })
     }
 
@@ -193,7 +188,7 @@ impl<T: Real> Patch<T> {
     ///
     /// ```
     /// use nalgebra::Vector3;
-    /// use splinelab::bernstein::patch::Patch;
+    /// use splinelab::surface_deformation::patch::Patch;
     /// let z = Vector3::zeros();
     /// let p = Patch::bilinear(3, &z, &Vector3::new(2.0, 0.0, 0.0), &Vector3::new(0.0, 4.0, 0.0)).unwrap();
     /// assert_eq!(p.eval(&0.25, &0.5).unwrap(), Vector3::new(0.5, 2.0, 0.0));
@@ -332,6 +327,22 @@ impl<T: Real> PatchGrid<T> {
     }
 }
 
+impl<T: Real> ParamSurface<T, 3> for Patch<T> {
+    type Error = PatchError;
+    fn domain(&self) -> ((T, T), (T, T)) {
+        (unit(), unit())
+    }
+    fn eval(&self, u: &T, v: &T) -> Result<Vector3<T>, PatchError> {
+        Patch::eval(self, u, v)
+    }
+}
+
+impl<T: Real> ParamSurfaceDeriv<T, 3> for Patch<T> {
+    fn partials(&self, u: &T, v: &T) -> Result<(Vector3<T>, Vector3<T>), PatchError> {
+        self.derivatives(u, v)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -408,7 +419,10 @@ mod tests {
         c[2].y = f64::NAN;
         assert_eq!(
             Patch::new(1, c),
-            Err(PatchError::NonFinitePoint { index: 2 })
+            Err(PatchError::Input(InputError::NonFiniteAt {
+                what: "control point",
+                index: 2
+            }))
         );
         let p = saddle();
         assert!(matches!(

@@ -10,6 +10,7 @@ use super::bv_solve::{BvError, TensorSolver, check_nodes, solve_tensor};
 use super::patch::{Patch, PatchError, PatchGrid, Point3};
 use super::vandermonde::{NodeFamily, VandermondeError};
 use crate::scalar::Real;
+use crate::validation::{InputError, finite_points};
 use nalgebra::DMatrix;
 
 /// Why an inverse mapping or deformation failed. Nothing is computed on bad
@@ -46,14 +47,9 @@ pub enum InverseMappingError {
         /// Number given.
         got: usize,
     },
-    /// A sample point or flow vector is not finite.
-    #[error("{what} {index} is not finite")]
-    NonFinite {
-        /// `sample point` or `flow vector`.
-        what: &'static str,
-        /// Its index `a(n+1) + b`.
-        index: usize,
-    },
+    /// A sample point or flow vector (index `a(n+1) + b`) is not finite.
+    #[error(transparent)]
+    Input(#[from] InputError),
     /// The number of per-patch flow fields does not match the grid.
     #[error("the grid has {expected} patches, got flow vectors for {got}")]
     PatchCount {
@@ -149,9 +145,7 @@ fn to_matrix<T: Real>(
             got: points.len(),
         });
     }
-    if let Some(index) = points.iter().position(|p| p.iter().any(|x| !x.is_finite())) {
-        return Err(InverseMappingError::NonFinite { what, index });
-    }
+    finite_points(what, points)?;
     Ok(DMatrix::from_fn(expected, 3, |r, c| points[r][c].clone()))
 }
 
@@ -171,9 +165,9 @@ fn to_points<T: Real>(m: &DMatrix<T>) -> Vec<Point3<T>> {
 ///
 /// ```
 /// use nalgebra::Vector3;
-/// use splinelab::bernstein::bv_solve::TensorSolver;
-/// use splinelab::bernstein::inverse_mapping::{SampleGrid, control_points};
-/// use splinelab::bernstein::vandermonde::NodeFamily;
+/// use splinelab::surface_deformation::bv_solve::TensorSolver;
+/// use splinelab::surface_deformation::inverse_mapping::{SampleGrid, control_points};
+/// use splinelab::surface_deformation::vandermonde::NodeFamily;
 /// let grid = SampleGrid::<f64>::from_family(NodeFamily::Equispaced, 1).unwrap();
 /// let s = [Vector3::zeros(), Vector3::y(), Vector3::x(), Vector3::new(1.0, 1.0, 1.0)];
 /// let p = control_points(&grid, &s, TensorSolver::KroneckerMarcoMartinez).unwrap();
@@ -312,7 +306,10 @@ mod tests {
         flow[4].z = f64::NAN;
         assert!(matches!(
             deform(&p, &g, &flow, TensorSolver::FullLu),
-            Err(InverseMappingError::NonFinite { index: 4, .. })
+            Err(InverseMappingError::Input(InputError::NonFiniteAt {
+                index: 4,
+                ..
+            }))
         ));
     }
 }

@@ -75,7 +75,7 @@ pub fn singular_values<T: Real>(a: &DMatrix<T>) -> Result<Vec<T>, ConditionError
 ///
 /// ```
 /// use nalgebra::DMatrix;
-/// use splinelab::conditioning::cond2;
+/// use splinelab::matrix_condition::cond2;
 /// let a = DMatrix::from_row_slice(2, 2, &[2.0f64, 0.0, 0.0, 0.5]);
 /// assert!((cond2(&a).unwrap() - 4.0).abs() < 1e-15);
 /// ```

@@ -182,7 +182,7 @@ fn check_rhs<T: Real>(rhs: &DMatrix<T>, expected: usize) -> Result<(), BvError> 
 /// error `O(n² u)` for sign-alternating data, independent of `cond(A)`.
 ///
 /// ```
-/// use splinelab::bernstein::bv_solve::BvBidiagonal;
+/// use splinelab::surface_deformation::bv_solve::BvBidiagonal;
 /// // p(t) = t at nodes 0, ½, 1: the Bézier coefficients of t are (0, ½, 1).
 /// let bd = BvBidiagonal::new(&[0.0f64, 0.5, 1.0]).unwrap();
 /// let mut r = vec![0.0, 0.5, 1.0];
@@ -304,7 +304,7 @@ fn lower_row<T: Real>(t: &[T], om: &[T], n: usize, i: usize) -> Vec<T> {
 
 /// `p_ii = C(n,i) (1−t_i)^{n−i} Π_{a<i} (t_i − t_a)/(1−t_a)`.
 fn pivot<T: Real>(t: &[T], om: &[T], n: usize, i: usize) -> T {
-    let binom = super::basis::binomial_real::<T>(n as u32, i as u32);
+    let binom = crate::bernstein::basis::binomial_real::<T>(n as u32, i as u32);
     let mut p = binom * om[i].clone().powi((n - i) as i32);
     for a in 0..i {
         p *= (t[i].clone() - t[a].clone()) / om[a].clone();
@@ -388,7 +388,7 @@ impl<T: Real> Factorised<T> {
 ///
 /// ```
 /// use nalgebra::DMatrix;
-/// use splinelab::bernstein::bv_solve::{Method1d, solve_1d};
+/// use splinelab::surface_deformation::bv_solve::{Method1d, solve_1d};
 /// let r = DMatrix::from_column_slice(3, 1, &[1.0f64, -1.0, 1.0]);
 /// let c = solve_1d(&[0.0, 0.5, 1.0], &r, Method1d::MarcoMartinez).unwrap();
 /// // p(½) = c0/4 + c1/2 + c2/4 = −1 with c0 = c2 = 1 gives c1 = −3.
@@ -462,7 +462,7 @@ impl std::str::FromStr for TensorSolver {
 ///
 /// ```
 /// use nalgebra::DMatrix;
-/// use splinelab::bernstein::bv_solve::{TensorSolver, solve_tensor};
+/// use splinelab::surface_deformation::bv_solve::{TensorSolver, solve_tensor};
 /// let t = [0.0f64, 1.0];
 /// // Bilinear patch: the samples at the corners are the control points.
 /// let r = DMatrix::from_column_slice(4, 1, &[1.0, 2.0, 3.0, 4.0]);
@@ -521,8 +521,8 @@ fn kronecker<T: Real>(
 mod tests {
     use super::*;
     use crate::bernstein::basis::binomial;
-    use crate::bernstein::vandermonde::NodeFamily;
     use crate::scalar::prelude::*;
+    use crate::surface_deformation::vandermonde::NodeFamily;
     use rug::ops::Pow;
 
     fn exact_bv(t: &[Rational]) -> Vec<Vec<Rational>> {

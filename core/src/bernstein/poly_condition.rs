@@ -1,6 +1,6 @@
 //! Condition numbers of evaluating a polynomial in Bernstein or power form
 //! and the classic a-priori error bounds. (Condition numbers of matrices are
-//! in [`crate::conditioning`]; the running-error arithmetic of the bounded
+//! in [`crate::matrix_condition`]; the running-error arithmetic of the bounded
 //! evaluators in [`crate::scalar::running_error`].)
 //!
 //! **References**: Farouki & Rajan, *On the numerical condition of
@@ -34,7 +34,7 @@ pub fn bernstein_abs_sum<T: Real>(poly: &BernsteinPoly<T>, t: &T) -> T {
 /// `None` when `p(t)` evaluates to 0 (infinite condition).
 ///
 /// ```
-/// use splinelab::bernstein::{bezier::BernsteinPoly, condition::cond_bernstein};
+/// use splinelab::bernstein::{bezier::BernsteinPoly, poly_condition::cond_bernstein};
 /// // 1 − 2t = (1 − t)·1 + t·(−1): at t = 1/4, Σ|b_i|B_i = 1, p = 1/2.
 /// let p = BernsteinPoly::new(vec![1.0f64, -1.0]).unwrap();
 /// assert_eq!(cond_bernstein(&p, &0.25), Some(2.0));
@@ -58,7 +58,7 @@ pub fn power_abs_sum<T: Real>(monomial: &[T], t: &T) -> T {
 /// `None` when `p(t)` evaluates to 0.
 ///
 /// ```
-/// use splinelab::bernstein::condition::cond_power;
+/// use splinelab::bernstein::poly_condition::cond_power;
 /// // 1 − 2t at t = 1/4: (1 + 1/2)/(1/2) = 3 — worse than the Bernstein basis.
 /// assert_eq!(cond_power(&[1.0f64, -2.0], &0.25), Some(3.0));
 /// ```

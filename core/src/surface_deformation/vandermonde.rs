@@ -5,7 +5,7 @@
 //! samples on a grid `u_a × v_b` the matrix `B̃` is the Kronecker product
 //! `B_u ⊗ B_v` of two univariate Bernstein–Vandermonde matrices.
 
-use super::basis::bernstein_basis;
+use crate::bernstein::basis::bernstein_basis;
 use crate::scalar::Real;
 use nalgebra::DMatrix;
 use rug::Rational;
@@ -121,7 +121,7 @@ impl FromStr for NodeFamily {
 /// nodes in `[0, 1]`.
 ///
 /// ```
-/// use splinelab::bernstein::vandermonde::bernstein_vandermonde;
+/// use splinelab::surface_deformation::vandermonde::bernstein_vandermonde;
 /// let a = bernstein_vandermonde(&[0.0f64, 0.5, 1.0]);
 /// assert_eq!(a[(1, 1)], 0.5);
 /// ```

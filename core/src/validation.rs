@@ -1,0 +1,145 @@
+//! Input validation shared by every constructor: one error type for "too few
+//! points" and "not finite", and the small checks that produce it.
+//!
+//! Each module's error enum embeds [`InputError`] through `#[from]` (e.g.
+//! [`CurveError::Input`](crate::curves::CurveError::Input)), so a check is
+//! written once here and its message reads the same everywhere.
+
+use crate::scalar::Real;
+use nalgebra::SVector;
+
+/// Why an input was refused before any computation: one shape for all
+/// modules.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+pub enum InputError {
+    /// Fewer points than the construction needs.
+    #[error("{what} needs at least {needed} points, got {got}")]
+    TooFewPoints {
+        /// The construction (e.g. "a Catmull–Rom spline").
+        what: &'static str,
+        /// Minimum number of points.
+        needed: usize,
+        /// Points given.
+        got: usize,
+    },
+    /// An element of a list (point, knot, sample, …) has a NaN or infinite
+    /// coordinate.
+    #[error("{what} {index} is not finite")]
+    NonFiniteAt {
+        /// What the list holds (e.g. "point", "knot").
+        what: &'static str,
+        /// Position of the offending element.
+        index: usize,
+    },
+    /// A single named input (parameter, radius, tangent) is NaN or infinite.
+    #[error("{name} is not finite")]
+    NonFinite {
+        /// Which input.
+        name: &'static str,
+    },
+}
+
+/// `Ok` when `got ≥ needed`, else [`InputError::TooFewPoints`].
+///
+/// ```
+/// use splinelab::validation::{InputError, at_least};
+/// assert!(at_least("a curve", 2, 2).is_ok());
+/// let e = at_least("a curve", 2, 1).unwrap_err();
+/// assert_eq!(e, InputError::TooFewPoints { what: "a curve", needed: 2, got: 1 });
+/// assert_eq!(e.to_string(), "a curve needs at least 2 points, got 1");
+/// ```
+pub fn at_least(what: &'static str, needed: usize, got: usize) -> Result<(), InputError> {
+    if got >= needed {
+        Ok(())
+    } else {
+        Err(InputError::TooFewPoints { what, needed, got })
+    }
+}
+
+/// `Ok` when `x` is finite, else [`InputError::NonFinite`] naming it.
+pub fn finite<T: Real>(name: &'static str, x: &T) -> Result<(), InputError> {
+    if x.is_finite() {
+        Ok(())
+    } else {
+        Err(InputError::NonFinite { name })
+    }
+}
+
+/// `Ok` when every scalar is finite, else [`InputError::NonFiniteAt`] at the
+/// first that is not. **Cost** one pass.
+pub fn finite_scalars<T: Real>(what: &'static str, xs: &[T]) -> Result<(), InputError> {
+    first_failing(what, xs.iter().map(|x| x.is_finite()))
+}
+
+/// `Ok` when every coordinate of every point is finite, else
+/// [`InputError::NonFiniteAt`] at the first point that is not.
+///
+/// ```
+/// use nalgebra::Vector2;
+/// use splinelab::validation::{InputError, finite_points};
+/// let p = [Vector2::new(0.0, 1.0), Vector2::new(f64::NAN, 0.0)];
+/// assert_eq!(finite_points("point", &p), Err(InputError::NonFiniteAt { what: "point", index: 1 }));
+/// ```
+pub fn finite_points<T: Real, const D: usize>(
+    what: &'static str,
+    points: &[SVector<T, D>],
+) -> Result<(), InputError> {
+    first_failing(what, points.iter().map(|p| p.iter().all(|x| x.is_finite())))
+}
+
+/// [`finite`] for every coordinate of one vector (a tangent, a centre).
+pub fn finite_vector<T: Real, const D: usize>(
+    name: &'static str,
+    v: &SVector<T, D>,
+) -> Result<(), InputError> {
+    if v.iter().all(|x| x.is_finite()) {
+        Ok(())
+    } else {
+        Err(InputError::NonFinite { name })
+    }
+}
+
+/// [`finite_points`] for one point that sits at `index` of a list (an
+/// edited data point).
+pub fn finite_point_at<T: Real, const D: usize>(
+    what: &'static str,
+    index: usize,
+    p: &SVector<T, D>,
+) -> Result<(), InputError> {
+    finite_points(what, std::slice::from_ref(p))
+        .map_err(|_| InputError::NonFiniteAt { what, index })
+}
+
+fn first_failing(what: &'static str, mut ok: impl Iterator<Item = bool>) -> Result<(), InputError> {
+    match ok.position(|f| !f) {
+        Some(index) => Err(InputError::NonFiniteAt { what, index }),
+        None => Ok(()),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scalar::Mp;
+
+    #[test]
+    fn checks_refuse_nan_and_infinities_in_f64_and_mpfr() {
+        for x in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
+            assert_eq!(finite("t", &x), Err(InputError::NonFinite { name: "t" }));
+            let m = Mp::<64>::from_f64_exact(x);
+            assert_eq!(finite("t", &m), Err(InputError::NonFinite { name: "t" }));
+            let xs = [1.0, 2.0, x, x];
+            let e = finite_scalars("knot", &xs).unwrap_err();
+            assert_eq!(
+                e,
+                InputError::NonFiniteAt {
+                    what: "knot",
+                    index: 2
+                }
+            );
+            assert_eq!(e.to_string(), "knot 2 is not finite");
+        }
+        assert!(finite_scalars::<f64>("knot", &[]).is_ok());
+        assert!(finite("t", &f64::MAX).is_ok());
+    }
+}
