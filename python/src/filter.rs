@@ -146,6 +146,13 @@ where
     if src.as_ref().is_some_and(|s| s.shape() != out.shape()) {
         return Err(value_error("input and output shapes differ"));
     }
+    // One line is filtered by one thread whatever `threads` says: run it on
+    // the calling thread rather than hand it to a pool thread and wait.
+    let one_line = matches!(axes.as_slice(), [a] if out.shape().get(*a) == Some(&out.len()));
+    let threads = match threads {
+        Some(n) if one_line && n > 0 => None,
+        t => t,
+    };
     py.detach(|| run_with(threads, || filter_into(src, &mut out, &axes, &spec)))?
         .map_err(value_error)
 }
