@@ -82,6 +82,13 @@ fn copy_checked<T: Real + Copy>(src: &[T], dst: &mut [T]) -> Result<(), Prefilte
     Err(PrefilterError::NonFinite(i))
 }
 
+/// Whether filtering `axes` of an array of `shape` (`len` elements) is one
+/// line: a single axis holding every element (an out-of-range axis is not;
+/// the engine reports it).
+fn one_line(shape: &[usize], len: usize, axes: &[usize]) -> bool {
+    matches!(axes, [a] if shape.get(*a) == Some(&len))
+}
+
 /// Filters `out` (C order) along `axes`, after copying `src` into it when
 /// given (else `out` already holds the samples).
 fn filter_into<T: Real + Copy + Send + Sync + 'static>(
@@ -92,7 +99,7 @@ fn filter_into<T: Real + Copy + Send + Sync + 'static>(
 ) -> Result<(), PrefilterError> {
     let filter = spec.line_filter::<T>()?;
     let line = match (&src, &filter) {
-        (Some(s), Some(_)) if axes.len() == 1 && out.len() == out.shape()[axes[0]] => s.as_slice(),
+        (Some(s), Some(_)) if one_line(out.shape(), out.len(), axes) => s.as_slice(),
         _ => None,
     };
     let (Some(s), Some(f), Some(d)) = (line, &filter, out.as_slice_mut()) else {
@@ -148,9 +155,8 @@ where
     }
     // One line is filtered by one thread whatever `threads` says: run it on
     // the calling thread rather than hand it to a pool thread and wait.
-    let one_line = matches!(axes.as_slice(), [a] if out.shape().get(*a) == Some(&out.len()));
     let threads = match threads {
-        Some(n) if one_line && n > 0 => None,
+        Some(n) if n > 0 && one_line(out.shape(), out.len(), &axes) => None,
         t => t,
     };
     py.detach(|| run_with(threads, || filter_into(src, &mut out, &axes, &spec)))?

@@ -59,6 +59,13 @@ def test_bad_input_raises(call, exc, words):
     assert words.lower() in str(e.value).lower()
 
 
+def test_extension_refuses_a_bad_axis_without_panicking():
+    # The compiled half reached directly (bypassing the Python checks).
+    x = np.ones(5)
+    with pytest.raises(ValueError, match="axis 3 is out of range"):
+        splinelab._ext.filter_f64(x, np.empty(5), [3], 3, "mirror", 0.0, None, 1)
+
+
 def test_non_finite_user_values_are_failures_not_errors():
     s = np.array([1.0, 2.0, 0.5, 3.0])
     c = splinelab.spline_filter1d(s)
