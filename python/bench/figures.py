@@ -13,8 +13,9 @@
    spline_filter in the same run (ratio = scipy_s / ours_s);
 3. seam: dask seam error (max |chunked - exact|) of splinelab.dask and of
    dask-image at their defaults, degrees 3, 5, 2048^2 in 4 x 4 chunks;
-4. cluster: wall time of a 2-worker LocalCluster (routes truncated and
-   recursive, 4 x 4 and 2 x 2 chunks) against one process on big^2
+4. cluster: wall time of a 2-worker LocalCluster (processes: routes
+   truncated and recursive, 4 x 4 and 2 x 2 chunks; thread workers in one
+   process: both routes, 4 x 4) against one process on big^2
    (generate, filter, reduce to max|c|).
 """
 
@@ -120,15 +121,24 @@ def cluster(big):
         m = np.abs(splinelab.spline_filter(x, 3, threads=threads)).max()
         return time.perf_counter() - t0, m
 
+    def timed(client, route, split):
+        x = da.random.default_rng(0).uniform(-1, 1, (big, big), chunks=big // split)
+        t0 = time.perf_counter()
+        m = client.compute(abs(sld.spline_filter(x, 3, route=route)).max()).result()
+        return time.perf_counter() - t0, m
+
     runs = {}
     with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, host="127.0.0.1",
                                   dashboard_address=None) as lc, distributed.Client(lc) as client:
         for route in ("truncated", "recursive"):
             for split in (4, 2):
-                x = da.random.default_rng(0).uniform(-1, 1, (big, big), chunks=big // split)
-                t0 = time.perf_counter()
-                m = client.compute(abs(sld.spline_filter(x, 3, route=route)).max()).result()
-                runs[f"{route}_{split}x{split}"] = (time.perf_counter() - t0, m)
+                runs[f"{route}_{split}x{split}"] = timed(client, route, split)
+    # Two thread workers in one process: no pickling of chunks and halos.
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=False,
+                                  dashboard_address=None) as lc, distributed.Client(lc) as client:
+        timed(client, "recursive", 8)  # warm-up
+        for route in ("truncated", "recursive"):
+            runs[f"threads_{route}_4x4"] = timed(client, route, 4)
     t1, m1 = one_process(1)
     t2, m2 = one_process(None)
     emit(figure="cluster", n=big, degree=3, cluster_2_workers_s=runs["truncated_4x4"][0],
