@@ -4,15 +4,19 @@
     cargo build --release -p splinelab-benches --bin engine_peer
     .venv/bin/python python/bench/figures.py --bin $CARGO_TARGET_DIR/release/engine_peer [--big 8192]
 
-1. overhead: splinelab.spline_filter1d (threads=1) at N = 1e6 against the
-   Rust kernel alone (engine_peer filter1d, RAYON_NUM_THREADS=1), same data,
-   A/B alternated, medians;
+1. overhead: splinelab.spline_filter1d (threads=1) at N = 1e6 and 1e7
+   against the Rust kernel alone (engine_peer filter1d, RAYON_NUM_THREADS=1:
+   copy into a reused buffer + filter), same data, A/B alternated, medians;
+   the Python call both into a reused `output=` array (the same work) and
+   with a fresh result array (plus numpy's own fresh/reused copy for scale);
 2. scipy: throughput ratio against scipy.ndimage.spline_filter1d /
    spline_filter in the same run (ratio = scipy_s / ours_s);
 3. seam: dask seam error (max |chunked - exact|) of splinelab.dask and of
    dask-image at their defaults, degrees 3, 5, 2048^2 in 4 x 4 chunks;
-4. cluster: wall time of a 2-worker LocalCluster against one process on
-   big^2 (generate, filter, reduce to max|c|).
+4. cluster: wall time of a 2-worker LocalCluster (processes: routes
+   truncated and recursive, 4 x 4 and 2 x 2 chunks; thread workers in one
+   process: both routes, 4 x 4) against one process on big^2
+   (generate, filter, reduce to max|c|).
 """
 
 import argparse
@@ -34,6 +38,7 @@ sys.path.insert(0, str(ROOT / "benches" / "peers"))
 from scipy_ratio import data, median_time  # noqa: E402  (the same data as the engine bench)
 
 ROUNDS = 3
+OVERHEAD_ROUNDS = 7
 
 
 def emit(**kw):
@@ -48,13 +53,25 @@ def rust_kernel(binary, degree, n, reps):
 
 
 def overhead(binary):
-    s = data(1_000_000)
-    py, rs = [], []
-    for _ in range(ROUNDS):
-        py.append(median_time(lambda: splinelab.spline_filter1d(s, 3, threads=1), 21))
-        rs.append(rust_kernel(binary, 3, 1_000_000, 21))
-    p, r = sorted(py)[ROUNDS // 2], sorted(rs)[ROUNDS // 2]
-    emit(figure="overhead", n=1_000_000, degree=3, python_s=p, rust_s=r, overhead=p / r - 1)
+    """Per N, A/B alternated: the Python call writing into a reused array
+    (`output=buf`: the kernel's work, copy into a reused buffer + filter,
+    plus argument handling and the finite check fused into the copy), the
+    plain call (a fresh result array each time), the kernel alone, and
+    numpy's own copy into a fresh / a reused array for scale."""
+    for n in (1_000_000, 10_000_000):
+        s, buf = data(n), np.empty(n)
+        reps = 21 if n <= 1_000_000 else 9
+        t = {k: [] for k in ("into", "fresh", "rust", "np_fresh", "np_into")}
+        for _ in range(OVERHEAD_ROUNDS):
+            t["into"].append(median_time(lambda: splinelab.spline_filter1d(s, 3, output=buf, threads=1), reps))
+            t["rust"].append(rust_kernel(binary, 3, n, reps))
+            t["fresh"].append(median_time(lambda: splinelab.spline_filter1d(s, 3, threads=1), reps))
+            t["np_fresh"].append(median_time(lambda: np.copyto(np.empty_like(s), s), reps))
+            t["np_into"].append(median_time(lambda: np.copyto(buf, s), reps))
+        m = {k: sorted(v)[len(v) // 2] for k, v in t.items()}
+        emit(figure="overhead", n=n, degree=3, rounds=OVERHEAD_ROUNDS, python_s=m["fresh"], python_into_s=m["into"],
+             rust_s=m["rust"], overhead=m["fresh"] / m["rust"] - 1, overhead_into=m["into"] / m["rust"] - 1,
+             numpy_copy_fresh_s=m["np_fresh"], numpy_copy_into_s=m["np_into"])
 
 
 def versus_scipy():
@@ -92,6 +109,9 @@ def seams():
 
 
 def cluster(big):
+    """Generate uniform(-1, 1), filter (cubic), reduce to max|c|: a 2-worker
+    LocalCluster (data generated on the workers) per route and chunking,
+    against one process (numpy data, exact filter, 1 thread / all cores)."""
     import dask.array as da
     import distributed
 
@@ -101,16 +121,29 @@ def cluster(big):
         m = np.abs(splinelab.spline_filter(x, 3, threads=threads)).max()
         return time.perf_counter() - t0, m
 
+    def timed(client, route, split):
+        x = da.random.default_rng(0).uniform(-1, 1, (big, big), chunks=big // split)
+        t0 = time.perf_counter()
+        m = client.compute(abs(sld.spline_filter(x, 3, route=route)).max()).result()
+        return time.perf_counter() - t0, m
+
+    runs = {}
     with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, host="127.0.0.1",
                                   dashboard_address=None) as lc, distributed.Client(lc) as client:
-        x = da.random.default_rng(0).uniform(-1, 1, (big, big), chunks=big // 4)
-        t0 = time.perf_counter()
-        m = client.compute(abs(sld.spline_filter(x, 3)).max()).result()
-        tc = time.perf_counter() - t0
+        for route in ("truncated", "recursive"):
+            for split in (4, 2):
+                runs[f"{route}_{split}x{split}"] = timed(client, route, split)
+    # Two thread workers in one process: no pickling of chunks and halos.
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=False,
+                                  dashboard_address=None) as lc, distributed.Client(lc) as client:
+        timed(client, "recursive", 8)  # warm-up
+        for route in ("truncated", "recursive"):
+            runs[f"threads_{route}_4x4"] = timed(client, route, 4)
     t1, m1 = one_process(1)
     t2, m2 = one_process(None)
-    emit(figure="cluster", n=big, degree=3, cluster_2_workers_s=tc, one_process_1_thread_s=t1,
-         one_process_all_cores_s=t2, max_c=[m, m1, m2])
+    emit(figure="cluster", n=big, degree=3, cluster_2_workers_s=runs["truncated_4x4"][0],
+         cluster_s={k: v[0] for k, v in runs.items()}, one_process_1_thread_s=t1, one_process_all_cores_s=t2,
+         max_c=[runs["truncated_4x4"][1], m1, m2], max_c_runs={k: v[1] for k, v in runs.items()})
 
 
 def main():

@@ -115,15 +115,36 @@ def _deliver(result, target, shape):
     return target
 
 
+def _same_layout(a, b):
+    """Whether `a` and `b` are the same elements in the same places."""
+    ia, ib = a.__array_interface__, b.__array_interface__
+    return ia["data"][0] == ib["data"][0] and a.strides == b.strides and a.shape == b.shape
+
+
 def _filter(input, axes, order, output, mode, tol, threads):
     a = _real_array(input)
     dtype, target = _output_dtype(output, np.float64)
-    a = a.astype(dtype, copy=False)
+    if target is not None and target.shape != a.shape:
+        raise ValueError(f"output has shape {target.shape}, expected {a.shape}")
+    args = (axes, _degree(order), _mode(mode), 0.0, _opt_float(tol, "tol"), _threads(threads))
+    # The result is written straight into `output` when it is C-ordered and
+    # writeable, else into a new C-ordered array (numpy's allocator, which
+    # asks for huge pages); the engine copies the input into it and filters
+    # it in place. A conversion or an overlap with `output` goes through
+    # numpy's copy into it instead (still one copy).
+    direct = target is not None and target.flags.c_contiguous and target.flags.writeable
+    out = target if direct else np.empty(a.shape, dtype)
+    src = a
+    if a.dtype != dtype or np.may_share_memory(a, out):
+        if not _same_layout(a, out):
+            np.copyto(out, a, casting="unsafe")
+        src = None
     run = _ext.filter_f64 if dtype == np.float64 else _ext.filter_f32
-    result = run(
-        a, axes, _degree(order), _mode(mode), 0.0, _opt_float(tol, "tol"), _threads(threads)
-    )
-    return _deliver(result, target, a.shape)
+    run(src, out, *args)
+    if target is None or direct:
+        return out
+    target[...] = out
+    return target
 
 
 def _axis(axis, ndim):
@@ -144,11 +165,14 @@ def spline_filter1d(input, order=3, axis=-1, output=np.float64, mode="mirror", *
     Parameters
     ----------
     input : array_like, float64/float32/integer, any strides and shape.
-        It is read once, strided, into the C-ordered result (no other copy); a
-        dtype other than ``output``'s is converted first (one more copy).
+        It is read once, strided (and converted when its dtype is not
+        ``output``'s), into the C-ordered result, which is then filtered in
+        place: one copy, no other.
     order : int, the degree.
     axis : int, the axis to filter (negative counts from the end).
-    output : float64 (default) or float32 dtype, or an array to write into.
+    output : float64 (default) or float32 dtype, or an array to write into
+        (written directly when C-contiguous, else through a temporary;
+        ``output=input`` filters in place).
         float32 output is *computed* in float32 (scipy computes in float64
         and rounds); relative error about ``amplification * 6e-8``.
     mode : 'mirror', 'reflect' ('grid-mirror'), 'grid-wrap' ('wrap'),

@@ -19,11 +19,7 @@ use splinelab_verify::check::{CheckError, Mode, Outcome, UserFormat};
 use splinelab_verify::conditioning::Basis;
 
 fn format(name: &str) -> PyResult<UserFormat> {
-    match name {
-        "f64" => Ok(UserFormat::F64),
-        "f32" => Ok(UserFormat::F32),
-        _ => Err(value_error(format!("unknown format '{name}' (f64, f32)"))),
-    }
+    name.parse().map_err(value_error)
 }
 
 fn max_ulps(k: Option<f64>) -> PyResult<Option<f64>> {
@@ -44,6 +40,27 @@ fn elements(
     Ok(Outcome::Elements(Box::new(s)).to_json(&extra).to_string())
 }
 
+/// What the grid kinds (`prefilter`, `interp`) share: the mode, the user's
+/// format and threshold, and the JSON fields naming degree and mode.
+struct GridArgs {
+    mode: Mode,
+    format: UserFormat,
+    max_ulps: Option<f64>,
+    extra: Map<String, serde_json::Value>,
+}
+
+impl GridArgs {
+    fn new(mode: &str, fmt: &str, degree: usize, k: Option<f64>) -> PyResult<GridArgs> {
+        let mode = mode.parse::<Mode>().map_err(value_error)?;
+        Ok(GridArgs {
+            mode,
+            format: format(fmt)?,
+            max_ulps: max_ulps(k)?,
+            extra: prefilter_extra(mode, degree),
+        })
+    }
+}
+
 /// `check prefilter`: samples, the user's coefficients, degree, mode.
 #[pyfunction]
 #[pyo3(signature = (samples, user, fmt, degree, mode, max_ulps_))]
@@ -56,18 +73,18 @@ pub fn check_prefilter(
     mode: &str,
     max_ulps_: Option<f64>,
 ) -> PyResult<String> {
-    let mode = mode.parse::<Mode>().map_err(value_error)?;
+    let g = GridArgs::new(mode, fmt, degree, max_ulps_)?;
     let family =
         splinelab_verify::check::prefilter::family_of_degree(degree).map_err(value_error)?;
     let input = PrefilterInput {
         samples,
         user,
-        format: format(fmt)?,
+        format: g.format,
         family,
-        mode,
-        max_ulps: max_ulps(max_ulps_)?,
+        mode: g.mode,
+        max_ulps: g.max_ulps,
     };
-    elements(py, || prefilter(&input), prefilter_extra(mode, degree))
+    elements(py, || prefilter(&input), g.extra)
 }
 
 /// `check coeffs`: the user's c_0..c_{K−1} of an order (or Beta2 tension).
@@ -164,18 +181,18 @@ pub fn check_interp(
     mode: &str,
     max_ulps_: Option<f64>,
 ) -> PyResult<String> {
-    let mode = mode.parse::<Mode>().map_err(value_error)?;
+    let g = GridArgs::new(mode, fmt, degree, max_ulps_)?;
     let input = InterpInput {
         samples,
         shape,
         points,
         user,
-        format: format(fmt)?,
+        format: g.format,
         degree,
-        mode,
-        max_ulps: max_ulps(max_ulps_)?,
+        mode: g.mode,
+        max_ulps: g.max_ulps,
     };
-    elements(py, || interp(&input), prefilter_extra(mode, degree))
+    elements(py, || interp(&input), g.extra)
 }
 
 /// `check cond`: node sets, basis (`bernstein`, `monomial`), norm (`2`,
@@ -191,24 +208,10 @@ pub fn check_cond(
     fmt: &str,
     max_ulps_: Option<f64>,
 ) -> PyResult<String> {
-    let basis = match basis {
-        "bernstein" => Basis::Bernstein,
-        "monomial" => Basis::Monomial,
-        _ => {
-            return Err(value_error(format!(
-                "unknown basis '{basis}' (bernstein, monomial)"
-            )));
-        }
-    };
-    let norm = match norm {
-        "2" => Norm::Two,
-        "inf" => Norm::Inf,
-        _ => return Err(value_error(format!("unknown norm '{norm}' (2, inf)"))),
-    };
     let input = CondInput {
         node_sets,
-        basis,
-        norm,
+        basis: basis.parse::<Basis>().map_err(value_error)?,
+        norm: norm.parse::<Norm>().map_err(value_error)?,
         user,
         format: format(fmt)?,
         max_ulps: max_ulps(max_ulps_)?,

@@ -1,15 +1,23 @@
 //! `spline_filter1d` / `spline_filter`: the prefilter along the given axes
 //! of a float64 or float32 array (scipy.ndimage's functions; `order` there
-//! is our degree). The input, whatever its strides, is read once into the
-//! new result array, which is then filtered in place: one copy, the output.
+//! is our degree), written into a C-ordered array the caller allocated
+//! (numpy: its allocator asks for transparent huge pages, which a fresh
+//! Rust `Vec` of the same size does not get — at 10⁷ samples the 4 KiB page
+//! faults of an 80 MB `Vec` cost more than the filter itself).
+//!
+//! The input, whatever its strides, is read once into the output, which is
+//! then filtered in place. A single line (1-D) is copied and checked for
+//! non-finite values in one pass, blocks that fit in L1, then filtered
+//! with [`LineFilter::apply`]; other shapes are copied and handed to the
+//! engine's N-D filter (which checks once per call).
 
 use crate::cache;
 use crate::error::value_error;
 use crate::pool::run_with;
-use numpy::{Element, IntoPyArray, PyArrayDyn, PyReadonlyArrayDyn};
+use ndarray::{ArrayViewD, ArrayViewMutD};
+use numpy::{Element, PyReadonlyArrayDyn, PyReadwriteArrayDyn};
 use pyo3::prelude::*;
 use splinelab::prelude::*;
-use splinelab::sspline::nd_prefilter::spline_filter1d;
 use splinelab::sspline::prefilter::PrefilterError;
 use std::sync::Arc;
 
@@ -52,40 +60,107 @@ impl Spec {
     }
 }
 
-fn filter_axes<T: Real + Send + Sync + 'static>(
-    a: &mut ndarray::ArrayD<T>,
+/// Values per block of [`copy_checked`]: 32 KiB of f64, an L1 data cache.
+const BLOCK: usize = 4096;
+
+/// Copies `src` into `dst` and reports its first non-finite value (the
+/// engine's `NonFinite` error, index in logical order) — one pass: each
+/// block is checked while it is still in L1.
+fn copy_checked<T: Real + Copy>(src: &[T], dst: &mut [T]) -> Result<(), PrefilterError> {
+    if src.is_empty() {
+        return Err(PrefilterError::Empty);
+    }
+    let mut finite = true;
+    for (d, s) in dst.chunks_mut(BLOCK).zip(src.chunks(BLOCK)) {
+        d.copy_from_slice(s);
+        finite &= d.iter().fold(true, |ok, x| ok & x.is_finite());
+    }
+    if finite {
+        return Ok(());
+    }
+    let i = src.iter().position(|x| !x.is_finite()).unwrap_or(0);
+    Err(PrefilterError::NonFinite(i))
+}
+
+/// Whether filtering `axes` of an array of `shape` (`len` elements) is one
+/// line: a single axis holding every element (an out-of-range axis is not;
+/// the engine reports it).
+fn one_line(shape: &[usize], len: usize, axes: &[usize]) -> bool {
+    matches!(axes, [a] if shape.get(*a) == Some(&len))
+}
+
+/// Filters `out` (C order) along `axes`, after copying `src` into it when
+/// given (else `out` already holds the samples).
+fn filter_into<T: Real + Copy + Send + Sync + 'static>(
+    src: Option<ArrayViewD<'_, T>>,
+    out: &mut ArrayViewMutD<'_, T>,
     axes: &[usize],
     spec: &Spec,
 ) -> Result<(), PrefilterError> {
-    if let Some(f) = spec.line_filter::<T>()? {
-        for &axis in axes {
-            spline_filter1d(a, axis, &f)?;
-        }
-    }
+    let filter = spec.line_filter::<T>()?;
+    let line = match (&src, &filter) {
+        (Some(s), Some(_)) if one_line(out.shape(), out.len(), axes) => s.as_slice(),
+        _ => None,
+    };
+    let (Some(s), Some(f), Some(d)) = (line, &filter, out.as_slice_mut()) else {
+        return filter_nd(src, out, axes, filter.as_deref());
+    };
+    // One line: the same call the engine makes for a single lane.
+    copy_checked(s, d)?;
+    f.apply(d, &mut Vec::new());
     Ok(())
+}
+
+/// The general case: copy (strided), then the engine's N-D filter.
+fn filter_nd<T: Real + Send + Sync>(
+    src: Option<ArrayViewD<'_, T>>,
+    out: &mut ArrayViewMutD<'_, T>,
+    axes: &[usize],
+    filter: Option<&LineFilter<T>>,
+) -> Result<(), PrefilterError> {
+    if let Some(s) = src {
+        out.assign(&s);
+    }
+    let Some(f) = filter else {
+        return Ok(());
+    };
+    if axes.iter().copied().eq(0..out.ndim()) {
+        // Every axis: one finite check, not one per axis.
+        return spline_filter(out, f);
+    }
+    axes.iter()
+        .try_for_each(|&axis| spline_filter1d(out, axis, f))
 }
 
 fn filter_generic<'py, T>(
     py: Python<'py>,
-    input: PyReadonlyArrayDyn<'py, T>,
+    input: Option<PyReadonlyArrayDyn<'py, T>>,
+    mut output: PyReadwriteArrayDyn<'py, T>,
     axes: Vec<usize>,
     spec: Spec,
     threads: Option<usize>,
-) -> PyResult<Bound<'py, PyArrayDyn<T>>>
+) -> PyResult<()>
 where
-    T: Real + Element + Send + Sync + 'static,
+    T: Real + Copy + Element + Send + Sync + 'static,
 {
-    let view = input.as_array();
-    let out = py.detach(|| {
-        run_with(threads, || {
-            // One copy, always in C order: the engine's strided-axis kernels
-            // assume the standard layout (a Fortran-ordered copy would take
-            // the per-lane path, whose rounding differs by a few ulps).
-            let mut a = view.as_standard_layout().into_owned();
-            filter_axes(&mut a, &axes, &spec).map(|()| a)
-        })
-    })?;
-    Ok(out.map_err(value_error)?.into_pyarray(py))
+    let src = input.as_ref().map(|a| a.as_array());
+    let mut out = output.as_array_mut();
+    // The engine's strided-axis kernels assume C order (a Fortran-ordered
+    // array would take the per-lane path, whose rounding differs by ulps).
+    if !out.is_standard_layout() {
+        return Err(value_error("output must be a C-contiguous array"));
+    }
+    if src.as_ref().is_some_and(|s| s.shape() != out.shape()) {
+        return Err(value_error("input and output shapes differ"));
+    }
+    // One line is filtered by one thread whatever `threads` says: run it on
+    // the calling thread rather than hand it to a pool thread and wait.
+    let threads = match threads {
+        Some(n) if n > 0 && one_line(out.shape(), out.len(), &axes) => None,
+        t => t,
+    };
+    py.detach(|| run_with(threads, || filter_into(src, &mut out, &axes, &spec)))?
+        .map_err(value_error)
 }
 
 /// The float64 and float32 entry points, one generic body.
@@ -93,21 +168,23 @@ macro_rules! filter_fn {
     ($name:ident, $t:ty, $doc:literal) => {
         #[doc = $doc]
         #[pyfunction]
-        #[pyo3(signature = (input, axes, degree, mode, cval, tol, threads))]
+        #[pyo3(signature = (input, output, axes, degree, mode, cval, tol, threads))]
         #[allow(clippy::too_many_arguments)]
         pub fn $name<'py>(
             py: Python<'py>,
-            input: PyReadonlyArrayDyn<'py, $t>,
+            input: Option<PyReadonlyArrayDyn<'py, $t>>,
+            output: PyReadwriteArrayDyn<'py, $t>,
             axes: Vec<usize>,
             degree: u32,
             mode: &str,
             cval: f64,
             tol: Option<f64>,
             threads: Option<usize>,
-        ) -> PyResult<Bound<'py, PyArrayDyn<$t>>> {
+        ) -> PyResult<()> {
             filter_generic(
                 py,
                 input,
+                output,
                 axes,
                 Spec::new(degree, mode, cval, tol)?,
                 threads,
@@ -119,12 +196,12 @@ macro_rules! filter_fn {
 filter_fn!(
     filter_f64,
     f64,
-    "Coefficients of a float64 array along `axes` (in that order)."
+    "Coefficients of a float64 array along `axes` (in that order), written into `output` (C order; `input` None: filter `output` in place)."
 );
 filter_fn!(
     filter_f32,
     f32,
-    "Coefficients of a float32 array along `axes`, computed in float32."
+    "Coefficients of a float32 array along `axes`, computed in float32, written into `output` (as filter_f64)."
 );
 
 /// `(half_width, bound, amplification)` of the filter for `degree`, `tol`:

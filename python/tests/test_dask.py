@@ -21,8 +21,8 @@ def data():
     return np.random.default_rng(18).uniform(-1, 1, (N, N))
 
 
-def allowed(order, tol, x, exact):
-    b = splinelab.filter_bound(order, tol, ndim=2)["total"]
+def allowed(order, tol, x, exact, route="truncated"):
+    b = sld.bound(order, tol, ndim=2, route=route)
     return b * np.abs(x).max() + 64 * EPS * np.abs(exact).max()
 
 
@@ -31,26 +31,38 @@ def seam_errors(x, exact, order, tol, scheduler):
     return np.abs(ours - exact).max()
 
 
+@pytest.mark.parametrize("route", sld.ROUTES)
 @pytest.mark.parametrize("mode", ["mirror", "grid-wrap", "nearest"])
 @pytest.mark.parametrize("order", [3, 5, 9])
-def test_threaded_within_certified_bound(data, order, mode):
+def test_threaded_within_certified_bound(data, order, mode, route):
     tol = 1e-12
-    assert sld.depth(order, tol) <= N // 4
+    assert sld.depth(order, tol, route) <= N // 4
     exact = splinelab.spline_filter(data, order=order, mode=mode)
     darr = da.from_array(data, chunks=N // 4)
     assert darr.numblocks == (4, 4)
-    ours = sld.spline_filter(darr, order=order, mode=mode, tol=tol).compute(scheduler="threads")
-    assert np.abs(ours - exact).max() <= allowed(order, tol, data, exact)
+    ours = sld.spline_filter(darr, order=order, mode=mode, tol=tol, route=route).compute(scheduler="threads")
+    assert np.abs(ours - exact).max() <= allowed(order, tol, data, exact, route)
 
 
-def test_filter1d_and_loose_tolerance(data):
+@pytest.mark.parametrize("route", sld.ROUTES)
+def test_filter1d_and_loose_tolerance(data, route):
     # A loose tol: the error is real (not rounding) and still within the bound.
     tol = 1e-4
     exact = splinelab.spline_filter1d(data, order=3, axis=0)
-    ours = sld.spline_filter1d(da.from_array(data, chunks=N // 4), order=3, axis=0, tol=tol).compute()
+    darr = da.from_array(data, chunks=N // 4)
+    ours = sld.spline_filter1d(darr, order=3, axis=0, tol=tol, route=route).compute()
     err = np.abs(ours - exact).max()
-    b = splinelab.filter_bound(3, tol)
-    assert 1e3 * EPS < err <= b["bound"] * np.abs(data).max() + 64 * EPS * np.abs(exact).max()
+    assert 1e3 * EPS < err <= sld.bound(3, tol, 1, route) * np.abs(data).max() + 64 * EPS * np.abs(exact).max()
+    assert sld.bound(3, tol, 1, route) < tol
+
+
+def test_recursive_bound_is_twice_the_tail_of_the_half_tolerance_width():
+    f = splinelab.filter_bound(5, 5e-9)
+    assert sld.depth(5, 1e-8, "recursive") == f["half_width"] + 3
+    # (A + 2b) - A: the subtraction loses log2(A / 2b) ~ 30 bits.
+    np.testing.assert_allclose(sld.bound(5, 1e-8, 1, "recursive"), 2 * f["bound"], rtol=1e-6)
+    with pytest.raises(ValueError, match="route"):
+        sld.depth(3, 1e-8, "fast")
 
 
 def test_local_cluster_within_certified_bound(data):
@@ -58,11 +70,11 @@ def test_local_cluster_within_certified_bound(data):
     with distributed.LocalCluster(
         n_workers=2, threads_per_worker=1, processes=True, host="127.0.0.1", dashboard_address=None
     ) as cluster, distributed.Client(cluster) as client:
-        for order in (3, 5, 9):
+        for order, route in [(3, "truncated"), (5, "truncated"), (9, "truncated"), (3, "recursive"), (9, "recursive")]:
             exact = splinelab.spline_filter(data, order=order)
             darr = da.from_array(data, chunks=N // 4)
-            ours = client.compute(sld.spline_filter(darr, order=order, tol=1e-12)).result()
-            assert np.abs(ours - exact).max() <= allowed(order, 1e-12, data, exact), order
+            ours = client.compute(sld.spline_filter(darr, order=order, tol=1e-12, route=route)).result()
+            assert np.abs(ours - exact).max() <= allowed(order, 1e-12, data, exact, route), (order, route)
 
 
 @pytest.mark.parametrize("order", [3, 5])

@@ -42,6 +42,14 @@ import splinelab
         (lambda: splinelab.check("prefilter", samples=[1.0], coeffs=[1.0], mode="constant"), ValueError, "mode"),
         (lambda: splinelab.check("prefilter", samples=[1.0], coeffs=[1.0], max_ulps=-1), ValueError, "max_ulps"),
         (lambda: splinelab.check("bezier-eval", coeffs=[1.0], t=[0.5]), TypeError, "values"),
+        (lambda: splinelab.check("cond", nodes=[0.0, 1.0], values=[1.0], basis="chebyshev"), ValueError,
+         "unknown basis 'chebyshev' (bernstein, monomial)"),
+        (lambda: splinelab.check("cond", nodes=[0.0, 1.0], values=[1.0], norm="1"), ValueError,
+         "unknown norm '1' (2, inf)"),
+        (lambda: splinelab.check("interp", samples=[1.0, 2.0], coordinates=[0.5], values=[1.5], format="f16"),
+         ValueError, "unknown format 'f16' (f64, f32)"),
+        (lambda: splinelab.check("interp", samples=[1.0, 2.0], coordinates=[0.5], values=[1.5], mode="constant"),
+         ValueError, "mode"),
         (lambda: splinelab.check("knot-insertion", before=1, after=2), TypeError, "triple"),
     ],
 )
@@ -49,6 +57,13 @@ def test_bad_input_raises(call, exc, words):
     with pytest.raises(exc) as e:
         call()
     assert words.lower() in str(e.value).lower()
+
+
+def test_extension_refuses_a_bad_axis_without_panicking():
+    # The compiled half reached directly (bypassing the Python checks).
+    x = np.ones(5)
+    with pytest.raises(ValueError, match="axis 3 is out of range"):
+        splinelab._ext.filter_f64(x, np.empty(5), [3], 3, "mirror", 0.0, None, 1)
 
 
 def test_non_finite_user_values_are_failures_not_errors():

@@ -155,6 +155,48 @@ def test_output_array_and_threads():
     np.testing.assert_array_equal(out, splinelab.spline_filter1d(x, 3, 0, threads=1))
 
 
+def test_output_written_directly_in_place_or_through_a_copy():
+    x = rng().uniform(-1, 1, (30, 40))
+    want = splinelab.spline_filter(x, order=3)
+    # C-ordered output: written directly; output=input: in place.
+    out = np.empty_like(x)
+    assert splinelab.spline_filter(x, order=3, output=out) is out
+    np.testing.assert_array_equal(out, want)
+    y = x.copy()
+    assert splinelab.spline_filter(y, order=3, output=y) is y
+    np.testing.assert_array_equal(y, want)
+    # Fortran-ordered output: through a temporary, same numbers.
+    out = np.empty_like(x, order="F")
+    assert splinelab.spline_filter(x, order=3, output=out) is out
+    np.testing.assert_array_equal(out, want)
+    # Output overlapping the input at another offset: the input is read first.
+    line = rng(3).uniform(-1, 1, 1000)
+    z = np.zeros(1010)
+    z[:1000] = line
+    r = splinelab.spline_filter1d(z[:1000], 5, output=z[10:])
+    np.testing.assert_array_equal(r, splinelab.spline_filter1d(line, 5))
+
+
+def test_one_line_any_strides_and_dtypes():
+    # A single line takes the fused copy-and-check path when contiguous.
+    x = rng(5).uniform(-1, 1, 30_001)
+    for view in [x[::-1], x[::3], x[:, None][:, 0]]:
+        np.testing.assert_array_equal(
+            splinelab.spline_filter1d(view, 3), splinelab.spline_filter1d(np.ascontiguousarray(view), 3)
+        )
+    # One line of an N-D array (the other axes of length 1) as the same 1-D line.
+    np.testing.assert_array_equal(splinelab.spline_filter1d(x[None, :, None], 3, axis=1)[0, :, 0],
+                                  splinelab.spline_filter1d(x, 3))
+    i = np.arange(-50, 50)
+    np.testing.assert_array_equal(splinelab.spline_filter1d(i, 3, output=np.float32),
+                                  splinelab.spline_filter1d(i.astype(np.float32), 3, output=np.float32))
+    # The first non-finite sample is named, also beyond the first copy block.
+    y = x.copy()
+    y[[20_000, 25_000]] = [np.inf, np.nan]
+    with pytest.raises(ValueError, match="sample 20000 is not finite"):
+        splinelab.spline_filter1d(y, 3)
+
+
 def test_integer_input_is_converted():
     x = np.arange(20).reshape(4, 5)
     np.testing.assert_allclose(splinelab.spline_filter(x), ndimage.spline_filter(x), atol=8 * EPS * 20)

@@ -32,12 +32,27 @@ pub enum Basis {
 }
 
 impl Basis {
+    /// Both bases, in the order the command line lists them.
+    pub const ALL: [Basis; 2] = [Basis::Bernstein, Basis::Monomial];
+
     /// The command-line name.
     pub fn name(self) -> &'static str {
         match self {
             Basis::Bernstein => "bernstein",
             Basis::Monomial => "monomial",
         }
+    }
+}
+
+impl std::str::FromStr for Basis {
+    type Err = String;
+
+    /// The command-line name back to the basis (Python's `basis=`).
+    fn from_str(s: &str) -> Result<Self, String> {
+        Basis::ALL
+            .into_iter()
+            .find(|b| b.name() == s)
+            .ok_or_else(|| format!("unknown basis '{s}' (bernstein, monomial)"))
     }
 }
 

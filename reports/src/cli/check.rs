@@ -94,11 +94,7 @@ fn budget(c: &Common, units: f64, numbers: f64, what: String) -> Result<Spinner,
 }
 
 fn parse_format(s: &str) -> Result<UserFormat, String> {
-    match s {
-        "f64" => Ok(UserFormat::F64),
-        "f32" => Ok(UserFormat::F32),
-        _ => Err(format!("unknown format '{s}' (f64, f32)")),
-    }
+    s.parse()
 }
 
 /// `--degree`/`--order` and `--mode`, shared by `prefilter` and `interp`.

@@ -38,12 +38,27 @@ pub enum Norm {
 }
 
 impl Norm {
+    /// Both norms.
+    pub const ALL: [Norm; 2] = [Norm::Two, Norm::Inf];
+
     /// `"2"` or `"inf"`.
     pub fn name(self) -> &'static str {
         match self {
             Norm::Two => "2",
             Norm::Inf => "inf",
         }
+    }
+}
+
+impl std::str::FromStr for Norm {
+    type Err = String;
+
+    /// `"2"` or `"inf"` back to the norm (Python's `norm=`).
+    fn from_str(s: &str) -> Result<Self, String> {
+        Norm::ALL
+            .into_iter()
+            .find(|n| n.name() == s)
+            .ok_or_else(|| format!("unknown norm '{s}' (2, inf)"))
     }
 }
 

@@ -66,6 +66,18 @@ impl UserFormat {
     }
 }
 
+impl std::str::FromStr for UserFormat {
+    type Err = String;
+
+    /// `"f64"` or `"f32"` (the CLI's `--format`, Python's `format=`).
+    fn from_str(s: &str) -> Result<Self, String> {
+        [UserFormat::F64, UserFormat::F32]
+            .into_iter()
+            .find(|f| f.name() == s)
+            .ok_or_else(|| format!("unknown format '{s}' (f64, f32)"))
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -83,5 +95,14 @@ mod tests {
         // Zero reference: the subnormal spacing.
         let zero = Float::with_val(200, 0.0);
         assert_eq!(UserFormat::F64.ulps(f64::from_bits(3), &zero), 3.0);
+    }
+
+    #[test]
+    fn names_parse_back() {
+        for f in [UserFormat::F64, UserFormat::F32] {
+            assert_eq!(f.name().parse::<UserFormat>(), Ok(f));
+        }
+        let e = "f16".parse::<UserFormat>().unwrap_err();
+        assert_eq!(e, "unknown format 'f16' (f64, f32)");
     }
 }
