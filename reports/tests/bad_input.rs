@@ -350,7 +350,7 @@ fn engine_cases(v: &mut Vec<Case>) {
         setup: Some(|out: &Path| std::fs::create_dir_all(out).unwrap()),
         ..case(args, input)
     };
-    for bad in [
+    let malformed = [
         "",
         "[",
         "[]",
@@ -361,63 +361,36 @@ fn engine_cases(v: &mut Vec<Case>) {
         "[1e999]",
         "[true]",
         "[[[1]]]",
-    ] {
-        v.push(with(
-            &[
-                "prefilter",
-                "--input",
-                "{in}",
-                "--degree",
-                "3",
-                "--output",
-                "{out}/c.npy",
-            ],
-            bad,
-        ));
-        v.push(with(
-            &[
-                "interpolate",
-                "--input",
-                X2,
-                "--degree",
-                "3",
-                "--at",
-                "{in}",
-                "--output",
-                "{out}/v.npy",
-            ],
-            bad,
-        ));
+    ];
+    for bad in malformed {
+        let args = [
+            "prefilter",
+            "--input",
+            "{in}",
+            "--degree",
+            "3",
+            "--output",
+            "{out}/c.npy",
+        ];
+        v.push(with(&args, bad));
     }
-    // Points of the wrong width.
-    v.push(with(
-        &[
+    // `interpolate` of these samples at malformed points, or at points of
+    // the wrong width for them.
+    let wrong_width = [(X2, "[[0.5, 1.5, 2.5]]"), (X1, "[[0.5, 1.5], [2, 3]]")];
+    for (samples, points) in malformed.map(|p| (X2, p)).into_iter().chain(wrong_width) {
+        let args = [
             "interpolate",
             "--input",
-            X2,
+            samples,
             "--degree",
             "3",
             "--at",
             "{in}",
             "--output",
             "{out}/v.npy",
-        ],
-        "[[0.5, 1.5, 2.5]]",
-    ));
-    v.push(with(
-        &[
-            "interpolate",
-            "--input",
-            X1,
-            "--degree",
-            "3",
-            "--at",
-            "{in}",
-            "--output",
-            "{out}/v.npy",
-        ],
-        "[[0.5, 1.5], [2, 3]]",
-    ));
+        ];
+        v.push(with(&args, points));
+    }
     let good = "[1, 2, 0.5, 4, 3]";
     // `prefilter --input {in} … --output {out}/c.npy` with these options.
     let prefilter: &[&[&'static str]] = &[
@@ -462,23 +435,12 @@ fn engine_cases(v: &mut Vec<Case>) {
         let args: Vec<&'static str> = args.split(' ').collect();
         v.push(with(&args, good));
     }
-    for bad in [["--tol", "2"], ["--degree", "120"]] {
+    // `interpolate --input X2 --at P2 … --output {out}/v.npy` with these options.
+    for opts in [&["--degree", "3", "--tol", "2"][..], &["--degree", "120"]] {
         let args = [
-            &[
-                "interpolate",
-                "--input",
-                X2,
-                "--at",
-                P2,
-                "--output",
-                "{out}/v.npy",
-            ][..],
-            &bad[..],
-            if bad[0] == "--tol" {
-                &["--degree", "3"][..]
-            } else {
-                &[]
-            },
+            &["interpolate", "--input", X2, "--at", P2][..],
+            opts,
+            &["--output", "{out}/v.npy"],
         ];
         v.push(with(&args.concat(), good));
     }

@@ -206,29 +206,36 @@ fn bad_input_exits_2_and_writes_nothing() {
     let _ = std::fs::remove_dir_all(&d);
 }
 
+/// `splinelab check interp --json` on fixture files, with `extra` options.
+fn interp(samples: &str, coords: &str, values: &str, extra: &[&str]) -> Output {
+    let files = [samples, coords, values].map(fixture);
+    let mut args = vec![
+        "check",
+        "interp",
+        "--samples",
+        &files[0],
+        "--coords",
+        &files[1],
+        "--values",
+        &files[2],
+        "--json",
+    ];
+    args.extend_from_slice(extra);
+    splinelab(&args)
+}
+
 #[test]
 fn interp_2d_on_scipy_map_coordinates() {
-    let (s, c) = (
-        fixture("interp/samples2.npy"),
-        fixture("interp/coords2.npy"),
-    );
-    let v = fixture("interp/v2_d3_mirror.npy");
     let run = |coords: &str, extra: &[&str]| {
-        let mut args = vec![
-            "check",
-            "interp",
-            "--samples",
-            &s,
-            "--coords",
+        interp(
+            "interp/samples2.npy",
             coords,
-            "--values",
-            &v,
-            "--json",
-        ];
-        args.extend_from_slice(extra);
-        splinelab(&args)
+            "interp/v2_d3_mirror.npy",
+            extra,
+        )
     };
-    let out = run(&c, &["--degree", "3", "--max-ulps", "200"]);
+    let c = "interp/coords2.npy";
+    let out = run(c, &["--degree", "3", "--max-ulps", "200"]);
     assert_eq!(
         out.status.code(),
         Some(0),
@@ -247,9 +254,57 @@ fn interp_2d_on_scipy_map_coordinates() {
         .sum();
     assert_eq!(counts, 80);
     // A tight threshold fails (exit 1); the 1-D coordinates for 2-D samples are refused (exit 2).
-    assert_eq!(run(&c, &["--max-ulps", "1"]).status.code(), Some(1));
-    let bad = run(&fixture("interp/coords1.npy"), &[]);
+    assert_eq!(run(c, &["--max-ulps", "1"]).status.code(), Some(1));
+    let bad = run("interp/coords1.npy", &[]);
     assert_eq!(bad.status.code(), Some(2));
+}
+
+#[test]
+fn interp_padded_modes_and_cval_follow_map_coordinates() {
+    let run = |values: &str, extra: &[&str]| {
+        interp("interp/samples1.npy", "interp/coords1.npy", values, extra)
+    };
+    let json = |out: &Output| -> Value {
+        assert_eq!(
+            out.status.code(),
+            Some(0),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        serde_json::from_slice(&out.stdout).unwrap()
+    };
+    // Within the bound of check_interp.rs for the padded modes: 256 ulps of max |f|.
+    for mode in ["nearest", "grid-constant"] {
+        let values = format!("interp/v1_d3_{mode}.npy");
+        let j = json(&run(&values, &["--degree", "3", "--mode", mode]));
+        assert!(
+            j["max_ulps_scaled"].as_f64().unwrap() < 256.0,
+            "{mode}: {j}"
+        );
+        let reference = j["reference"].as_str().unwrap();
+        assert!(reference.contains("padded by 12"), "{reference}");
+    }
+    // scipy's cval = 0.75 passes with --cval 0.75 (also as a negative number's
+    // spelling) and fails, exit 1, without it.
+    let cval = "interp/v1_d3_grid-constant_cval.npy";
+    let base = [
+        "--degree",
+        "3",
+        "--mode",
+        "grid-constant",
+        "--max-ulps",
+        "4096",
+    ];
+    let with = [&base[..], &["--cval", "0.75"]].concat();
+    assert!(
+        json(&run(cval, &with))["reference"]
+            .as_str()
+            .unwrap()
+            .contains("cval 0.75")
+    );
+    assert_eq!(run(cval, &base).status.code(), Some(1));
+    let nan = [&base[..], &["--cval", "nan"]].concat();
+    assert_eq!(run(cval, &nan).status.code(), Some(2));
 }
 
 #[test]

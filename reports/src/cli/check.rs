@@ -20,7 +20,7 @@ use splinelab_verify::check::bezier_eval::check_bezier_eval;
 use splinelab_verify::check::bspline_eval::{BSplineEvalInput, check_bspline_eval};
 use splinelab_verify::check::coeffs::check_coeffs;
 use splinelab_verify::check::cond::{CondInput, Norm, check_cond};
-use splinelab_verify::check::interp::{InterpInput, check_interp};
+use splinelab_verify::check::interp::{InterpInput, check_interp_with_cval};
 use splinelab_verify::check::knot_insertion::check_knot_insertion;
 use splinelab_verify::check::outcome;
 use splinelab_verify::check::prefilter::{PrefilterInput, check_prefilter, family_of_degree};
@@ -106,7 +106,7 @@ pub struct SplineArgs {
     /// Spline order m = d + 1 (the papers' convention).
     #[arg(long)]
     pub order: Option<usize>,
-    /// End mode: mirror, reflect (grid-mirror), grid-wrap (wrap); prefilter also nearest and grid-constant (as scipy's spline_filter1d filters them: with the reflect and mirror rules).
+    /// End mode: mirror, reflect (grid-mirror), grid-wrap (wrap), nearest, grid-constant (prefilter: as scipy's spline_filter1d filters them, with the reflect and mirror rules; interp: as map_coordinates, which pads 12 samples first).
     #[arg(long, default_value = "mirror")]
     pub mode: String,
 }
@@ -143,6 +143,9 @@ pub struct InterpArgs {
     /// Degree (or order) and end mode.
     #[command(flatten)]
     pub spline: SplineArgs,
+    /// scipy's `cval` for grid-constant (its padding and the value beyond it).
+    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
+    pub cval: f64,
     /// Common options.
     #[command(flatten)]
     pub common: Common,
@@ -362,51 +365,69 @@ fn prefilter(a: &PrefilterArgs) -> Result<Outcome, CliError> {
     Ok(Outcome::Elements(Box::new(s)))
 }
 
+/// The input of `check interp` from files: samples (1-D or 2-D), scipy's
+/// `map_coordinates` coordinates of shape `(dims, count)` (or `(count,)`
+/// for 1-D samples), made point-major, and the user's values; a coordinate
+/// shape that does not fit the samples is refused, naming its file.
+pub fn interp_input(
+    samples: &Path,
+    coords: &Path,
+    (user, format): (Vec<f64>, UserFormat),
+    degree: usize,
+    mode: Mode,
+    max_ulps: Option<f64>,
+) -> Result<InterpInput, CliError> {
+    let samples_arr = read_array(samples)?;
+    let c = read_array(coords)?;
+    let dims = samples_arr.shape.len();
+    let count = match (dims, c.shape.as_slice()) {
+        (1, [k]) => *k,
+        (_, [rows, k]) if *rows == dims => *k,
+        _ => {
+            return Err(input_error(
+                coords,
+                format!(
+                    "expected shape ({dims}, count) for {dims}-D samples, got {:?}",
+                    c.shape
+                ),
+            ));
+        }
+    };
+    let data = &c.data;
+    Ok(InterpInput {
+        samples: samples_arr.data,
+        shape: samples_arr.shape,
+        points: (0..count)
+            .flat_map(|k| (0..dims).map(move |a| data[a * count + k]))
+            .collect(),
+        user,
+        format,
+        degree,
+        mode,
+        max_ulps,
+    })
+}
+
 fn interp(a: &InterpArgs) -> Result<Outcome, CliError> {
     let mode = mode_of(&a.spline.mode)?;
     let degree = degree_of(&a.spline)?;
     family_of_degree(degree).map_err(|e| CliError::invalid("--degree", e.to_string()))?;
     let max_ulps = max_ulps(&a.common)?;
-    let samples = read_array(&a.samples)?;
-    let coords = read_array(&a.coords)?;
-    let dims = samples.shape.len();
-    let count = match (dims, coords.shape.as_slice()) {
-        (1, [k]) => *k,
-        (_, [rows, k]) if *rows == dims => *k,
-        _ => {
-            return Err(input_error(
-                &a.coords,
-                format!(
-                    "expected shape ({dims}, count) for {dims}-D samples, got {:?}",
-                    coords.shape
-                ),
-            ));
-        }
-    };
-    // map_coordinates' (ndim, count) to point-major.
-    let points = (0..count)
-        .flat_map(|k| (0..dims).map(move |a| (a, k)))
-        .map(|(a, k)| coords.data[a * count + k])
-        .collect();
-    let (user, format) = user_values(&a.values, &a.common)?;
+    let values = user_values(&a.values, &a.common)?;
+    let input = interp_input(&a.samples, &a.coords, values, degree, mode, max_ulps)?;
+    let dims = input.shape.len();
     let m = degree as f64 + 2.0;
-    let (n, k) = (samples.data.len() as f64, count as f64);
+    let (n, k) = (
+        input.samples.len() as f64,
+        (input.points.len() / dims) as f64,
+    );
     let _spin = budget(
         &a.common,
         n * m * m + k * m.powi(dims as i32) * 10.0,
         3.0 * n + k * m.powi(dims as i32),
         format!("an interpolation check of {n} samples at {k} points"),
     )?;
-    let s = check_interp(&InterpInput {
-        samples: samples.data,
-        shape: samples.shape,
-        points,
-        user,
-        format,
-        degree,
-        mode,
-        max_ulps,
-    })?;
+    let s = check_interp_with_cval(&input, a.cval)?;
     Ok(Outcome::Elements(Box::new(s)))
 }
 
