@@ -69,12 +69,17 @@ pub struct Interpolant<T> {
     given: bool,
 }
 
-/// Per-point work space: weights and flat offsets, `m` per axis.
-struct Scratch<T> {
-    w: Vec<T>,
-    off: Vec<usize>,
-    inside: Vec<bool>,
+/// Per-point work space: weights and flat offsets, `m` per axis, on the
+/// stack for one point ([`SMALL`]) or in vectors.
+struct Scratch<'a, T> {
+    w: &'a mut [T],
+    off: &'a mut [usize],
+    inside: &'a mut [bool],
 }
+
+/// Work space of a single-point evaluation kept on the stack: `ndim × m`
+/// up to 24 (3-D to degree 7, 2-D to 11, 1-D to 23); beyond it, vectors.
+const SMALL: usize = 24;
 
 impl<T: Real + Send + Sync> Interpolant<T> {
     /// The interpolant of `data` (1 to N dimensions, at least one sample per
@@ -229,13 +234,10 @@ impl<T: Real + Send + Sync> Interpolant<T> {
         v
     }
 
-    fn scratch(&self) -> Scratch<T> {
+    /// The heap work space of one evaluation (weights, offsets, flags).
+    fn scratch(&self) -> (Vec<T>, Vec<usize>, Vec<bool>) {
         let k = self.ndim() * self.order as usize;
-        Scratch {
-            w: vec![T::zero(); k],
-            off: vec![0; k],
-            inside: vec![true; k],
-        }
+        (vec![T::zero(); k], vec![0; k], vec![true; k])
     }
 
     fn check(&self, x: &[f64], deriv: &[u32]) -> Result<(), PrefilterError> {
@@ -257,9 +259,15 @@ impl<T: Real + Send + Sync> Interpolant<T> {
         }
     }
 
-    /// `f(x)` at one point of `ndim` coordinates (sample indices).
+    /// `f(x)` at one point of `ndim` coordinates (sample indices). No heap
+    /// allocation for `ndim × (degree + 1) ≤ 24` with `f64`/`f32` (MPFR
+    /// values allocate their own limbs).
     pub fn eval(&self, x: &[f64]) -> Result<T, PrefilterError> {
-        self.eval_derivative(x, &vec![0; x.len()])
+        const NONE: [u32; SMALL] = [0; SMALL];
+        match NONE.get(..x.len()) {
+            Some(zero) => self.eval_derivative(x, zero),
+            None => self.eval_derivative(x, &vec![0; x.len()]),
+        }
     }
 
     /// `∂^{d_0 + d_1 + …} f / ∂x_0^{d_0} ∂x_1^{d_1} …` at `x`, each
@@ -273,7 +281,24 @@ impl<T: Real + Send + Sync> Interpolant<T> {
                 got: deriv.len(),
             });
         }
-        Ok(self.eval_in(x, deriv, &mut self.scratch()))
+        let k = self.ndim() * self.order as usize;
+        if k <= SMALL {
+            let mut w: [T; SMALL] = std::array::from_fn(|_| T::zero());
+            let (mut off, mut inside) = ([0; SMALL], [true; SMALL]);
+            let mut sc = Scratch {
+                w: &mut w[..k],
+                off: &mut off[..k],
+                inside: &mut inside[..k],
+            };
+            return Ok(self.eval_in(x, deriv, &mut sc));
+        }
+        let (mut w, mut off, mut inside) = self.scratch();
+        let mut sc = Scratch {
+            w: &mut w,
+            off: &mut off,
+            inside: &mut inside,
+        };
+        Ok(self.eval_in(x, deriv, &mut sc))
     }
 
     /// `out[k] = f(points[k, ..])` for `points` of shape `(count, ndim)`;
@@ -305,7 +330,12 @@ impl<T: Real + Send + Sync> Interpolant<T> {
         out.par_chunks_mut(CHUNK)
             .enumerate()
             .for_each(|(c, chunk)| {
-                let mut sc = self.scratch();
+                let (mut w, mut off, mut inside) = self.scratch();
+                let mut sc = Scratch {
+                    w: &mut w,
+                    off: &mut off,
+                    inside: &mut inside,
+                };
                 let mut x = vec![0.0; self.ndim()];
                 let k = sc.w.len();
                 let mut ws = vec![T::zero(); BATCH * k];
