@@ -243,6 +243,26 @@ fn prec_256_json_satisfies_the_cubic_condition_exactly() {
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
+/// `splinelab prefilter --degree 3 --mode mirror` of `input` into `out`
+/// (`--prec p` when given); its text output.
+fn prefilter_cubic_mirror(input: &Path, out: &Path, prec: Option<&str>) -> String {
+    let mut args = vec![
+        "prefilter",
+        "--input",
+        input.to_str().unwrap(),
+        "--degree",
+        "3",
+        "--mode",
+        "mirror",
+        "--output",
+        out.to_str().unwrap(),
+    ];
+    if let Some(p) = prec {
+        args.extend(["--prec", p]);
+    }
+    ok(&args)
+}
+
 /// f32 in, f32 out, computed in f32: within a few f32 ulps (times the
 /// cubic's amplification 3) of the same samples filtered in 256-bit MPFR.
 #[test]
@@ -254,21 +274,7 @@ fn f32_input_gives_f32_output_within_f32_ulps() {
         .unwrap();
     let (o32, o256) = (dir.join("c32.npy"), dir.join("c256.json"));
     for (out, prec) in [(&o32, None), (&o256, Some("256"))] {
-        let mut args = vec![
-            "prefilter",
-            "--input",
-            input.to_str().unwrap(),
-            "--degree",
-            "3",
-            "--mode",
-            "mirror",
-            "--output",
-            out.to_str().unwrap(),
-        ];
-        if let Some(p) = prec {
-            args.extend(["--prec", p]);
-        }
-        let text = ok(&args);
+        let text = prefilter_cubic_mirror(&input, out, prec);
         assert!(
             text.contains(if prec.is_some() { "in 256" } else { "in f32" }),
             "{text}"
@@ -303,21 +309,7 @@ fn f32_prefilter_matches_scipy_float32_fixture() {
             .unwrap();
     let max = want.iter().fold(0.0f32, |m, v| m.max(v.abs()));
     for (prec, allowed) in [(None, 8.0f32), (Some("f64"), 1.0)] {
-        let mut args = vec![
-            "prefilter",
-            "--input",
-            x.to_str().unwrap(),
-            "--degree",
-            "3",
-            "--mode",
-            "mirror",
-            "--output",
-            out.to_str().unwrap(),
-        ];
-        if let Some(p) = prec {
-            args.extend(["--prec", p]);
-        }
-        ok(&args);
+        prefilter_cubic_mirror(&x, &out, prec);
         let got = ArrayD::<f32>::read_npy(std::fs::File::open(&out).unwrap()).unwrap();
         let err = got
             .iter()

@@ -68,16 +68,32 @@ fn parallel_blocks_stay_within_the_bound_of_the_sequential_filter() {
                 let (want, amp) = exact(d, mode, &s);
                 let f = BlockPrefilter::<f64>::new(&SplineFamily::Order(d + 1), mode, 0.3, tol)
                     .unwrap();
-                let got = f.apply(&s, 4096).unwrap();
-                let diff = max_diff(&got, &want);
-                let allowed = f.bound() + 64.0 * f64::EPSILON * amp;
-                assert!(
-                    diff <= allowed,
-                    "d={d} {mode} tol={tol:e}: {diff:e} > {allowed:e}"
-                );
+                // Small windows; windows of WINDOW with a ragged last group.
+                for block in [4096, 40_000] {
+                    let got = f.apply(&s, block).unwrap();
+                    let diff = max_diff(&got, &want);
+                    let allowed = f.bound() + 64.0 * f64::EPSILON * amp;
+                    assert!(
+                        diff <= allowed,
+                        "d={d} {mode} tol={tol:e} block={block}: {diff:e} > {allowed:e}"
+                    );
+                }
             }
         }
     }
+}
+
+#[test]
+fn parallel_blocks_report_the_first_non_finite_sample() {
+    let mut s = signal(50_000, 5);
+    s[41_234] = f64::NAN;
+    s[45_000] = f64::INFINITY;
+    let f = BlockPrefilter::<f64>::new(&SplineFamily::Order(4), Mode::Mirror, 0.0, 1e-9).unwrap();
+    let err = f.apply(&s, 4096).unwrap_err();
+    assert_eq!(
+        err.to_string(),
+        PrefilterError::NonFinite(41_234).to_string()
+    );
 }
 
 #[test]

@@ -19,7 +19,7 @@
 use super::bspline_uniform::{cell_derivatives_into, centred_cell};
 use super::line_filter::{LineFilter, Route};
 use super::mode::Mode;
-use super::nd_prefilter::padded_coefficients;
+use super::nd_prefilter::{padded_coefficients, padded_extension};
 use super::prefilter::PrefilterError;
 use super::{MAX_ORDER, SplineFamily};
 use crate::scalar::Real;
@@ -63,18 +63,29 @@ pub struct Interpolant<T> {
     mode: Mode,
     cval: T,
     bound: f64,
+    /// Built by [`Interpolant::from_coefficients`]: `nearest` extends the
+    /// coefficients rather than clamping the point (scipy's
+    /// `prefilter=False`).
+    given: bool,
 }
 
-/// Per-point work space: weights and flat offsets, `m` per axis.
-struct Scratch<T> {
-    w: Vec<T>,
-    off: Vec<usize>,
-    inside: Vec<bool>,
+/// Per-point work space: weights and flat offsets, `m` per axis, on the
+/// stack for one point ([`SMALL`]) or in vectors.
+struct Scratch<'a, T> {
+    w: &'a mut [T],
+    off: &'a mut [usize],
+    inside: &'a mut [bool],
 }
+
+/// Work space of a single-point evaluation kept on the stack: `ndim × m`
+/// up to 24 (3-D to degree 7, 2-D to 11, 1-D to 23); beyond it, vectors.
+const SMALL: usize = 24;
 
 impl<T: Real + Send + Sync> Interpolant<T> {
     /// The interpolant of `data` (1 to N dimensions, at least one sample per
-    /// axis, all finite).
+    /// axis, all finite), degree `0..=199`. Degrees 0 (the nearest sample,
+    /// [`Mode::nearest_index`]) and 1 (multilinear) need no prefilter: their
+    /// coefficients are the samples, as in scipy.
     ///
     /// ```
     /// use splinelab::prelude::*;
@@ -91,7 +102,11 @@ impl<T: Real + Send + Sync> Interpolant<T> {
         S: Data<Elem = T>,
         D: Dimension,
     {
-        if opts.degree == 0 || opts.degree >= MAX_ORDER {
+        if opts.degree <= 1 {
+            return Self::from_coefficients(data, opts.degree, opts.mode, opts.cval)
+                .map(|f| Interpolant { given: false, ..f });
+        }
+        if opts.degree >= MAX_ORDER {
             return Err(PrefilterError::Degree(opts.degree));
         }
         let order = opts.degree + 1;
@@ -114,7 +129,75 @@ impl<T: Real + Send + Sync> Interpolant<T> {
             mode: opts.mode,
             cval: T::from_f64_exact(opts.cval),
             bound: filter.bound(),
+            given: false,
         })
+    }
+
+    /// The interpolant whose coefficients `D_i` the caller already has
+    /// (scipy's `map_coordinates(coeffs, …, prefilter=False)`): `f(x) =
+    /// Σ_i D_i Π_a β(x_a − i_a)` with `D` extended beyond the grid by
+    /// `mode` (`cval` for `grid-constant`), the point folded as in
+    /// [`Interpolant::new`] except for `nearest`, where scipy extends the
+    /// coefficients and leaves the point where it is. Degree `0..=199`.
+    /// Cost: one copy of `coeffs` with `⌊(d + 1)/2⌋ + 2` values of padding
+    /// per side (`d + 3` for `nearest`).
+    ///
+    /// ```
+    /// use splinelab::prelude::*;
+    /// let c = ndarray::array![0.0, 6.0, 0.0, 0.0];
+    /// let f: Interpolant<f64> = Interpolant::from_coefficients(&c, 3, Mode::Mirror, 0.0).unwrap();
+    /// // The cubic B-spline centred at 1: 6 · 2/3 at its centre, 6 · 1/6 one away.
+    /// assert_eq!(f.eval(&[1.0]).unwrap(), 4.0);
+    /// assert_eq!(f.eval(&[2.0]).unwrap(), 1.0);
+    /// ```
+    pub fn from_coefficients<S, D>(
+        coeffs: &ArrayBase<S, D>,
+        degree: u32,
+        mode: Mode,
+        cval: f64,
+    ) -> Result<Self, PrefilterError>
+    where
+        S: Data<Elem = T>,
+        D: Dimension,
+    {
+        if degree >= MAX_ORDER {
+            return Err(PrefilterError::Degree(degree));
+        }
+        if coeffs.is_empty() {
+            return Err(PrefilterError::Empty);
+        }
+        let order = degree + 1;
+        // Under nearest the point is not folded: the window of a point
+        // clamped to `order/2 + 1` outside reaches `order + 1` beyond.
+        let pad = if mode == Mode::Nearest {
+            order as usize + 2
+        } else {
+            order as usize / 2 + 2
+        };
+        let padded = padded_extension(coeffs, mode, cval, pad)?.into_dyn();
+        let padded = padded.as_standard_layout().into_owned();
+        Ok(Interpolant {
+            shape: coeffs.shape().to_vec(),
+            strides: padded.strides().iter().map(|&s| s as usize).collect(),
+            coeffs: padded,
+            order,
+            pad,
+            mode,
+            cval: T::from_f64_exact(cval),
+            bound: 0.0,
+            given: true,
+        })
+    }
+
+    /// The point at which axis `a` is evaluated ([`Mode::fold_coordinate`]);
+    /// for given coefficients under `nearest`, the point itself, clamped
+    /// where every coefficient of its window is the end one (same value).
+    fn coordinate(&self, x: f64, a: usize) -> f64 {
+        if self.given && self.mode == Mode::Nearest {
+            let r = (self.order / 2 + 1) as f64;
+            return x.clamp(-r, self.shape[a] as f64 - 1.0 + r);
+        }
+        self.mode.fold_coordinate(x, self.shape[a])
     }
 
     /// Number of dimensions.
@@ -151,13 +234,10 @@ impl<T: Real + Send + Sync> Interpolant<T> {
         v
     }
 
-    fn scratch(&self) -> Scratch<T> {
+    /// The heap work space of one evaluation (weights, offsets, flags).
+    fn scratch(&self) -> (Vec<T>, Vec<usize>, Vec<bool>) {
         let k = self.ndim() * self.order as usize;
-        Scratch {
-            w: vec![T::zero(); k],
-            off: vec![0; k],
-            inside: vec![true; k],
-        }
+        (vec![T::zero(); k], vec![0; k], vec![true; k])
     }
 
     fn check(&self, x: &[f64], deriv: &[u32]) -> Result<(), PrefilterError> {
@@ -179,9 +259,15 @@ impl<T: Real + Send + Sync> Interpolant<T> {
         }
     }
 
-    /// `f(x)` at one point of `ndim` coordinates (sample indices).
+    /// `f(x)` at one point of `ndim` coordinates (sample indices). No heap
+    /// allocation for `ndim × (degree + 1) ≤ 24` with `f64`/`f32` (MPFR
+    /// values allocate their own limbs).
     pub fn eval(&self, x: &[f64]) -> Result<T, PrefilterError> {
-        self.eval_derivative(x, &vec![0; x.len()])
+        const NONE: [u32; SMALL] = [0; SMALL];
+        match NONE.get(..x.len()) {
+            Some(zero) => self.eval_derivative(x, zero),
+            None => self.eval_derivative(x, &vec![0; x.len()]),
+        }
     }
 
     /// `∂^{d_0 + d_1 + …} f / ∂x_0^{d_0} ∂x_1^{d_1} …` at `x`, each
@@ -195,7 +281,24 @@ impl<T: Real + Send + Sync> Interpolant<T> {
                 got: deriv.len(),
             });
         }
-        Ok(self.eval_in(x, deriv, &mut self.scratch()))
+        let k = self.ndim() * self.order as usize;
+        if k <= SMALL {
+            let mut w: [T; SMALL] = std::array::from_fn(|_| T::zero());
+            let (mut off, mut inside) = ([0; SMALL], [true; SMALL]);
+            let mut sc = Scratch {
+                w: &mut w[..k],
+                off: &mut off[..k],
+                inside: &mut inside[..k],
+            };
+            return Ok(self.eval_in(x, deriv, &mut sc));
+        }
+        let (mut w, mut off, mut inside) = self.scratch();
+        let mut sc = Scratch {
+            w: &mut w,
+            off: &mut off,
+            inside: &mut inside,
+        };
+        Ok(self.eval_in(x, deriv, &mut sc))
     }
 
     /// `out[k] = f(points[k, ..])` for `points` of shape `(count, ndim)`;
@@ -227,7 +330,12 @@ impl<T: Real + Send + Sync> Interpolant<T> {
         out.par_chunks_mut(CHUNK)
             .enumerate()
             .for_each(|(c, chunk)| {
-                let mut sc = self.scratch();
+                let (mut w, mut off, mut inside) = self.scratch();
+                let mut sc = Scratch {
+                    w: &mut w,
+                    off: &mut off,
+                    inside: &mut inside,
+                };
                 let mut x = vec![0.0; self.ndim()];
                 let k = sc.w.len();
                 let mut ws = vec![T::zero(); BATCH * k];
@@ -260,7 +368,14 @@ impl<T: Real + Send + Sync> Interpolant<T> {
     fn eval_in(&self, x: &[f64], deriv: &[u32], sc: &mut Scratch<T>) -> T {
         let m = self.order as usize;
         for a in 0..self.ndim() {
-            let xa = self.mode.fold_coordinate(x[a], self.shape[a]);
+            if m == 1 {
+                let k = self.mode.nearest_index(x[a], self.shape[a]);
+                sc.w[a] = T::one();
+                sc.inside[a] = k.is_some();
+                sc.off[a] = k.map_or(0, |k| (k + self.pad) * self.strides[a]);
+                continue;
+            }
+            let xa = self.coordinate(x[a], a);
             let (first, u) = centred_cell(self.order, xa);
             let w = &mut sc.w[a * m..(a + 1) * m];
             cell_derivatives_into(self.order, deriv[a], &T::from_f64_exact(u), w);
@@ -289,7 +404,13 @@ impl<T: Real + Send + Sync> Interpolant<T> {
         let m = self.order as usize;
         let mut base = 0;
         for a in 0..self.ndim() {
-            let xa = self.mode.fold_coordinate(x[a], self.shape[a]);
+            if m == 1 {
+                let k = self.mode.nearest_index(x[a], self.shape[a])?;
+                base += (k + self.pad) * self.strides[a];
+                w[a] = T::one();
+                continue;
+            }
+            let xa = self.coordinate(x[a], a);
             let (first, u) = centred_cell(self.order, xa);
             let i0 = first + self.pad as i64;
             if i0 < 0 || i0 as usize + m > self.shape[a] + 2 * self.pad {

@@ -280,31 +280,6 @@ impl<T: Real> LineFilter<T> {
             anticausal_rows(c, w, z);
         }
     }
-
-    /// The exact filter of `w` windows at once (the columns of `c`,
-    /// `L × w`) whose samples are zero beyond both ends (`c⁺_0 = s_0`; the
-    /// anti-causal start `ξ/(ξ² − 1) c⁺_{L−1}` sums the geometric
-    /// continuation of `c⁺` into the zeros). Exact for one pole; with
-    /// several, each window must carry `exact_pad()` zeros at each end so
-    /// that what the first passes push beyond it is below `2^{−BITS−8}`
-    /// relatively. The block route's kernel: the windows advance together,
-    /// so each step is a vector operation instead of a latency-bound chain.
-    pub(crate) fn run_zero_extended_rows(&self, c: &mut [T], w: usize) {
-        let r = &self.recursive;
-        let gain = r.gain().clone();
-        for x in c.iter_mut() {
-            *x *= gain.clone();
-        }
-        let last = c.len() - w;
-        for z in r.poles() {
-            causal_rows(c, w, z);
-            let f = z.clone() / (z.clone() * z.clone() - T::one());
-            for x in c[last..].iter_mut() {
-                *x = f.clone() * x.clone();
-            }
-            anticausal_rows(c, w, z);
-        }
-    }
 }
 
 /// [`causal`] down every column of `c` (`L × w`): row `i` += ξ · row `i − 1`.

@@ -150,6 +150,55 @@ impl Mode {
             Mode::GridConstant => x.clamp(-FAR_CONSTANT, n + FAR_CONSTANT),
         }
     }
+
+    /// The sample scipy's `map_coordinates(order=0)` returns at `x`: the
+    /// point mapped by scipy's coordinate rule (`ni_interpolation.c`:
+    /// symmetric and periodic modes fold only points outside `[0, ν − 1]`,
+    /// and the negative side of `mirror`/`reflect` by negation, so ties at
+    /// half-integers go where scipy sends them), rounded to the nearest
+    /// integer with ties up, that index extended by the mode (`None`:
+    /// `cval`). The rounding is exact (`⌊y⌋` and `y − ⌊y⌋` are), where
+    /// scipy forms `⌊y + ½⌋` in `f64`: the two differ only where `y + ½`
+    /// rounds up to an integer, e.g. `y = ½ − 2^{−54}` (scipy: 1, here 0).
+    ///
+    /// ```
+    /// use splinelab::sspline::mode::Mode;
+    /// assert_eq!(Mode::Mirror.nearest_index(8.5, 9), Some(7));
+    /// assert_eq!(Mode::Mirror.nearest_index(-2.5, 9), Some(3));
+    /// assert_eq!(Mode::GridConstant.nearest_index(-0.5, 9), Some(0));
+    /// assert_eq!(Mode::GridConstant.nearest_index(-0.51, 9), None);
+    /// // Exact rounding where scipy's f64 `⌊y + ½⌋` gives 1.
+    /// assert_eq!(Mode::Mirror.nearest_index(0.5 - 2f64.powi(-54), 9), Some(0));
+    /// ```
+    pub fn nearest_index(self, x: f64, len: usize) -> Option<usize> {
+        let n = len as f64;
+        let y = match self {
+            Mode::Mirror if len == 1 => 0.0,
+            Mode::Mirror if x < 0.0 => {
+                let (p, r) = (2.0 * n - 2.0, (-x).rem_euclid(2.0 * n - 2.0));
+                if r < n - 1.0 { r } else { p - r }
+            }
+            Mode::Mirror if x > n - 1.0 => {
+                let (p, r) = (2.0 * n - 2.0, x.rem_euclid(2.0 * n - 2.0));
+                if r < n { r } else { p - r }
+            }
+            Mode::Reflect if x < 0.0 => {
+                let p = 2.0 * n;
+                let r = (-x).rem_euclid(p);
+                let r = if r == 0.0 { p } else { r };
+                if r > n { p - r } else { r - 1.0 }
+            }
+            Mode::Reflect if x > n - 1.0 => {
+                let r = x.rem_euclid(2.0 * n);
+                if r >= n { 2.0 * n - r - 1.0 } else { r }
+            }
+            Mode::GridWrap if x < 0.0 || x > n - 1.0 => x.rem_euclid(n),
+            _ => self.fold_coordinate(x, len),
+        };
+        let fl = y.floor();
+        let i = fl as i64 + i64::from(y - fl >= 0.5);
+        self.fold(i, len)
+    }
 }
 
 impl fmt::Display for Mode {

@@ -13,6 +13,7 @@
 //! amplification (`1/|V(−1)|`) and `b` the per-axis bound (≈ `D A^{D−1} b`).
 
 use super::line_filter::LineFilter;
+use super::mode::Mode;
 use super::prefilter::PrefilterError;
 use crate::scalar::Real;
 use ndarray::{Array, ArrayBase, ArrayViewMut3, Axis, Data, DataMut, Dimension, Zip};
@@ -230,6 +231,52 @@ where
     D: Dimension,
 {
     check_finite(a)?;
+    Ok(pad_lanes(a, pad, |buf| {
+        filter.apply_padded(buf, pad, &mut Vec::new())
+    }))
+}
+
+/// `a` extended by `pad` values beyond each end of each axis as `mode`
+/// extends samples (`cval` for `grid-constant`), unfiltered: the layout of
+/// [`padded_coefficients`] for coefficients the caller already has (scipy's
+/// `prefilter=False`) and for degrees 0 and 1, whose coefficients are the
+/// samples.
+pub fn padded_extension<T, S, D>(
+    a: &ArrayBase<S, D>,
+    mode: Mode,
+    cval: f64,
+    pad: usize,
+) -> Result<Array<T, D>, PrefilterError>
+where
+    T: Real + Send + Sync,
+    S: Data<Elem = T>,
+    D: Dimension,
+{
+    check_finite(a)?;
+    let cval = T::from_f64_exact(cval);
+    Ok(pad_lanes(a, pad, |buf| {
+        let s = buf[pad..buf.len() - pad].to_vec();
+        for (j, o) in buf.iter_mut().enumerate() {
+            *o = match mode.fold(j as i64 - pad as i64, s.len()) {
+                Some(k) => s[k].clone(),
+                None => cval.clone(),
+            };
+        }
+    }))
+}
+
+/// Every lane of `a`, axis by axis, copied into the middle of a buffer
+/// with `pad` slots each side, passed to `fill` and stored whole.
+fn pad_lanes<T, S, D>(
+    a: &ArrayBase<S, D>,
+    pad: usize,
+    fill: impl Fn(&mut Vec<T>) + Sync,
+) -> Array<T, D>
+where
+    T: Real + Send + Sync,
+    S: Data<Elem = T>,
+    D: Dimension,
+{
     let mut cur = a.to_owned();
     for axis in 0..a.ndim() {
         let mut dim = cur.raw_dim();
@@ -242,12 +289,12 @@ where
                 buf.resize(pad, T::zero());
                 buf.extend(src.iter().cloned());
                 buf.resize(src.len() + 2 * pad, T::zero());
-                filter.apply_padded(&mut buf, pad, &mut Vec::new());
+                fill(&mut buf);
                 for (d, s) in dst.iter_mut().zip(buf) {
                     *d = s;
                 }
             });
         cur = next;
     }
-    Ok(cur)
+    cur
 }

@@ -35,20 +35,12 @@ pub struct InterpolateArgs {
     pub at: PathBuf,
 }
 
-/// Coordinates beyond ±2^40 (grid-constant only) are evaluated at ±2^40:
-/// the same value, `cval` (to the rounding of the weights' sum).
-const FAR: f64 = 1_099_511_627_776.0;
-
 /// Runs `splinelab interpolate`.
 pub fn run(args: &InterpolateArgs) -> Result<(), CliError> {
     let plan = plan(&args.engine)?;
-    let mut points = read_points(&args.at, plan.data.ndim())?;
-    if args.engine.mode == splinelab::prelude::Mode::GridConstant {
-        // Beyond a few samples past the ends the grid-constant spline is
-        // cval; far coordinates are brought to ±2^40 so that the engine's
-        // integer cell index cannot overflow (|x| ≥ 2^63 would).
-        points.mapv_inplace(|x| x.clamp(-FAR, FAR));
-    }
+    // Far grid-constant points need no clamp here: Mode::fold_coordinate
+    // brings them to ±2^40 (same value, no cell-index overflow).
+    let points = read_points(&args.at, plan.data.ndim())?;
     let m = (plan.degree + 1) as f64;
     let ndim = plan.data.ndim() as i32;
     let per_point = m.powi(ndim) + ndim as f64 * m * m;
