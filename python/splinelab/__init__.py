@@ -217,21 +217,31 @@ def map_coordinates(
 ):
     """Values of the spline interpolant at coordinates (``scipy.ndimage.map_coordinates``).
 
-    ``order`` is the spline **degree**, 1..199 (scipy: 0..5; degree 0 is
-    not offered). ``coordinates`` has shape ``(input.ndim, ...)``: one row
-    per axis, as in scipy; the result has shape ``coordinates.shape[1:]``.
-    The default mode is 'mirror' (scipy's default 'constant' is not offered:
-    pass ``mode=`` explicitly when swapping). ``prefilter=False`` (input
-    already coefficients) is not supported and raises ``ValueError``.
+    ``order`` is the spline **degree**, 0..199 (scipy: 0..5). Degree 0 picks
+    the nearest sample (scipy's rule at half-integers) and degree 1 is
+    multilinear, both without a prefilter, as in scipy. ``coordinates`` has
+    shape ``(input.ndim, ...)``: one row per axis, as in scipy; the result
+    has shape ``coordinates.shape[1:]``. The default mode is 'mirror'
+    (scipy's default 'constant' is not offered: pass ``mode=`` explicitly
+    when swapping). ``prefilter=False``: ``input`` already holds the
+    coefficients (e.g. from ``spline_filter`` with the same mode); they are
+    extended beyond the grid by ``mode`` (``cval`` for 'grid-constant') and
+    evaluated as given, as scipy does (``tol`` does not apply).
     float32 input is computed in float32 unless ``output`` says float64.
+    Cost: the prefilter (O(poles) per sample and axis) once, then
+    ``(order + 1)**ndim`` multiply-adds per point.
 
     >>> import numpy as np, splinelab
     >>> v = splinelab.map_coordinates(np.array([0.0, 1, 8, 27, 64]), [[1.0, 2.5]], order=3)
     >>> bool(abs(v[0] - 1.0) < 1e-14)
     True
+    >>> c = splinelab.spline_filter(np.array([0.0, 1, 8, 27, 64]), order=3)
+    >>> w = splinelab.map_coordinates(c, [[1.0, 2.5]], order=3, prefilter=False)
+    >>> bool(np.allclose(v, w, rtol=0, atol=1e-13))
+    True
     """
-    if not prefilter:
-        raise ValueError("prefilter=False is not supported: pass the samples, not coefficients")
+    if not isinstance(prefilter, (bool, np.bool_)):
+        raise TypeError(f"prefilter must be True or False, got {type(prefilter).__name__}")
     a = _real_array(input)
     default = a.dtype if a.dtype in (np.float32, np.float64) else np.float64
     dtype, target = _output_dtype(output, default)
@@ -244,7 +254,9 @@ def map_coordinates(
         raise ValueError("coordinates must be finite")
     run = _ext.map_coordinates_f64 if dtype == np.float64 else _ext.map_coordinates_f32
     cv = _opt_float(cval, "cval")
-    values = run(a, flat, _degree(order), _mode(mode), cv, _opt_float(tol, "tol"), _threads(threads))
+    values = run(
+        a, flat, _degree(order), _mode(mode), cv, _opt_float(tol, "tol"), bool(prefilter), _threads(threads)
+    )
     return _deliver(values.reshape(at.shape[1:]), target, at.shape[1:])
 
 

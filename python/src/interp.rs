@@ -1,5 +1,8 @@
 //! `map_coordinates`: the spline interpolant of a float64 or float32 array
 //! evaluated at points given as scipy does, one row per axis: `(ndim, k)`.
+//! With `prefilter` the array holds samples (the engine solves for the
+//! coefficients); without, it already holds coefficients (scipy's
+//! `prefilter=False`), which are extended by the mode and evaluated as given.
 
 use crate::error::value_error;
 use crate::pool::run_with;
@@ -21,6 +24,7 @@ fn map_generic<'py, T>(
     input: PyReadonlyArrayDyn<'py, T>,
     coordinates: PyReadonlyArray2<'py, f64>,
     opts: Options,
+    prefilter: bool,
     threads: Option<usize>,
 ) -> PyResult<Bound<'py, PyArray1<T>>>
 where
@@ -28,7 +32,15 @@ where
 {
     let data = input.as_array();
     let at = coordinates.as_array();
-    let out = py.detach(|| run_with(threads, || map_coordinates(&data, at, opts)))?;
+    let run = || {
+        if prefilter {
+            return map_coordinates(&data, at, opts);
+        }
+        let f = Interpolant::from_coefficients(&data, opts.degree, opts.mode, opts.cval)?;
+        let mut out = vec![T::zero(); at.ncols()];
+        f.eval_many(at.t(), &mut out).map(|()| out)
+    };
+    let out = py.detach(|| run_with(threads, run))?;
     Ok(out.map_err(value_error)?.into_pyarray(py))
 }
 
@@ -37,7 +49,7 @@ macro_rules! map_fn {
     ($name:ident, $t:ty, $doc:literal) => {
         #[doc = $doc]
         #[pyfunction]
-        #[pyo3(signature = (input, coordinates, degree, mode, cval, tol, threads))]
+        #[pyo3(signature = (input, coordinates, degree, mode, cval, tol, prefilter, threads))]
         #[allow(clippy::too_many_arguments)]
         pub fn $name<'py>(
             py: Python<'py>,
@@ -47,10 +59,11 @@ macro_rules! map_fn {
             mode: &str,
             cval: f64,
             tol: Option<f64>,
+            prefilter: bool,
             threads: Option<usize>,
         ) -> PyResult<Bound<'py, PyArray1<$t>>> {
             let opts = options(degree, mode, cval, tol)?;
-            map_generic(py, input, coordinates, opts, threads)
+            map_generic(py, input, coordinates, opts, prefilter, threads)
         }
     };
 }

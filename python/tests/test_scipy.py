@@ -224,3 +224,43 @@ def test_gil_is_released_while_filtering():
         count += 1
     t.join()
     assert count > 10_000
+
+
+# scipy's prefilter=False and orders 0, 1 evaluate the given array as it is:
+# no padding, so every mode compares with scipy directly, points outside the
+# grid included.
+@pytest.mark.parametrize("mode", MODES)
+@pytest.mark.parametrize("d", [0, 1, 2, 3, 5])
+def test_given_coefficients_equal_scipy(d, mode):
+    c = rng(21).uniform(-1, 1, (17, 23))
+    pts = np.stack([rng(22).uniform(-4, 20, 500), rng(23).uniform(-4, 26, 500)])
+    # Half-integers too: where order 0 decides between two samples.
+    pts[:, :40] = np.round(pts[:, :40] * 2) / 2
+    ours = splinelab.map_coordinates(c, pts, order=d, mode=mode, cval=0.25, prefilter=False)
+    ref = ndimage.map_coordinates(c, pts, order=d, mode=mode, cval=0.25, prefilter=False)
+    if d == 0:
+        np.testing.assert_array_equal(ours, ref)
+    else:
+        # Both sides round a sum of (d + 1)^2 products: a few ulps of max|value|.
+        assert ulps_of_max(ours, ref) <= 16
+
+
+@pytest.mark.parametrize("mode", ["mirror", "reflect", "grid-wrap"])
+def test_orders_0_and_1_equal_scipy_with_prefilter(mode):
+    x = rng(24).uniform(-1, 1, 40)
+    pts = rng(25).uniform(-3, 42, (1, 300))
+    for d in (0, 1):
+        ours = splinelab.map_coordinates(x, pts, order=d, mode=mode)
+        ref = ndimage.map_coordinates(x, pts, order=d, mode=mode)
+        assert ulps_of_max(ours, ref) <= (0 if d == 0 else 4), d
+
+
+def test_prefilter_false_on_our_coefficients_is_the_interpolant():
+    x = rng(26).uniform(-1, 1, (20, 19))
+    pts = rng(27).uniform(0, 18, (2, 200))
+    c = splinelab.spline_filter(x, order=5, mode="grid-wrap")
+    a = splinelab.map_coordinates(x, pts, order=5, mode="grid-wrap")
+    b = splinelab.map_coordinates(c, pts, order=5, mode="grid-wrap", prefilter=False)
+    # Two roundings of the same interpolant (the interpolant pads its own
+    # coefficients): each within a few ulps times the quintic's amplification.
+    assert ulps_of_max(a, b) <= 16
