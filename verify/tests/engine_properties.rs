@@ -221,3 +221,92 @@ fn grid_constant_far_points_read_the_constant_and_never_overflow() {
         assert_eq!(out, [f.eval(&[-1e6, 4.5]).unwrap(), near]);
     }
 }
+
+/// The reference of `nearest` at `W`'s precision: the samples padded by
+/// `pad` copies of their end samples on every side, interpolated under
+/// `mirror` (whose ends then lie `pad` samples away, influence
+/// `≤ ρ^{2·pad}`), evaluated at `x + pad` (exact for the dyadic points
+/// used). A second route to the edge-extended spline: no nearest-specific
+/// code runs. Beyond `pad/2` outside the spline is constant to `ρ^{pad/2}`:
+/// points are clamped there.
+fn nearest_reference<W: Real + Send + Sync, D: splinelab::ndarray::Dimension>(
+    data: &splinelab::ndarray::Array<f64, D>,
+    d: u32,
+    pad: usize,
+) -> impl Fn(&[f64], &[u32]) -> f64 {
+    let shape = data.shape().to_vec();
+    let big: Vec<usize> = shape.iter().map(|n| n + 2 * pad).collect();
+    let padded = splinelab::ndarray::ArrayD::from_shape_fn(big, |i| {
+        let at: Vec<usize> = (0..shape.len())
+            .map(|a| i[a].saturating_sub(pad).min(shape[a] - 1))
+            .collect();
+        W::from_f64_exact(data.view().into_dyn()[at.as_slice()])
+    });
+    let f: Interpolant<W> = Interpolant::new(&padded, Options::new(d, Mode::Mirror)).unwrap();
+    let h = pad as f64 / 2.0;
+    move |x, deriv| {
+        let at: Vec<f64> = (0..shape.len())
+            .map(|a| x[a].clamp(-h, shape[a] as f64 - 1.0 + h) + pad as f64)
+            .collect();
+        f.eval_derivative(&at, deriv).unwrap().to_f64()
+    }
+}
+
+/// `nearest` evaluates the spline of the edge-extended signal outside the
+/// grid too (scipy's map_coordinates approximates it by padding 12 edge
+/// samples; it used to return the end sample), values and first
+/// derivatives, near the grid and far away (up to ±1e300): 2-D in f64
+/// against a 128-bit reference, the batch path too; 1-D in 256-bit MPFR
+/// against a 256-bit reference.
+#[test]
+fn nearest_outside_the_grid_is_the_edge_extended_spline() {
+    type W = splinelab::scalar::Mp<256>;
+    let data = Array2::from_shape_fn((9, 7), |(i, j)| ((i * 7 + j * 3) % 11) as f64 - 4.0);
+    // Dyadic points, so that `x + pad` is exact in the reference.
+    let pts = [
+        [-3.3125, 2.5],
+        [-0.40625, -1.6875],
+        [4.0, 8.59375],
+        [10.203125, 6.5],
+        [-25.0, 3.125],
+        [1e6, -1e300],
+        [3.5, 1e12],
+    ];
+    let line = Array1::from_vec(vec![1.0, 5.0, 2.0, 7.0, 3.0, 9.0, 4.0, 0.0, 6.0]);
+    let line_hi = line.mapv(W::from_f64_exact);
+    for d in [2u32, 3, 5, 9] {
+        let f: Interpolant<f64> = Interpolant::new(&data, Options::new(d, Mode::Nearest)).unwrap();
+        let g = Interpolant::new(&line_hi, Options::new(d, Mode::Nearest)).unwrap();
+        let reference = nearest_reference::<splinelab::scalar::Mp<128>, _>(&data, d, 160);
+        let reference_hi = nearest_reference::<W, _>(&line, d, 800);
+        for x in &pts {
+            for deriv in [[0, 0], [1, 0], [0, 1]] {
+                let want = reference(x, &deriv);
+                let got = f.eval_derivative(x, &deriv).unwrap();
+                // f64: a few ulps of max|D| (max|s| = 6, amplification ≤ 20).
+                assert!(
+                    (got - want).abs() < 1e-12,
+                    "degree {d} at {x:?} d{deriv:?}: {got} vs {want}"
+                );
+            }
+            for deriv in [0, 1] {
+                let want = reference_hi(&x[..1], &[deriv]);
+                let hi = g.eval_derivative(&x[..1], &[deriv]).unwrap().to_f64();
+                assert!(
+                    (hi - want).abs() <= 1e-60,
+                    "MPFR degree {d} at {} d{deriv}: {hi} vs {want}",
+                    x[0]
+                );
+            }
+        }
+        // Next to the ends the spline is not the end sample (it was clamped).
+        let edge = f.eval(&[-0.5, 3.0]).unwrap();
+        assert!((edge - data[(0, 3)]).abs() > 1e-3, "degree {d}: {edge}");
+        let flat = Array2::from_shape_vec((pts.len(), 2), pts.concat()).unwrap();
+        let mut out = vec![0.0; pts.len()];
+        f.eval_many(flat.view(), &mut out).unwrap();
+        for (x, v) in pts.iter().zip(&out) {
+            assert!((v - f.eval(x).unwrap()).abs() < 1e-12, "batch at {x:?}");
+        }
+    }
+}

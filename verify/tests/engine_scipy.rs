@@ -240,3 +240,58 @@ fn given_coefficients_and_degrees_0_and_1_match_scipy() {
     }
     eprintln!("prefilter=False: worst {worst:.2} ulps of max|value|");
 }
+
+/// `nearest` and `grid-constant` with points outside the grid (up to 30
+/// samples beyond the ends) against scipy's map_coordinates, on the check
+/// fixtures (verify/fixtures/scipy/interp, made by make_check_fixtures.py).
+/// scipy pads only 12 samples before its filter (with the reflect or
+/// mirror rule at the padded ends), so it differs from the exact spline of
+/// the extended signal by about `ρ^{24−δ}` of the data `δ ≤ 12` samples
+/// outside (`ρ` the largest pole: at the ends 1.9e-14 for cubics, 1.6e-9
+/// for quintics) and extends its coefficient at `−12` beyond, plus its
+/// rounding of `x + 12` (up to ~70 ulps); the engine must agree within
+/// that. Before the fix, `nearest` returned the end sample outside the
+/// grid (0.16 away from scipy on a random signal).
+#[test]
+fn padded_modes_outside_the_grid_match_scipy_within_its_padding_error() {
+    // |largest pole|: 3 − 2√2, 2 − √3, and the quintic's.
+    let rho = |d: u32| -> f64 {
+        match d {
+            2 => 0.171_572_875_253_809_9,
+            3 => 0.267_949_192_431_122_7,
+            _ => 0.430_575_347_099_973_8,
+        }
+    };
+    let cases = [
+        ("samples1", "coords1", "v1", [2u32, 3, 5].as_slice()),
+        ("samples1", "far1", "f1", &[3]),
+        ("samples2", "coords2", "v2", &[3]),
+        ("samples2", "far2", "f2", &[3]),
+    ];
+    for (samples, coords, prefix, degrees) in cases {
+        let s = read(&format!("interp/{samples}"));
+        let at = read(&format!("interp/{coords}"));
+        let smax = s.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+        for &d in degrees {
+            for mode in [Mode::Nearest, Mode::GridConstant] {
+                let f: Interpolant<f64> = Interpolant::new(&s, Options::new(d, mode)).unwrap();
+                let want = read(&format!("interp/{prefix}_d{d}_{}", mode.name()));
+                let k = at.shape()[1];
+                for (j, w) in want.iter().enumerate() {
+                    let x: Vec<f64> = (0..s.ndim()).map(|a| at[[a, j]]).collect();
+                    // Samples outside the grid (capped at scipy's pad).
+                    let out = (0..s.ndim())
+                        .map(|a| (-x[a]).max(x[a] - (s.shape()[a] - 1) as f64))
+                        .fold(0.0f64, f64::max)
+                        .min(12.0);
+                    let tol = (128.0 * f64::EPSILON).max(4.0 * rho(d).powf(24.0 - out)) * smax;
+                    let err = (f.eval(&x).unwrap() - w).abs();
+                    assert!(
+                        err <= tol,
+                        "{prefix} degree {d} {mode} at {x:?} (of {k}): {err:e} > {tol:e}"
+                    );
+                }
+            }
+        }
+    }
+}

@@ -63,9 +63,8 @@ pub struct Interpolant<T> {
     mode: Mode,
     cval: T,
     bound: f64,
-    /// Built by [`Interpolant::from_coefficients`]: `nearest` extends the
-    /// coefficients rather than clamping the point (scipy's
-    /// `prefilter=False`).
+    /// Built by [`Interpolant::from_coefficients`] (scipy's
+    /// `prefilter=False`): `nearest` extends the given coefficients.
     given: bool,
 }
 
@@ -113,8 +112,9 @@ impl<T: Real + Send + Sync> Interpolant<T> {
         let family = SplineFamily::order(order)?;
         let filter = LineFilter::new(&family, opts.mode, opts.cval, opts.route)?;
         let mut pad = order as usize / 2 + 2;
-        if opts.mode == Mode::GridConstant {
-            // Beyond this the coefficients equal cval to working precision.
+        if matches!(opts.mode, Mode::GridConstant | Mode::Nearest) {
+            // Beyond this the coefficients equal cval (the end sample) to
+            // working precision: the spline is constant there.
             pad += filter.exact_pad() + filter.half_width().unwrap_or(0);
         }
         let coeffs = padded_coefficients(data, &filter, pad)?.into_dyn();
@@ -189,13 +189,22 @@ impl<T: Real + Send + Sync> Interpolant<T> {
         })
     }
 
-    /// The point at which axis `a` is evaluated ([`Mode::fold_coordinate`]);
-    /// for given coefficients under `nearest`, the point itself, clamped
-    /// where every coefficient of its window is the end one (same value).
+    /// The point at which axis `a` is evaluated ([`Mode::fold_coordinate`]).
+    /// Under `nearest` (degree ≥ 2) the point itself: the spline of the
+    /// edge-extended signal is not constant next to the ends (scipy pads 12
+    /// edge samples to approximate it); it is clamped only where every
+    /// coefficient of its window equals the end one — the end sample to
+    /// working precision beyond the exact pad, the end coefficient for given
+    /// coefficients — so the value is the same.
     fn coordinate(&self, x: f64, a: usize) -> f64 {
-        if self.given && self.mode == Mode::Nearest {
-            let r = (self.order / 2 + 1) as f64;
-            return x.clamp(-r, self.shape[a] as f64 - 1.0 + r);
+        if self.mode == Mode::Nearest && self.order > 2 {
+            let half = self.order as usize / 2;
+            let r = if self.given {
+                half + 1
+            } else {
+                self.pad - half - 2
+            };
+            return x.clamp(-(r as f64), self.shape[a] as f64 - 1.0 + r as f64);
         }
         self.mode.fold_coordinate(x, self.shape[a])
     }
@@ -272,7 +281,8 @@ impl<T: Real + Send + Sync> Interpolant<T> {
 
     /// `∂^{d_0 + d_1 + …} f / ∂x_0^{d_0} ∂x_1^{d_1} …` at `x`, each
     /// `d_a ≤` degree (`deriv.len() = ndim`). Derivatives of the spline
-    /// itself; with `nearest` the point is clamped first, as in scipy.
+    /// itself (under `nearest`, of the edge-extended signal's spline: zero
+    /// far outside, where it is constant).
     pub fn eval_derivative(&self, x: &[f64], deriv: &[u32]) -> Result<T, PrefilterError> {
         self.check(x, deriv)?;
         if deriv.len() != x.len() {

@@ -14,9 +14,17 @@
 //! samples). The interpolation condition is imposed on the whole extended
 //! signal, so each mode defines one exact spline on all of ℝ. Evaluation
 //! outside `[0, ν − 1]` follows scipy's `map_coordinates`: the symmetric and
-//! periodic modes fold the point (the spline has the same symmetry),
-//! `nearest` clamps the point to the nearest end, and `grid-constant`
-//! evaluates the spline of the constant-extended signal where it is.
+//! periodic modes fold the point (the spline has the same symmetry), and
+//! `nearest` and `grid-constant` evaluate the spline of the edge- or
+//! constant-extended signal where it is (scipy approximates both by padding
+//! 12 samples before its filter: it differs from the exact spline by about
+//! `ρ^{24}` of the data near the ends, 2⁻³¹ for quintics). Degrees 0 and 1
+//! need no prefilter and clamp the point under `nearest`, as scipy does.
+//!
+//! scipy's `spline_filter1d` has no edge or constant extension: it filters
+//! `nearest` with the `reflect` rule and `grid-constant` with the `mirror`
+//! rule. Our coefficients for those two modes are the exact ones of the
+//! extended signal (the ones scipy's `map_coordinates` approximates).
 
 use super::end_conditions::EndRule;
 use std::fmt;
@@ -112,7 +120,8 @@ impl Mode {
     /// Maps a coordinate `x` to the one the interpolant is evaluated at
     /// (scipy's `map_coordinates` rule): folded into `[0, ν − 1]`
     /// (`mirror`), `[−½, ν − ½]` (`reflect`, `grid-wrap`) or clamped to
-    /// `[0, ν − 1]` (`nearest`); for `grid-constant` unchanged within
+    /// `[0, ν − 1]` (`nearest`; the interpolant clamps degrees ≥ 2 only
+    /// far outside, see [`Mode`]); for `grid-constant` unchanged within
     /// `2^40` of the grid and clamped there beyond (every B-spline window that
     /// far reads only the constant outside, so the value is the same, and the
     /// cell index stays far from `i64` overflow). `f64` arithmetic on the
