@@ -13,9 +13,12 @@ Extra keywords:
   filtered axis; :func:`truncation_width` gives the width and bound);
 - ``threads=``: threads for the parallel path (``None``: one per core).
 
-Modes: ``mirror``, ``reflect`` (half-sample; alias ``grid-mirror``),
-``grid-wrap`` (alias ``wrap``: note that scipy's own ``wrap`` differs),
-``nearest``, ``grid-constant``. scipy's ``constant`` is not offered.
+Modes: scipy's names, computed as scipy 1.17 computes them (the filters
+have scipy's three rules: mirror, half-sample reflect, periodic; see
+:func:`spline_filter1d`); ``map_coordinates`` defaults to ``constant`` as
+scipy and refuses scipy's ``wrap`` (use ``grid-wrap``). ``exact_edges=True``
+gives the exact spline of the edge- or constant-extended signal for
+``nearest`` / ``grid-constant``, which scipy approximates.
 
 Data: float64 and float32 arrays (integer arrays are converted), any
 strides. Functions release the GIL while computing. Bad arguments raise
@@ -84,6 +87,36 @@ def _mode(mode):
     return mode
 
 
+# scipy.ndimage's spline_filter1d has three filters only (ni_splines.c): the
+# mirror rule, the reflect (half-sample) rule and the periodic one; every
+# mode name maps onto one of them. nearest and grid-constant are *not* the
+# spline of the edge- or constant-extended signal there (map_coordinates
+# approximates that by padding 12 samples first).
+_SCIPY_FILTER_RULE = {
+    "mirror": "mirror",
+    "constant": "mirror",
+    "grid-constant": "mirror",
+    "wrap": "mirror",
+    "reflect": "reflect",
+    "grid-mirror": "reflect",
+    "nearest": "reflect",
+    "grid-wrap": "grid-wrap",
+}
+_EXACT_EDGES = ("nearest", "grid-constant")
+_MODES = "mirror, reflect, grid-mirror, grid-wrap, wrap, nearest, grid-constant, constant"
+
+
+def _filter_mode(mode, exact_edges):
+    """The engine's filter for scipy's `mode` (its rule), or with
+    `exact_edges` the exact extension for nearest / grid-constant (cval 0)."""
+    mode = _mode(mode)
+    if mode not in _SCIPY_FILTER_RULE:
+        raise ValueError(f"unknown mode {mode!r}: expected one of {_MODES}")
+    if exact_edges and mode in _EXACT_EDGES:
+        return mode
+    return _SCIPY_FILTER_RULE[mode]
+
+
 def _real_array(input, what="input"):
     a = np.asarray(input)
     if a.dtype.kind not in "biuf":
@@ -121,12 +154,13 @@ def _same_layout(a, b):
     return ia["data"][0] == ib["data"][0] and a.strides == b.strides and a.shape == b.shape
 
 
-def _filter(input, axes, order, output, mode, tol, threads):
+def _filter(input, axes, order, output, mode, tol, threads, exact_edges=False):
     a = _real_array(input)
     dtype, target = _output_dtype(output, np.float64)
     if target is not None and target.shape != a.shape:
         raise ValueError(f"output has shape {target.shape}, expected {a.shape}")
-    args = (axes, _degree(order), _mode(mode), 0.0, _opt_float(tol, "tol"), _threads(threads))
+    mode = _filter_mode(mode, bool(exact_edges))
+    args = (axes, _degree(order), mode, 0.0, _opt_float(tol, "tol"), _threads(threads))
     # The result is written straight into `output` when it is C-ordered and
     # writeable, else into a new C-ordered array (numpy's allocator, which
     # asks for huge pages); the engine copies the input into it and filters
@@ -154,7 +188,9 @@ def _axis(axis, ndim):
     return axis % ndim
 
 
-def spline_filter1d(input, order=3, axis=-1, output=np.float64, mode="mirror", *, tol=None, threads=None):
+def spline_filter1d(
+    input, order=3, axis=-1, output=np.float64, mode="mirror", *, tol=None, threads=None, exact_edges=False
+):
     """Interpolation coefficients along one axis (``scipy.ndimage.spline_filter1d``).
 
     ``order`` is the spline **degree**, 0..199 (scipy: 2..5; degrees 0 and 1
@@ -175,8 +211,14 @@ def spline_filter1d(input, order=3, axis=-1, output=np.float64, mode="mirror", *
         ``output=input`` filters in place).
         float32 output is *computed* in float32 (scipy computes in float64
         and rounds); relative error about ``amplification * 6e-8``.
-    mode : 'mirror', 'reflect' ('grid-mirror'), 'grid-wrap' ('wrap'),
-        'nearest' or 'grid-constant' (cval 0, as scipy's prefilter).
+    mode : scipy's names and scipy's filters: 'mirror', 'constant',
+        'grid-constant' and 'wrap' filter with the mirror rule; 'reflect',
+        'grid-mirror' and 'nearest' with the half-sample (reflect) rule;
+        'grid-wrap' is periodic (what scipy 1.17 computes, for every degree).
+    exact_edges : bool, default False. True: 'nearest' and 'grid-constant'
+        give the exact coefficients of the signal extended by its end
+        samples / by zeros (scipy has no such filter; its map_coordinates
+        approximates them by padding 12 samples).
     tol : None (exact recursive filter) or float in (0, 1): the truncated
         convolution of the certified width; ``|result - exact| <= bound *
         max|input|`` with ``bound = truncation_width(degree=order, tol=tol)['bound'] < tol``.
@@ -192,10 +234,10 @@ def spline_filter1d(input, order=3, axis=-1, output=np.float64, mode="mirror", *
     True
     """
     a = np.asarray(input)
-    return _filter(a, [_axis(axis, a.ndim)], order, output, mode, tol, threads)
+    return _filter(a, [_axis(axis, a.ndim)], order, output, mode, tol, threads, exact_edges)
 
 
-def spline_filter(input, order=3, output=np.float64, mode="mirror", *, tol=None, threads=None):
+def spline_filter(input, order=3, output=np.float64, mode="mirror", *, tol=None, threads=None, exact_edges=False):
     """Interpolation coefficients along every axis (``scipy.ndimage.spline_filter``).
 
     ``order`` is the spline **degree**, 0..199 (scipy: 2..5). Other
@@ -209,11 +251,21 @@ def spline_filter(input, order=3, output=np.float64, mode="mirror", *, tol=None,
     True
     """
     a = np.asarray(input)
-    return _filter(a, list(range(a.ndim)), order, output, mode, tol, threads)
+    return _filter(a, list(range(a.ndim)), order, output, mode, tol, threads, exact_edges)
 
 
 def map_coordinates(
-    input, coordinates, output=None, order=3, mode="mirror", cval=0.0, prefilter=True, *, tol=None, threads=None
+    input,
+    coordinates,
+    output=None,
+    order=3,
+    mode="constant",
+    cval=0.0,
+    prefilter=True,
+    *,
+    tol=None,
+    threads=None,
+    exact_edges=False,
 ):
     """Values of the spline interpolant at coordinates (``scipy.ndimage.map_coordinates``).
 
@@ -221,12 +273,24 @@ def map_coordinates(
     the nearest sample (scipy's rule at half-integers) and degree 1 is
     multilinear, both without a prefilter, as in scipy. ``coordinates`` has
     shape ``(input.ndim, ...)``: one row per axis, as in scipy; the result
-    has shape ``coordinates.shape[1:]``. The default mode is 'mirror'
-    (scipy's default 'constant' is not offered: pass ``mode=`` explicitly
-    when swapping). ``prefilter=False``: ``input`` already holds the
-    coefficients (e.g. from ``spline_filter`` with the same mode); they are
-    extended beyond the grid by ``mode`` (``cval`` for 'grid-constant') and
-    evaluated as given, as scipy does (``tol`` does not apply).
+    has shape ``coordinates.shape[1:]``. ``prefilter=False``: ``input``
+    already holds the coefficients (e.g. from ``spline_filter`` with the
+    same mode); they are extended beyond the grid by ``mode`` (``cval`` for
+    'grid-constant') and evaluated as given, as scipy does (``tol`` does not
+    apply).
+
+    Modes, as scipy 1.17 computes them: 'constant' (the default, as in
+    scipy) is the 'mirror' spline inside ``[0, n - 1]`` on every axis and
+    ``cval`` at any point outside; 'mirror', 'reflect' ('grid-mirror') and
+    'grid-wrap' fold the point; 'nearest' and 'grid-constant' (degrees 2..5)
+    pad the input with 12 edge samples / ``cval`` on every side, filter it
+    with scipy's rule (:func:`spline_filter1d`) and evaluate at ``x + 12``,
+    as scipy does — an approximation of the spline of the extended signal
+    (off by about ``rho**(24 - k)`` of the data ``k <= 12`` samples outside,
+    ``rho`` the largest pole: 2e-14 for cubics, 2e-9 for quintics at the
+    ends). ``exact_edges=True``, and every degree above 5, evaluate that
+    spline exactly instead. scipy's 'wrap' (period ``n - 1``, the first and
+    last samples overlap) is not offered: use 'grid-wrap' (period ``n``).
     float32 input is computed in float32 unless ``output`` says float64.
     Cost: the prefilter (O(poles) per sample and axis) once, then
     ``(order + 1)**ndim`` multiply-adds per point.
@@ -254,9 +318,28 @@ def map_coordinates(
         raise ValueError("coordinates must be finite")
     run = _ext.map_coordinates_f64 if dtype == np.float64 else _ext.map_coordinates_f32
     cv = _opt_float(cval, "cval")
-    values = run(
-        a, flat, _degree(order), _mode(mode), cv, _opt_float(tol, "tol"), bool(prefilter), _threads(threads)
-    )
+    d, mode, tol, threads = _degree(order), _mode(mode), _opt_float(tol, "tol"), _threads(threads)
+    if mode == "wrap":
+        raise ValueError(
+            "mode 'wrap' (scipy's: period n - 1, the first and last samples overlap) is not offered: "
+            "use 'grid-wrap' (period n)"
+        )
+    if mode not in _SCIPY_FILTER_RULE:
+        raise ValueError(f"unknown mode {mode!r}: expected one of {_MODES}")
+    if prefilter and 1 < d <= 5 and mode in _EXACT_EDGES and not exact_edges:
+        # scipy's route (_prepad_for_spline_filter): pad 12, filter with
+        # its rule, evaluate the coefficients at x + 12 (rounded as scipy).
+        pad = 12
+        kind = {"mode": "edge"} if mode == "nearest" else {"mode": "constant", "constant_values": cv}
+        coeffs = _filter(np.pad(a, pad, **kind), list(range(a.ndim)), d, dtype, mode, tol, threads)
+        values = run(coeffs, flat + pad, d, mode, cv, None, False, threads)
+    else:
+        engine_mode = "mirror" if mode == "constant" else mode
+        values = run(a, flat, d, engine_mode, cv, tol, bool(prefilter), threads)
+    if mode == "constant":
+        # scipy: no interpolation beyond the edges.
+        limit = np.array(a.shape, dtype=np.float64)[:, None] - 1.0
+        values = np.where(((flat < 0) | (flat > limit)).any(axis=0), np.asarray(cv, values.dtype), values)
     return _deliver(values.reshape(at.shape[1:]), target, at.shape[1:])
 
 

@@ -6,7 +6,8 @@ import numpy.typing as npt
 __version__: str
 MAX_DEGREE: int
 
-Mode = Literal["mirror", "reflect", "grid-mirror", "grid-wrap", "wrap", "nearest", "grid-constant"]
+# scipy's names; 'wrap' is taken by the filters (scipy's mirror rule), not by map_coordinates.
+Mode = Literal["mirror", "reflect", "grid-mirror", "grid-wrap", "wrap", "nearest", "grid-constant", "constant"]
 Output = type[np.float64] | type[np.float32] | np.dtype[Any] | str | npt.NDArray[np.floating[Any]]
 
 def spline_filter1d(
@@ -18,6 +19,7 @@ def spline_filter1d(
     *,
     tol: float | None = None,
     threads: int | None = None,
+    exact_edges: bool = False,
 ) -> npt.NDArray[np.floating[Any]]: ...
 def spline_filter(
     input: npt.ArrayLike,
@@ -27,18 +29,20 @@ def spline_filter(
     *,
     tol: float | None = None,
     threads: int | None = None,
+    exact_edges: bool = False,
 ) -> npt.NDArray[np.floating[Any]]: ...
 def map_coordinates(
     input: npt.ArrayLike,
     coordinates: npt.ArrayLike,
     output: Output | None = None,
     order: int = 3,
-    mode: Mode = "mirror",
+    mode: Mode = "constant",
     cval: float = 0.0,
     prefilter: bool = True,
     *,
     tol: float | None = None,
     threads: int | None = None,
+    exact_edges: bool = False,
 ) -> npt.NDArray[np.floating[Any]]: ...
 def truncation_width(
     degree: int | None = None,

@@ -89,7 +89,8 @@ def _map(darr, axes, order, mode, tol, output, threads, route):
     dtype = np.dtype(output)
     d = depth(order, tol, route)
     depths = {ax: (d if ax in axes else 0) for ax in range(darr.ndim)}
-    boundary = "periodic" if mode in ("grid-wrap", "wrap") else "none"
+    # Edge blocks extend by scipy's filter rule for `mode` (splinelab._filter).
+    boundary = "periodic" if splinelab._filter_mode(mode, False) == "grid-wrap" else "none"
     block_tol = tol if route == "truncated" else None
 
     def block(x):

@@ -9,10 +9,14 @@ import splinelab
 
 EPS = np.finfo(np.float64).eps
 MODES = ["mirror", "reflect", "grid-wrap", "nearest", "grid-constant"]
-# scipy's spline_filter1d has no exact rule for nearest / grid-constant:
-# pad by 80 samples (rho^160 < 1e-58 for quintics) the way the mode extends
-# and filter as mirror, then crop: the exact spline of the extended signal
-# (the recipe of verify/fixtures/scipy/make_fixtures.py).
+# Every mode name scipy 1.17's spline filters take (map_coordinates takes
+# them all but 'wrap', refused with a ValueError).
+FILTER_MODES = MODES + ["constant", "wrap", "grid-mirror"]
+MAP_MODES = MODES + ["constant", "grid-mirror"]
+# exact_edges=True has no scipy function: pad by 80 samples (rho^160 < 1e-58
+# for quintics) the way the mode extends and filter as mirror, then crop: the
+# exact spline of the extended signal (the recipe of
+# verify/fixtures/scipy/make_fixtures.py).
 PAD = 80
 
 
@@ -20,8 +24,8 @@ def rng(seed=7):
     return np.random.default_rng(seed)
 
 
-def scipy_filter1d(x, d, axis, mode):
-    if mode not in ("nearest", "grid-constant"):
+def scipy_filter1d(x, d, axis, mode, exact_edges=False):
+    if not (exact_edges and mode in ("nearest", "grid-constant")):
         return ndimage.spline_filter1d(x, d, axis=axis, mode=mode)
     axis %= x.ndim
     pad = [(PAD, PAD) if a == axis else (0, 0) for a in range(x.ndim)]
@@ -30,9 +34,9 @@ def scipy_filter1d(x, d, axis, mode):
     return c[tuple(slice(PAD, -PAD) if a == axis else slice(None) for a in range(x.ndim))]
 
 
-def scipy_filter(x, d, mode):
+def scipy_filter(x, d, mode, exact_edges=False):
     for axis in range(x.ndim):
-        x = scipy_filter1d(x, d, axis, mode)
+        x = scipy_filter1d(x, d, axis, mode, exact_edges)
     return x
 
 
@@ -40,49 +44,98 @@ def ulps_of_max(ours, ref):
     return np.abs(ours - ref).max() / (EPS * np.abs(ref).max())
 
 
-@pytest.mark.parametrize("mode", MODES)
+@pytest.mark.parametrize("exact_edges", [False, True])
+@pytest.mark.parametrize("mode", FILTER_MODES)
 @pytest.mark.parametrize("d", [2, 3, 4, 5])
-def test_filter1d_equals_scipy(d, mode):
+def test_filter1d_equals_scipy(d, mode, exact_edges):
     # Lines of >= 24 samples: scipy's reflect is wrong on shorter lines
     # (relative error ~ rho^(2 n), notes of issue 14); checked below by check.
     for shape, axis in [((37,), 0), ((24, 41), 0), ((24, 41), 1), ((30, 5, 26), -1)]:
         x = rng().uniform(-1, 1, shape)
-        ours = splinelab.spline_filter1d(x, order=d, axis=axis, mode=mode)
-        assert ulps_of_max(ours, scipy_filter1d(x, d, axis, mode)) <= 8, (shape, axis)
+        ours = splinelab.spline_filter1d(x, order=d, axis=axis, mode=mode, exact_edges=exact_edges)
+        assert ulps_of_max(ours, scipy_filter1d(x, d, axis, mode, exact_edges)) <= 8, (shape, axis)
 
 
-@pytest.mark.parametrize("mode", MODES)
+def test_filter_modes_are_scipys_rules_not_the_exact_extension():
+    # scipy filters nearest with the reflect rule and grid-constant / wrap
+    # with the mirror rule; the exact extensions differ at the ends by O(1).
+    x = rng(2).uniform(-1, 1, 40)
+    for mode, rule in [("nearest", "reflect"), ("grid-constant", "mirror"), ("wrap", "mirror"), ("constant", "mirror")]:
+        np.testing.assert_array_equal(splinelab.spline_filter1d(x, 3, mode=mode), splinelab.spline_filter1d(x, 3, mode=rule))
+    for mode in ("nearest", "grid-constant"):
+        gap = np.abs(splinelab.spline_filter1d(x, 3, mode=mode, exact_edges=True) - ndimage.spline_filter1d(x, 3, mode=mode))
+        assert gap.max() > 1e-3
+
+
+@pytest.mark.parametrize("mode", FILTER_MODES)
 @pytest.mark.parametrize("d", [2, 3, 5])
 def test_spline_filter_equals_scipy(d, mode):
     for shape in [(33, 28), (25, 24, 26)]:
         x = rng(3).uniform(-1, 1, shape)
-        ours = splinelab.spline_filter(x, order=d, mode=mode)
-        assert ulps_of_max(ours, scipy_filter(x, d, mode)) <= 8 * len(shape), shape
+        for exact_edges in (False, True):
+            ours = splinelab.spline_filter(x, order=d, mode=mode, exact_edges=exact_edges)
+            assert ulps_of_max(ours, scipy_filter(x, d, mode, exact_edges)) <= 8 * len(shape), shape
 
 
-@pytest.mark.parametrize("mode", ["mirror", "grid-wrap", "nearest"])
+@pytest.mark.parametrize("mode", ["mirror", "grid-wrap", "grid-constant", "nearest"])
 def test_short_lines_equal_scipy(mode):
+    # nearest is scipy's reflect rule, wrong on short lines: its exact
+    # extension is compared (against the padded recipe) instead.
     for n in [1, 2, 3, 5, 9]:
         x = rng(n).uniform(-1, 1, n)
-        ours = splinelab.spline_filter1d(x, order=3, mode=mode)
-        assert ulps_of_max(ours, scipy_filter1d(x, 3, 0, mode)) <= 8, n
+        exact = mode == "nearest"
+        ours = splinelab.spline_filter1d(x, order=3, mode=mode, exact_edges=exact)
+        assert ulps_of_max(ours, scipy_filter1d(x, 3, 0, mode, exact)) <= 8, n
 
 
-@pytest.mark.parametrize("mode", ["mirror", "reflect", "grid-wrap", "nearest", "grid-constant"])
-@pytest.mark.parametrize("d", [1, 2, 3, 4, 5])
+@pytest.mark.parametrize("mode", MAP_MODES)
+@pytest.mark.parametrize("d", [0, 1, 2, 3, 4, 5])
 def test_map_coordinates_equals_scipy(d, mode):
+    # scipy's own output (default exact_edges=False: scipy's 12-sample
+    # padding for nearest / grid-constant), points inside, outside, on
+    # half-integers and at the ends (where 'constant' switches to cval).
+    x = rng(11).uniform(-1, 1, (26, 31))
+    ends = np.array([[-1e-12, 0.0, 25.0, 25.0 + 1e-12, -0.5, 25.5], [0.0, -1e-12, 30.0, 30.0 + 1e-12, 30.5, -0.5]])
+    pts = np.concatenate(
+        [np.stack([rng(12).uniform(-3, 28, 400), rng(13).uniform(-3, 33, 400)]),
+         np.round(np.stack([rng(14).uniform(-3, 28, 60), rng(15).uniform(-3, 33, 60)]) * 2) / 2, ends], axis=1)
+    ours = splinelab.map_coordinates(x, pts, order=d, mode=mode, cval=0.375)
+    ref = ndimage.map_coordinates(x, pts, order=d, mode=mode, cval=0.375)
+    # 32 ulps of max|value|: both round sums of (d + 1)^2 terms (worst seen 25).
+    assert ulps_of_max(ours, ref) <= 32
+    assert ours.shape == (pts.shape[1],)
+    if d > 1:
+        c = ndimage.spline_filter(x, d, mode=mode)
+        ours = splinelab.map_coordinates(c, pts, order=d, mode=mode, cval=0.375, prefilter=False)
+        ref = ndimage.map_coordinates(c, pts, order=d, mode=mode, cval=0.375, prefilter=False)
+        assert ulps_of_max(ours, ref) <= 32
+
+
+@pytest.mark.parametrize("mode", ["nearest", "grid-constant"])
+@pytest.mark.parametrize("d", [2, 3, 5])
+def test_map_coordinates_exact_edges(d, mode):
+    # exact_edges=True: the spline of the extended signal, against scipy on
+    # the input padded by 80 (scipy's 12 leaves rho^(24 - k) of the data).
     x = rng(11).uniform(-1, 1, (26, 31))
     pts = np.stack([rng(12).uniform(-3, 28, 400), rng(13).uniform(-3, 33, 400)])
-    ours = splinelab.map_coordinates(x, pts, order=d, mode=mode)
-    if mode in ("nearest", "grid-constant"):
-        # scipy pads by 12 there (inexact for quintics): pad by 80 instead.
-        q = np.pad(x, PAD, mode="edge" if mode == "nearest" else "constant")
-        ref = ndimage.map_coordinates(q, pts + PAD, order=d, mode="mirror")
-    else:
-        ref = ndimage.map_coordinates(x, pts, order=d, mode=mode)
-    # 128 ulps of max|value|: scipy's own error reaches ~70 (issue 14's notes).
+    ours = splinelab.map_coordinates(x, pts, order=d, mode=mode, cval=0.375, exact_edges=True)
+    q = np.pad(x, PAD, mode="edge") if mode == "nearest" else np.pad(x, PAD, constant_values=0.375)
+    ref = ndimage.map_coordinates(q, pts + PAD, order=d, mode="mirror")
     assert ulps_of_max(ours, ref) <= 128
-    assert ours.shape == (400,)
+
+
+def test_map_coordinates_default_mode_is_scipys_constant():
+    x = rng(4).uniform(-1, 1, 20)
+    pts = [[-0.5, 3.25, 19.5]]
+    np.testing.assert_allclose(splinelab.map_coordinates(x, pts), ndimage.map_coordinates(x, pts), rtol=0, atol=8 * EPS)
+    assert splinelab.map_coordinates(x, pts)[0] == 0.0
+
+
+def test_scipy_wrap_is_refused_in_map_coordinates():
+    with pytest.raises(ValueError, match="grid-wrap"):
+        splinelab.map_coordinates(np.ones(5), [[1.0]], mode="wrap")
+    with pytest.raises(ValueError, match="unknown mode"):
+        splinelab.map_coordinates(np.ones(5), [[1.0]], mode="periodic")
 
 
 def test_degrees_0_and_1_return_the_input_as_scipy():

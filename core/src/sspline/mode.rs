@@ -9,9 +9,9 @@
 //! | [`Mode::Nearest`] | `nearest` | `a a a a │ a b c d │ d d d d` | free ([`EndRule::Free`]) |
 //! | [`Mode::GridConstant`] | `grid-constant` | `k k k k │ a b c d │ k k k k` (`k = cval`) | — |
 //!
-//! `wrap` is accepted as an alias of `grid-wrap` (the team's convention);
-//! note that scipy's own `wrap` differs (it overlaps the first and last
-//! samples). The interpolation condition is imposed on the whole extended
+//! scipy's `wrap` is refused with an error naming `grid-wrap`: scipy
+//! filters it with the mirror rule and wraps points with period `ν − 1`
+//! (the first and last samples overlap), so it is not `grid-wrap`. The interpolation condition is imposed on the whole extended
 //! signal, so each mode defines one exact spline on all of ℝ. Evaluation
 //! outside `[0, ν − 1]` follows scipy's `map_coordinates`: the symmetric and
 //! periodic modes fold the point (the spline has the same symmetry), and
@@ -47,10 +47,20 @@ pub enum Mode {
 
 /// An unknown mode name.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
-#[error(
-    "unknown mode {0:?}: expected mirror, reflect (grid-mirror), grid-wrap (wrap), nearest or grid-constant"
-)]
+#[error("{}", describe_unknown(.0))]
 pub struct UnknownMode(pub String);
+
+fn describe_unknown(name: &str) -> String {
+    if name == "wrap" {
+        // A silent alias would give O(1) differences to scipy.
+        return "mode \"wrap\" is scipy's other periodic mode (it filters with the mirror rule and \
+                wraps points with period ν − 1): use grid-wrap (period ν)"
+            .to_string();
+    }
+    format!(
+        "unknown mode {name:?}: expected mirror, reflect (grid-mirror), grid-wrap, nearest or grid-constant"
+    )
+}
 
 impl Mode {
     /// Every mode, in the order of the table.
@@ -223,10 +233,30 @@ impl FromStr for Mode {
         Ok(match s {
             "mirror" => Mode::Mirror,
             "reflect" | "grid-mirror" => Mode::Reflect,
-            "grid-wrap" | "wrap" => Mode::GridWrap,
+            "grid-wrap" => Mode::GridWrap,
             "nearest" => Mode::Nearest,
             "grid-constant" => Mode::GridConstant,
             _ => return Err(UnknownMode(s.to_string())),
         })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn scipy_wrap_is_refused_and_names_grid_wrap() {
+        let e = "wrap".parse::<Mode>().unwrap_err().to_string();
+        assert!(
+            e.contains("use grid-wrap") && e.contains("mirror rule"),
+            "{e}"
+        );
+        let e = "periodic".parse::<Mode>().unwrap_err().to_string();
+        assert!(e.starts_with("unknown mode \"periodic\""), "{e}");
+        for m in Mode::ALL {
+            assert_eq!(m.name().parse::<Mode>(), Ok(m));
+        }
+        assert_eq!("grid-mirror".parse::<Mode>(), Ok(Mode::Reflect));
     }
 }

@@ -106,7 +106,7 @@ pub struct SplineArgs {
     /// Spline order m = d + 1 (the papers' convention).
     #[arg(long)]
     pub order: Option<usize>,
-    /// End mode: mirror, reflect (grid-mirror), grid-wrap (wrap), nearest, grid-constant (prefilter: as scipy's spline_filter1d filters them, with the reflect and mirror rules; interp: as map_coordinates, which pads 12 samples first).
+    /// End mode: mirror, reflect (grid-mirror), grid-wrap, nearest, grid-constant (scipy's wrap is refused: it is not grid-wrap; prefilter: as scipy's spline_filter1d filters them, with the reflect and mirror rules; interp: as map_coordinates, which pads 12 samples first).
     #[arg(long, default_value = "mirror")]
     pub mode: String,
 }

@@ -41,7 +41,7 @@ pub struct EngineArgs {
     #[arg(long, value_parser = super::whole::<u32>)]
     pub order: Option<u32>,
     /// Boundary mode (scipy's names): mirror, reflect (grid-mirror),
-    /// grid-wrap (wrap), nearest, grid-constant.
+    /// grid-wrap, nearest, grid-constant (scipy's wrap is refused: it is not grid-wrap).
     #[arg(long, default_value = "mirror", value_parser = parse_mode)]
     pub mode: Mode,
     /// The constant beyond the ends for grid-constant.

@@ -218,6 +218,8 @@ mod tests {
         // reflect: c b a | a b c d | d c b
         assert_eq!(e(Mode::Reflect), [2, 1, 0, 0, 1, 2, 3, 3, 2, 1].map(Some));
         assert_eq!(e(Mode::GridWrap), [1, 2, 3, 0, 1, 2, 3, 0, 1, 2].map(Some));
-        assert_eq!(Mode::parse("wrap"), Some(Mode::GridWrap));
+        // scipy's `wrap` is not grid-wrap (it filters with the mirror rule).
+        assert_eq!(Mode::parse("wrap"), None);
+        assert_eq!(Mode::parse("grid-mirror"), Some(Mode::Reflect));
     }
 }
