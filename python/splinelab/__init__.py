@@ -454,7 +454,9 @@ def _check_degree(degree, order):
     return _int(order, "order") - 1 if order is not None else _int(3 if degree is None else degree, "degree")
 
 
-def _check_interp(samples, coordinates, values, degree=None, order=None, mode="mirror", max_ulps=None, format=None):
+def _check_interp(
+    samples, coordinates, values, degree=None, order=None, mode="mirror", cval=0.0, max_ulps=None, format=None
+):
     s = _real_array(samples, "samples")
     if s.ndim not in (1, 2):
         raise ValueError(f"samples must be 1-D or 2-D, got {s.ndim}-D")
@@ -466,7 +468,8 @@ def _check_interp(samples, coordinates, values, degree=None, order=None, mode="m
     user, fmt = _values(values, format)
     return _ext.check_interp(
         np.ascontiguousarray(s, dtype=np.float64).ravel().tolist(), list(s.shape),
-        c.T.ravel().tolist(), user, fmt, _check_degree(degree, order), _mode(mode), _opt_float(max_ulps, "max_ulps"),
+        c.T.ravel().tolist(), user, fmt, _check_degree(degree, order), _mode(mode), _opt_float(cval, "cval"),
+        _opt_float(max_ulps, "max_ulps"),
     )
 
 
@@ -538,7 +541,9 @@ def check(kind, **kwargs):
     - 'bezier-eval': ``coeffs, t, values``;
     - 'knot-insertion': ``before=(t, c, k), after=(t, c, k)``;
     - 'interp': ``samples`` (1-D or 2-D), ``coordinates`` (shape (ndim, count),
-      as map_coordinates), ``values``, ``degree=3``, ``mode='mirror'``;
+      as map_coordinates), ``values``, ``degree=3``, ``mode='mirror'``,
+      ``cval=0.0`` (for 'grid-constant'; scipy's 'constant' and 'wrap' are
+      not checked);
     - 'cond': ``nodes`` (one node set, or a list of sets), ``values`` (one
       condition number per set), ``basis='bernstein'`` or 'monomial',
       ``norm='2'`` or 'inf'.

@@ -10,7 +10,7 @@ use splinelab_verify::check::bezier_eval::check_bezier_eval as bezier;
 use splinelab_verify::check::bspline_eval::{BSplineEvalInput, check_bspline_eval as bspline};
 use splinelab_verify::check::coeffs::check_coeffs as coeffs;
 use splinelab_verify::check::cond::{CondInput, Norm, check_cond as cond};
-use splinelab_verify::check::interp::{InterpInput, check_interp as interp};
+use splinelab_verify::check::interp::{InterpInput, check_interp_with_cval as interp};
 use splinelab_verify::check::knot_insertion::check_knot_insertion as insertion;
 use splinelab_verify::check::outcome::prefilter_extra;
 use splinelab_verify::check::prefilter::{PrefilterInput, check_prefilter as prefilter};
@@ -166,9 +166,10 @@ pub fn check_knot_insertion(
 }
 
 /// `check interp`: 1-D or 2-D samples (C order, `shape`), points point-major
-/// (`points[k·D + a]`), the user's values, degree, mode.
+/// (`points[k·D + a]`), the user's values, degree, mode, `cval` (scipy's
+/// constant for `grid-constant`).
 #[pyfunction]
-#[pyo3(signature = (samples, shape, points, user, fmt, degree, mode, max_ulps_))]
+#[pyo3(signature = (samples, shape, points, user, fmt, degree, mode, cval, max_ulps_))]
 #[allow(clippy::too_many_arguments)]
 pub fn check_interp(
     py: Python<'_>,
@@ -179,6 +180,7 @@ pub fn check_interp(
     fmt: &str,
     degree: usize,
     mode: &str,
+    cval: f64,
     max_ulps_: Option<f64>,
 ) -> PyResult<String> {
     let g = GridArgs::new(mode, fmt, degree, max_ulps_)?;
@@ -192,7 +194,7 @@ pub fn check_interp(
         mode: g.mode,
         max_ulps: g.max_ulps,
     };
-    elements(py, || interp(&input), g.extra)
+    elements(py, || interp(&input, cval), g.extra)
 }
 
 /// `check cond`: node sets, basis (`bernstein`, `monomial`), norm (`2`,

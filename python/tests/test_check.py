@@ -132,3 +132,16 @@ def test_cond_against_closed_forms():
     r = splinelab.check("cond", nodes=[[0.0, 1.0], [0.0, 0.5, 1.0]], values=[off, 24.0],
                         basis="monomial", norm="inf", max_ulps=1)
     assert r["verdict"] == "fail" and r["worst"]["index"] == 0 and abs(r["worst"]["ulps"] - 3.0) < 1e-9
+
+
+def test_interp_takes_cval_for_grid_constant():
+    # scipy 1.17.1's map_coordinates with cval = 0.75 (committed fixture):
+    # checked with that cval it passes; with scipy's default 0 it is far off.
+    s = np.load(FIX / "interp" / "samples1.npy")
+    c = np.load(FIX / "interp" / "coords1.npy")
+    v = np.load(FIX / "interp" / "v1_d3_grid-constant_cval.npy")
+    args = dict(samples=s, coordinates=c, values=v, degree=3, mode="grid-constant")
+    right = splinelab.check("interp", cval=0.75, **args)
+    # scipy's own error (its f64 x + 12): 4.6e-14 at worst.
+    assert right["verdict"] == "pass" and right["worst"]["abs"] < 1e-12
+    assert splinelab.check("interp", **args)["worst"]["abs"] > 1e-3
