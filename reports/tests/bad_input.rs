@@ -400,6 +400,8 @@ fn engine_cases(v: &mut Vec<Case>) {
         &["--degree", "3", "--order", "4"],
         &[],
         &["--degree", "3", "--mode", "wrapped"],
+        // scipy's `wrap` is not grid-wrap: refused, not aliased.
+        &["--degree", "3", "--mode", "wrap"],
         &["--degree", "3", "--tol", "0"],
         &["--degree", "3", "--tol", "1"],
         &["--degree", "3", "--tol", "nan"],

@@ -169,6 +169,80 @@ fn interpolate_matches_scipy_map_coordinates() {
 }
 
 /// Parses the decimal strings of a `--prec` JSON output exactly.
+/// `interpolate --coeffs` (scipy's `prefilter=False`) at degrees 0..=5 in
+/// every mode, and degree 0 without `--coeffs` (no prefilter at degree 0,
+/// as in scipy), against scipy's map_coordinates on the `x{k}` arrays
+/// taken as coefficients (fixtures `n{k}_{mode}_{d}` at points `q{k}`):
+/// degree 0 bit for bit, others within the rounding of the sums.
+#[test]
+fn interpolate_given_coefficients_and_degree_0_match_scipy() {
+    let dir = tmpdir("ipc");
+    let out = dir.join("v.npy");
+    let o = out.to_str().unwrap();
+    for mode in MODES {
+        for k in 1..=3 {
+            let (x, q) = (fixture(&format!("x{k}")), fixture(&format!("q{k}")));
+            for d in 0..=5u32 {
+                let ds = d.to_string();
+                let mut args = vec![
+                    "interpolate",
+                    "--input",
+                    x.to_str().unwrap(),
+                    "--degree",
+                    &ds,
+                    "--mode",
+                    mode,
+                    "--cval",
+                    CVAL,
+                    "--at",
+                    q.to_str().unwrap(),
+                    "--output",
+                    o,
+                ];
+                if d > 0 {
+                    args.push("--coeffs");
+                }
+                ok(&args);
+                let got = read_f64(&out);
+                let want = read_f64(&fixture(&format!("n{k}_{mode}_{d}")));
+                if d == 0 {
+                    assert_eq!(got, want, "n{k} {mode} degree 0");
+                } else {
+                    let u = ulps(&got, &want);
+                    assert!(u <= 16.0, "n{k} {mode} {d}: {u:.1} ulps");
+                }
+            }
+        }
+    }
+    // --tol has no meaning without a prefilter: exit 2, no output left.
+    std::fs::remove_file(&out).unwrap();
+    let (x, q) = (fixture("x1"), fixture("q1"));
+    let args = [
+        "interpolate",
+        "--input",
+        x.to_str().unwrap(),
+        "--degree",
+        "3",
+        "--coeffs",
+        "--tol",
+        "1e-8",
+        "--at",
+        q.to_str().unwrap(),
+        "--output",
+        o,
+    ];
+    let r = run(&args);
+    assert_eq!(
+        r.status.code(),
+        Some(2),
+        "{}",
+        String::from_utf8_lossy(&r.stderr)
+    );
+    assert!(String::from_utf8_lossy(&r.stderr).contains("--coeffs"));
+    assert!(!out.exists());
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
 fn json_values(path: &Path) -> (Vec<usize>, Vec<Rational>) {
     let v: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();

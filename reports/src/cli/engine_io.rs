@@ -34,7 +34,7 @@ pub struct EngineArgs {
     /// `.json` (a list, or a list of equal lists) or text columns.
     #[arg(long)]
     pub input: PathBuf,
-    /// Spline degree 1..=199 (scipy's `order`).
+    /// Spline degree 1..=199 (scipy's `order`; interpolate also takes 0, the nearest sample).
     #[arg(long, value_parser = super::whole::<u32>)]
     pub degree: Option<u32>,
     /// B-spline order m = degree + 1, 2..=200 (instead of --degree).
@@ -130,11 +130,17 @@ pub struct Plan {
     pub max_error: f64,
 }
 
-/// Checks the options and reads the samples.
-pub fn plan(args: &EngineArgs) -> Result<Plan, CliError> {
-    let degree = degree_from(args.degree, args.order)?;
-    let family = SplineFamily::order(degree + 1)
-        .map_err(|e| CliError::invalid("--degree", e.to_string()))?;
+/// Checks the options and reads the samples; degrees from `min_degree`
+/// (0 for interpolation: the nearest sample, 1 for the prefilter).
+pub fn plan(args: &EngineArgs, min_degree: u32) -> Result<Plan, CliError> {
+    let degree = degree_from(args.degree, args.order, min_degree)?;
+    // Degree 0 has no B-spline family to validate (order 1: the box).
+    let family = match degree {
+        0 => SplineFamily::Order(1),
+        d => {
+            SplineFamily::order(d + 1).map_err(|e| CliError::invalid("--degree", e.to_string()))?
+        }
+    };
     let route = match args.tol {
         None => Route::Exact,
         Some(t) if t > 0.0 && t < 1.0 => Route::Truncated { tol: t },
@@ -181,8 +187,9 @@ pub fn plan(args: &EngineArgs) -> Result<Plan, CliError> {
     })
 }
 
-/// The degree from `--degree d` or `--order m = d + 1` (exactly one).
-pub fn degree_from(degree: Option<u32>, order: Option<u32>) -> Result<u32, CliError> {
+/// The degree from `--degree d` or `--order m = d + 1` (exactly one), in
+/// `min..=199`.
+pub fn degree_from(degree: Option<u32>, order: Option<u32>, min: u32) -> Result<u32, CliError> {
     let d = match (degree, order) {
         (Some(_), Some(_)) => {
             return Err(CliError::invalid(
@@ -197,18 +204,18 @@ pub fn degree_from(degree: Option<u32>, order: Option<u32>) -> Result<u32, CliEr
             ));
         }
         (Some(d), None) => d,
-        (None, Some(m)) if m >= 2 => m - 1,
+        (None, Some(m)) if m > min => m - 1,
         (None, Some(m)) => {
             return Err(CliError::invalid(
                 "--order",
-                format!("{m} is outside 2..=200 (order m = degree + 1)"),
+                format!("{m} is outside {}..=200 (order m = degree + 1)", min + 1),
             ));
         }
     };
-    if !(1..=199).contains(&d) {
+    if !(min..=199).contains(&d) {
         return Err(CliError::invalid(
             "--degree",
-            format!("{d} is outside 1..=199"),
+            format!("{d} is outside {min}..=199"),
         ));
     }
     Ok(d)
@@ -421,13 +428,15 @@ mod tests {
 
     #[test]
     fn degree_or_order_exactly_once() {
-        assert_eq!(degree_from(Some(3), None).unwrap(), 3);
-        assert_eq!(degree_from(None, Some(4)).unwrap(), 3);
-        assert!(degree_from(Some(3), Some(4)).is_err());
-        assert!(degree_from(None, None).is_err());
-        assert!(degree_from(Some(0), None).is_err());
-        assert!(degree_from(Some(200), None).is_err());
-        assert!(degree_from(None, Some(1)).is_err());
+        assert_eq!(degree_from(Some(3), None, 1).unwrap(), 3);
+        assert_eq!(degree_from(None, Some(4), 1).unwrap(), 3);
+        assert!(degree_from(Some(3), Some(4), 1).is_err());
+        assert!(degree_from(None, None, 1).is_err());
+        assert!(degree_from(Some(0), None, 1).is_err());
+        assert_eq!(degree_from(Some(0), None, 0).unwrap(), 0);
+        assert_eq!(degree_from(None, Some(1), 0).unwrap(), 0);
+        assert!(degree_from(Some(200), None, 0).is_err());
+        assert!(degree_from(None, Some(1), 1).is_err());
         assert_eq!(unravel(5, &[2, 3]), vec![1, 2]);
     }
 }

@@ -1,12 +1,16 @@
 //! `splinelab interpolate`: the spline interpolant of an N-D array evaluated
 //! at given points (scipy.ndimage's `map_coordinates` with `prefilter=True`),
-//! any degree 1..=199, exact or truncated coefficients, f32, f64 or MPFR.
+//! any degree 0..=199 (0: the nearest sample, 1: multilinear, no prefilter,
+//! as scipy), exact or truncated coefficients, f32, f64 or MPFR; with
+//! `--coeffs` the input already holds the coefficients (scipy's
+//! `prefilter=False`).
 //!
 //! Points are sample indices, one row per point: shape `(k, ndim)`, or
 //! `(k,)` for a 1-D array (scipy's own layout is the transpose, `(ndim, k)`).
-//! Points outside the grid are allowed; the mode defines the value there,
-//! as in scipy (folded for mirror/reflect/grid-wrap, clamped for nearest,
-//! the constant-extended spline for grid-constant).
+//! Points outside the grid are allowed; the mode defines the value there
+//! (folded for mirror/reflect/grid-wrap; for nearest and grid-constant the
+//! exact spline of the edge- or constant-extended signal, which scipy
+//! approximates by padding 12 samples).
 
 use super::engine_io::{
     EngineArgs, Plan, Working, check_conditioning, engine_error, estimate, plan, to_working,
@@ -33,11 +37,21 @@ pub struct InterpolateArgs {
     /// The points: shape (k, ndim) in sample-index coordinates, or (k,) for 1-D data.
     #[arg(long)]
     pub at: PathBuf,
+    /// The input holds spline coefficients already (scipy's prefilter=False):
+    /// they are extended by the mode and evaluated as given.
+    #[arg(long)]
+    pub coeffs: bool,
 }
 
 /// Runs `splinelab interpolate`.
 pub fn run(args: &InterpolateArgs) -> Result<(), CliError> {
-    let plan = plan(&args.engine)?;
+    let plan = plan(&args.engine, 0)?;
+    if args.coeffs && plan.route != splinelab::prelude::Route::Exact {
+        return Err(CliError::invalid(
+            "--tol",
+            "does not apply with --coeffs (no prefilter runs)",
+        ));
+    }
     // Far grid-constant points need no clamp here: Mode::fold_coordinate
     // brings them to ±2^40 (same value, no cell-index overflow).
     let points = read_points(&args.at, plan.data.ndim())?;
@@ -81,16 +95,23 @@ fn compute<T: Real + Send + Sync>(
     args: &InterpolateArgs,
     points: &Array2<f64>,
 ) -> Result<f64, CliError> {
-    check_conditioning::<T>(plan)?;
     let e = &args.engine;
-    let opts = Options {
-        degree: plan.degree,
-        mode: e.mode,
-        cval: e.cval,
-        route: plan.route,
-    };
     let data = to_working::<T>(&plan.data);
-    let f = Interpolant::new(&data, opts).map_err(|err| engine_error(&e.input, err))?;
+    let f = if args.coeffs {
+        Interpolant::from_coefficients(&data, plan.degree, e.mode, e.cval)
+    } else {
+        if plan.degree >= 1 {
+            check_conditioning::<T>(plan)?;
+        }
+        let opts = Options {
+            degree: plan.degree,
+            mode: e.mode,
+            cval: e.cval,
+            route: plan.route,
+        };
+        Interpolant::new(&data, opts)
+    }
+    .map_err(|err| engine_error(&e.input, err))?;
     let mut out = vec![T::zero(); points.nrows()];
     f.eval_many(points.view(), &mut out)
         .map_err(|err| input_error(&args.at, err.to_string()))?;

@@ -35,7 +35,7 @@ struct Outcome {
 
 /// Runs `splinelab prefilter`.
 pub fn run(args: &PrefilterArgs) -> Result<(), CliError> {
-    let plan = plan(&args.engine)?;
+    let plan = plan(&args.engine, 1)?;
     let ndim = plan.data.ndim();
     if let Some(a) = args.axis
         && a >= ndim
