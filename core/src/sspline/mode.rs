@@ -106,6 +106,7 @@ impl Mode {
     /// assert_eq!(idx(Mode::Nearest), [0, 0, 0, 0, 1, 2, 3, 3, 3, 3].map(Some));
     /// assert_eq!(Mode::GridConstant.fold(-1, 4), None);
     /// ```
+    #[inline]
     pub fn fold(self, i: i64, len: usize) -> Option<usize> {
         let n = len as i64;
         if (0..n).contains(&i) {
@@ -136,6 +137,7 @@ impl Mode {
     /// far reads only the constant outside, so the value is the same, and the
     /// cell index stays far from `i64` overflow). `f64` arithmetic on the
     /// period, exact when `x` is (`|x| < 2^52`).
+    #[inline]
     pub fn fold_coordinate(self, x: f64, len: usize) -> f64 {
         /// Far beyond any padding (pads are at most a few thousand samples).
         const FAR_CONSTANT: f64 = (1u64 << 40) as f64;
