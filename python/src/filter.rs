@@ -63,20 +63,23 @@ impl Spec {
 /// Values per block of [`copy_checked`]: 32 KiB of f64, an L1 data cache.
 const BLOCK: usize = 4096;
 
-/// Copies `src` into `dst` and reports its first non-finite value (the
-/// engine's `NonFinite` error, index in logical order) — one pass: each
-/// block is checked while it is still in L1.
-fn copy_checked<T: Real + Copy>(src: &[T], dst: &mut [T]) -> Result<(), PrefilterError> {
+/// Copies `src` into `dst`, reports its first non-finite value (the
+/// engine's `NonFinite` error, index in logical order) and returns
+/// `max|src|` (for the overflow check) — one pass: each block is checked
+/// while it is still in L1.
+fn copy_checked<T: Real + Copy>(src: &[T], dst: &mut [T]) -> Result<f64, PrefilterError> {
     if src.is_empty() {
         return Err(PrefilterError::Empty);
     }
     let mut finite = true;
+    let mut max = 0.0f64;
     for (d, s) in dst.chunks_mut(BLOCK).zip(src.chunks(BLOCK)) {
         d.copy_from_slice(s);
         finite &= d.iter().fold(true, |ok, x| ok & x.is_finite());
+        max = d.iter().fold(max, |m, x| m.max(x.to_f64().abs()));
     }
     if finite {
-        return Ok(());
+        return Ok(max);
     }
     let i = src.iter().position(|x| !x.is_finite()).unwrap_or(0);
     Err(PrefilterError::NonFinite(i))
@@ -106,7 +109,8 @@ fn filter_into<T: Real + Copy + Send + Sync + 'static>(
         return filter_nd(src, out, axes, filter.as_deref());
     };
     // One line: the same call the engine makes for a single lane.
-    copy_checked(s, d)?;
+    let max = copy_checked(s, d)?;
+    f.check_magnitude(max, 1)?;
     f.apply(d, &mut Vec::new());
     Ok(())
 }

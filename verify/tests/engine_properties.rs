@@ -312,3 +312,55 @@ fn nearest_outside_the_grid_is_the_edge_extended_spline() {
         }
     }
 }
+
+/// Data the filter could overflow is a typed error, not a silent inf/NaN
+/// (f64 `[1e308, −1e308, …]` gave `[inf, −inf, …]`, a 3×3 array of 1e308
+/// NaNs): the limit is `MAX / growth^axes` with the growth bound
+/// `gain · Π(2/(1 − |z|))²`; just below it the coefficients are finite and
+/// satisfy the interpolation condition (checked against the exact values
+/// scaled down by a power of two, which the filter commutes with exactly).
+#[test]
+fn data_that_could_overflow_is_refused_and_data_below_the_limit_is_exact() {
+    let f =
+        LineFilter::<f64>::new(&SplineFamily::Order(4), Mode::Mirror, 0.0, Route::Exact).unwrap();
+    // The cubic's bound in closed form: 6 · (2/(1 − (2 − √3)))².
+    let g = 6.0 * (2.0 / (1.0 - (2.0 - 3f64.sqrt()))).powi(2);
+    assert!((f.growth() - g).abs() < 1e-12 * g, "{} vs {g}", f.growth());
+    let mut big = Array1::from_vec(vec![1e308, -1e308, 1e308, 0.0, 1.0]);
+    let e = spline_filter1d(&mut big, 0, &f).unwrap_err();
+    assert!(
+        matches!(e, PrefilterError::Overflow { max, .. } if max == 1e308),
+        "{e}"
+    );
+    let mut grid = Array2::from_elem((3, 3), 1e308);
+    assert!(matches!(
+        spline_filter(&mut grid, &f),
+        Err(PrefilterError::Overflow { .. })
+    ));
+    assert!(Interpolant::<f64>::new(&grid, Options::new(3, Mode::Mirror)).is_err());
+    // Just below the limit (a power of two): finite, and exactly 2^k times
+    // the coefficients of the unit-scale data.
+    let k = (f64::MAX / g).log2().floor() as i32;
+    let s = signal(40, 3);
+    let mut scaled = Array1::from_iter(s.iter().map(|x| x * 2f64.powi(k)));
+    spline_filter1d(&mut scaled, 0, &f).unwrap();
+    let mut unit = Array1::from_vec(s.clone());
+    spline_filter1d(&mut unit, 0, &f).unwrap();
+    for (a, b) in scaled.iter().zip(&unit) {
+        assert!(a.is_finite() && *a == b * 2f64.powi(k), "{a} vs {b}·2^{k}");
+    }
+    // f32: the limit is f32::MAX / growth; MPFR never refuses.
+    let f32f =
+        LineFilter::<f32>::new(&SplineFamily::Order(4), Mode::Mirror, 0.0, Route::Exact).unwrap();
+    let mut x32 = Array1::from_vec(vec![1e37f32, -1e37, 2.0]);
+    assert!(matches!(
+        spline_filter1d(&mut x32, 0, &f32f),
+        Err(PrefilterError::Overflow { .. })
+    ));
+    type W = splinelab::scalar::Mp<64>;
+    let fw =
+        LineFilter::<W>::new(&SplineFamily::Order(4), Mode::Mirror, 0.0, Route::Exact).unwrap();
+    let mut xw = Array1::from_vec(vec![W::from_f64_exact(1e308); 5]);
+    spline_filter1d(&mut xw, 0, &fw).unwrap();
+    assert!((xw[2].to_f64() - 1e308).abs() < 1e295);
+}

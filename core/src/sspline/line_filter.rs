@@ -99,6 +99,42 @@ impl<T: Real> LineFilter<T> {
         &self.recursive
     }
 
+    /// A bound on every value the filter forms along one axis, per unit of
+    /// `max(max|s|, |cval|)`: `gain · Π_k (2/(1 − |z_k|))²` (each pole's
+    /// causal pass grows by at most `1/(1 − |z|)`, its anti-causal pass by
+    /// `2|z|/(1 − |z|)`; the truncated route's `Σ|c_j|` is below it too).
+    /// Generous (cubic: 44.8), so that data below `MAX / growth` can never
+    /// overflow. `O(p)`.
+    pub fn growth(&self) -> f64 {
+        let r = &self.recursive;
+        r.poles().iter().fold(r.gain().to_f64().abs(), |g, z| {
+            g * (2.0 / (1.0 - z.to_f64().abs())).powi(2)
+        })
+    }
+
+    /// Refuses data of largest magnitude `max_abs` that the filter could
+    /// overflow along `axes` axes: for scalars of at most 53 bits (f32,
+    /// f64), `max(max_abs, |cval|) · growth^axes` must stay below the
+    /// largest finite value ([`Self::growth`]); MPFR's exponent range makes
+    /// overflow unreachable. `O(p)`.
+    pub fn check_magnitude(&self, max_abs: f64, axes: usize) -> Result<(), PrefilterError> {
+        if T::BITS > 53 {
+            return Ok(());
+        }
+        let top = if T::BITS <= 24 {
+            f32::MAX as f64
+        } else {
+            f64::MAX
+        };
+        let growth = self.growth();
+        let limit = top / growth.powi(axes as i32);
+        let max = max_abs.max(self.cval.to_f64().abs());
+        if max <= limit {
+            return Ok(());
+        }
+        Err(PrefilterError::Overflow { max, growth, limit })
+    }
+
     /// The truncation half-width, `None` for the exact route.
     pub fn half_width(&self) -> Option<usize> {
         self.convolution.as_ref().map(|c| c.half_width())

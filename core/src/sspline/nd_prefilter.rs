@@ -19,6 +19,20 @@ use crate::scalar::Real;
 use ndarray::{Array, ArrayBase, ArrayViewMut3, Axis, Data, DataMut, Dimension, Zip};
 use rayon::prelude::*;
 
+/// Refuses samples that `filter` could overflow along `axes` axes
+/// ([`LineFilter::check_magnitude`]). One pass, after [`check_finite`].
+pub(crate) fn check_range<T: Real, S: Data<Elem = T>, D: Dimension>(
+    a: &ArrayBase<S, D>,
+    filter: &LineFilter<T>,
+    axes: usize,
+) -> Result<(), PrefilterError> {
+    if T::BITS > 53 {
+        return Ok(());
+    }
+    let max = a.iter().fold(0.0f64, |m, x| m.max(x.to_f64().abs()));
+    filter.check_magnitude(max, axes)
+}
+
 /// The first non-finite element (in logical order), as an error.
 pub(crate) fn check_finite<T: Real, S: Data<Elem = T>, D: Dimension>(
     a: &ArrayBase<S, D>,
@@ -72,6 +86,7 @@ where
 {
     check_axis(&a.raw_dim(), axis)?;
     check_finite(a)?;
+    check_range(a, filter, 1)?;
     filter_axis_unchecked(a, axis, filter);
     Ok(())
 }
@@ -210,6 +225,7 @@ where
     D: Dimension,
 {
     check_finite(a)?;
+    check_range(a, filter, a.ndim())?;
     for axis in 0..a.ndim() {
         filter_axis_unchecked(a, axis, filter);
     }
@@ -231,6 +247,7 @@ where
     D: Dimension,
 {
     check_finite(a)?;
+    check_range(a, filter, a.ndim())?;
     Ok(pad_lanes(a, pad, |buf| {
         filter.apply_padded(buf, pad, &mut Vec::new())
     }))

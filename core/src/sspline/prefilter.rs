@@ -34,6 +34,19 @@ pub enum PrefilterError {
     /// A sample is NaN or infinite.
     #[error("sample {0} is not finite")]
     NonFinite(usize),
+    /// Samples so large that the coefficients could overflow the scalar.
+    #[error(
+        "samples up to {max:e} could overflow: the filter forms values up to {growth:e} × max|s| per axis; \
+         scale the data below {limit:e} (or use --prec / an MPFR scalar)"
+    )]
+    Overflow {
+        /// The largest |sample| (or |cval|).
+        max: f64,
+        /// The filter's growth bound ([`crate::sspline::line_filter::LineFilter::growth`]).
+        growth: f64,
+        /// The largest safe |sample|.
+        limit: f64,
+    },
     /// The recursive filter has no exact initial values for this end rule.
     #[error("the recursive prefilter supports the mirror and periodic ends, not {0:?}")]
     UnsupportedEnd(EndRule),
