@@ -153,6 +153,8 @@ impl<T: Real + Send + Sync> Interpolant<T> {
         };
         match self.ndim() {
             1 => dot(&w[..m], &c[base..base + m]),
+            2 if m == 4 => self.sum_2d::<4>(c, base, w),
+            2 if m == 6 => self.sum_2d::<6>(c, base, w),
             2 => {
                 let s0 = self.strides[0];
                 let mut sum = T::zero();
@@ -184,6 +186,27 @@ impl<T: Real + Send + Sync> Interpolant<T> {
                 self.accumulate(&c[base..], sc, 0, 0, true)
             }
         }
+    }
+}
+
+impl<T: Real + Send + Sync> Interpolant<T> {
+    /// The 2-D case of [`Self::tensor_sum`] for a compile-time order `M`
+    /// (loops unrolled, one bounds check per row): the same products added
+    /// in the same order, from zero, so the same bits.
+    fn sum_2d<const M: usize>(&self, c: &[T], base: usize, w: &[T]) -> T {
+        let (w0, w1) = w.split_at(M);
+        let w1: &[T; M] = w1[..M].try_into().expect("M weights");
+        let mut sum = T::zero();
+        for (l0, w0) in w0.iter().enumerate() {
+            let at = base + l0 * self.strides[0];
+            let row: &[T; M] = c[at..at + M].try_into().expect("M coefficients");
+            let mut dot = T::zero();
+            for l in 0..M {
+                dot += w1[l].clone() * row[l].clone();
+            }
+            sum += w0.clone() * dot;
+        }
+        sum
     }
 }
 
