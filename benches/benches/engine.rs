@@ -1,6 +1,6 @@
-//! The N-D engine: 1-D exact prefilter (sequential and in certified
-//! blocks), 2-D `spline_filter`, and batch evaluation of a 2-D cubic
-//! interpolant, f64, mirror ends. Ratios to scipy.ndimage on the same data
+//! The N-D engine: 1-D exact prefilter (sequential, and in certified
+//! blocks on 1 and 2 threads), 2-D `spline_filter`, and batch evaluation of
+//! 10^6 points on a 1024² cubic interpolant, f64, mirror ends. Ratios to scipy.ndimage on the same data
 //! come from `benches/peers/scipy_ratio.py`.
 
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
@@ -33,11 +33,25 @@ fn engine(c: &mut Criterion) {
                 })
             },
         );
-        g.bench_with_input(
-            BenchmarkId::new(format!("blocks1d_d{degree}"), n),
-            &s,
-            |b, s| b.iter(|| blocks.apply(black_box(s), 1 << 17).unwrap()),
-        );
+        // The block route on a pool of 1 and of 2 threads, into a reused
+        // buffer, blocks as in engine_peer (a quarter per thread, ≥ 2^15).
+        for threads in [1usize, 2] {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap();
+            let block = (n / (4 * threads)).max(1 << 15);
+            let mut out = vec![0.0; n];
+            g.bench_with_input(
+                BenchmarkId::new(format!("blocks1d_d{degree}_t{threads}"), n),
+                &s,
+                |b, s| {
+                    pool.install(|| {
+                        b.iter(|| blocks.apply_into(black_box(s), &mut out, block).unwrap())
+                    })
+                },
+            );
+        }
         let a = Array2::from_shape_fn((1024, 1024), |(i, j)| value(i * 1024 + j));
         g.throughput(Throughput::Elements(a.len() as u64));
         g.bench_function(BenchmarkId::new(format!("filter2d_d{degree}"), 1024), |b| {
@@ -48,15 +62,21 @@ fn engine(c: &mut Criterion) {
             })
         });
     }
-    let a = Array2::from_shape_fn((512, 512), |(i, j)| value(i * 512 + j));
+    // Batch evaluation as in engine_peer's eval2d (the scipy_ratio.py case):
+    // 10^6 scattered points on a 1024² cubic, one thread.
+    let a = Array2::from_shape_fn((1024, 1024), |(i, j)| value(i * 1024 + j));
     let interp = Interpolant::new(&a, Options::new(3, Mode::Mirror)).unwrap();
-    let pts = Array2::from_shape_fn((100_000, 2), |(k, ax)| {
-        ((k * if ax == 0 { 7919 } else { 104_729 }) % 51_100) as f64 / 100.0
+    let pts = Array2::from_shape_fn((1_000_000, 2), |(k, ax)| {
+        ((k * if ax == 0 { 7919 } else { 104_729 }) % 102_300) as f64 / 100.0
     });
     let mut out = vec![0.0; pts.nrows()];
+    let one = rayon::ThreadPoolBuilder::new()
+        .num_threads(1)
+        .build()
+        .unwrap();
     g.throughput(Throughput::Elements(pts.nrows() as u64));
-    g.bench_function("eval2d_cubic_1e5", |b| {
-        b.iter(|| interp.eval_many(pts.view(), black_box(&mut out)).unwrap())
+    g.bench_function("eval2d_cubic_1e6_t1", |b| {
+        one.install(|| b.iter(|| interp.eval_many(pts.view(), black_box(&mut out)).unwrap()))
     });
     g.finish();
 }

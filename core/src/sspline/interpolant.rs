@@ -24,7 +24,8 @@ use super::prefilter::PrefilterError;
 use super::{MAX_ORDER, SplineFamily};
 use crate::scalar::Real;
 use ndarray::{ArrayBase, ArrayD, ArrayView2, ArrayViewD, Data, Dimension, Slice};
-use rayon::prelude::*;
+
+mod batch;
 
 /// How to build an [`Interpolant`].
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -311,69 +312,6 @@ impl<T: Real + Send + Sync> Interpolant<T> {
         Ok(self.eval_in(x, deriv, &mut sc))
     }
 
-    /// `out[k] = f(points[k, ..])` for `points` of shape `(count, ndim)`;
-    /// in parallel over blocks of points, one work space per block.
-    pub fn eval_many(
-        &self,
-        points: ArrayView2<'_, f64>,
-        out: &mut [T],
-    ) -> Result<(), PrefilterError> {
-        let zero = vec![0; self.ndim()];
-        if points.ncols() != self.ndim() {
-            return Err(PrefilterError::PointDimension {
-                expected: self.ndim(),
-                got: points.ncols(),
-            });
-        }
-        if out.len() != points.nrows() {
-            return Err(PrefilterError::BufferLength {
-                expected: points.nrows(),
-                got: out.len(),
-            });
-        }
-        if let Some(k) = points.iter().position(|c| !c.is_finite()) {
-            return Err(PrefilterError::NonFiniteCoordinate(k));
-        }
-        const CHUNK: usize = 2048;
-        const BATCH: usize = 64;
-        let c_slice = self.coeffs.as_slice().expect("standard layout");
-        out.par_chunks_mut(CHUNK)
-            .enumerate()
-            .for_each(|(c, chunk)| {
-                let (mut w, mut off, mut inside) = self.scratch();
-                let mut sc = Scratch {
-                    w: &mut w,
-                    off: &mut off,
-                    inside: &mut inside,
-                };
-                let mut x = vec![0.0; self.ndim()];
-                let k = sc.w.len();
-                let mut ws = vec![T::zero(); BATCH * k];
-                let mut bases = [None; BATCH];
-                for (b, batch) in chunk.chunks_mut(BATCH).enumerate() {
-                    // Two phases: locate a batch of points first, so that the
-                    // coefficient loads of many points are in flight together
-                    // (the sums are bound by memory latency, not arithmetic).
-                    for (j, o) in batch.iter_mut().enumerate() {
-                        let row = points.row(c * CHUNK + b * BATCH + j);
-                        for (xa, p) in x.iter_mut().zip(row) {
-                            *xa = *p;
-                        }
-                        bases[j] = self.locate(&x, &mut ws[j * k..(j + 1) * k]);
-                        if bases[j].is_none() {
-                            *o = self.eval_in(&x, &zero, &mut sc);
-                        }
-                    }
-                    for (j, o) in batch.iter_mut().enumerate() {
-                        if let Some(base) = bases[j] {
-                            *o = self.tensor_sum(c_slice, base, &ws[j * k..(j + 1) * k], &mut sc);
-                        }
-                    }
-                }
-            });
-        Ok(())
-    }
-
     /// The evaluation proper (inputs checked).
     fn eval_in(&self, x: &[f64], deriv: &[u32], sc: &mut Scratch<T>) -> T {
         let m = self.order as usize;
@@ -406,81 +344,6 @@ impl<T: Real + Send + Sync> Interpolant<T> {
         self.accumulate(c, sc, 0, 0, true)
     }
 
-    /// The weights of `x` on every axis into `w` (`ndim × m`) and the flat
-    /// offset of its first coefficient, when every coefficient the point
-    /// reads lies inside the padded array (always, except `grid-constant`
-    /// far outside); `None` otherwise. Weights by [`window_weights_into`].
-    fn locate(&self, x: &[f64], w: &mut [T]) -> Option<usize> {
-        let m = self.order as usize;
-        let mut base = 0;
-        for a in 0..self.ndim() {
-            if m == 1 {
-                let k = self.mode.nearest_index(x[a], self.shape[a])?;
-                base += (k + self.pad) * self.strides[a];
-                w[a] = T::one();
-                continue;
-            }
-            let xa = self.coordinate(x[a], a);
-            let (first, u) = centred_cell(self.order, xa);
-            let i0 = first + self.pad as i64;
-            if i0 < 0 || i0 as usize + m > self.shape[a] + 2 * self.pad {
-                return None;
-            }
-            base += i0 as usize * self.strides[a];
-            window_weights_into(self.order, u, &mut w[a * m..(a + 1) * m]);
-        }
-        Some(base)
-    }
-
-    /// `Σ_l Π_a w_a[l_a] · c[base + Σ_a l_a s_a]` for a located point: for 1
-    /// to 3 dimensions plain nested loops over contiguous runs of `m`
-    /// coefficients, else the nested [`Self::accumulate`]. Same sums in the
-    /// same order as [`Self::accumulate`].
-    fn tensor_sum(&self, c: &[T], base: usize, w: &[T], sc: &mut Scratch<T>) -> T {
-        let m = self.order as usize;
-        // Σ_l w[l] · row[l] over one contiguous run of the last axis.
-        let dot = |wl: &[T], row: &[T]| {
-            let mut sum = T::zero();
-            for (wv, cv) in wl.iter().zip(row) {
-                sum += wv.clone() * cv.clone();
-            }
-            sum
-        };
-        match self.ndim() {
-            1 => dot(&w[..m], &c[base..base + m]),
-            2 => {
-                let s0 = self.strides[0];
-                let mut sum = T::zero();
-                for (l0, w0) in w[..m].iter().enumerate() {
-                    let at = base + l0 * s0;
-                    sum += w0.clone() * dot(&w[m..2 * m], &c[at..at + m]);
-                }
-                sum
-            }
-            3 => {
-                let (s0, s1) = (self.strides[0], self.strides[1]);
-                let mut sum = T::zero();
-                for (l0, w0) in w[..m].iter().enumerate() {
-                    let mut plane = T::zero();
-                    for (l1, w1) in w[m..2 * m].iter().enumerate() {
-                        let at = base + l0 * s0 + l1 * s1;
-                        plane += w1.clone() * dot(&w[2 * m..3 * m], &c[at..at + m]);
-                    }
-                    sum += w0.clone() * plane;
-                }
-                sum
-            }
-            _ => {
-                for (k, o) in sc.off.iter_mut().enumerate() {
-                    *o = (k % m) * self.strides[k / m];
-                }
-                sc.w.clone_from_slice(w);
-                sc.inside.fill(true);
-                self.accumulate(&c[base..], sc, 0, 0, true)
-            }
-        }
-    }
-
     /// `Σ_l w_a[l] · (axis a+1 sum at offset base + off_a[l])`, nested.
     fn accumulate(&self, c: &[T], sc: &Scratch<T>, axis: usize, base: usize, inside: bool) -> T {
         let m = self.order as usize;
@@ -502,27 +365,6 @@ impl<T: Real + Send + Sync> Interpolant<T> {
         }
         sum
     }
-}
-
-/// `w[l] = β_m(x − first − l)` of the cell position `u` ([`centred_cell`]),
-/// `l = 0..m−1`. Cubics (`m = 4`) in closed form, symmetric in `u` and
-/// `v = 1 − u`: `v³/6`, `2/3 − u²(2 − u)/2`, `2/3 − v²(2 − v)/2`, `u³/6`
-/// (all terms non-negative or a difference from 2/3 of at most 1/2, so
-/// each weight is within a few ulps); other orders by de Boor–Cox
-/// ([`cell_derivatives_into`] with `d = 0`). `O(1)` resp. `O(m²)`. The
-/// closed form runs in `f64`, so it serves scalars of at most 53 bits.
-fn window_weights_into<T: Real>(m: u32, u: f64, w: &mut [T]) {
-    if m == 4 && T::BITS <= 53 {
-        let v = 1.0 - u;
-        let (u2, v2) = (u * u, v * v);
-        w[0] = T::from_f64_exact(v2 * v / 6.0);
-        w[1] = T::from_f64_exact(2.0 / 3.0 - 0.5 * u2 * (2.0 - u));
-        w[2] = T::from_f64_exact(2.0 / 3.0 - 0.5 * v2 * (2.0 - v));
-        w[3] = T::from_f64_exact(u2 * u / 6.0);
-        return;
-    }
-    cell_derivatives_into(m, 0, &T::from_f64_exact(u), w);
-    w.reverse();
 }
 
 /// scipy's `map_coordinates(data, coordinates, order=degree, mode=…)`:

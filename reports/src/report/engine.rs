@@ -13,7 +13,7 @@ use serde_json::json;
 use splinelab::prelude::*;
 use splinelab_verify::interpolation_residual::residual;
 use splinelab_verify::rng::SplitMix64;
-use splinelab_verify::timing::try_median_ns_fresh;
+use splinelab_verify::timing::{try_median_ns, try_median_ns_fresh};
 use std::path::PathBuf;
 
 /// scipy's `cval` in the fixtures.
@@ -146,6 +146,36 @@ fn seconds(data: &ArrayD<f64>, repeats: usize) -> Result<f64, ReportError> {
     Ok(ns * 1e-9)
 }
 
+/// Median seconds of the block-parallel cubic mirror prefilter of `s`
+/// (blocks of a quarter of the samples per pool thread, at least 2^15, as
+/// benches/src/bin/engine_peer.rs; tolerance 1e-15) into a reused buffer.
+fn block_seconds(s: &[f64], repeats: usize) -> Result<f64, ReportError> {
+    let b = BlockPrefilter::<f64>::new(&SplineFamily::Order(4), Mode::Mirror, 0.0, 1e-15)
+        .map_err(num_err)?;
+    let block = (s.len() / (4 * rayon::current_num_threads())).max(1 << 15);
+    let mut out = vec![0.0; s.len()];
+    let ns = try_median_ns(repeats, || {
+        b.apply_into(s, &mut out, block).map_err(num_err)
+    })?;
+    Ok(ns * 1e-9)
+}
+
+/// Median seconds of `eval_many` of a 2-D cubic mirror interpolant of `data`
+/// at `count` scattered points (the pseudo-random pattern of engine_peer's
+/// `eval2d`, 1/100-sample steps), into a reused buffer.
+fn eval_seconds(data: &ArrayD<f64>, count: usize, repeats: usize) -> Result<f64, ReportError> {
+    let f = Interpolant::new(data, Options::new(3, Mode::Mirror)).map_err(num_err)?;
+    let span = (data.shape()[0] - 1) * 100;
+    let pts = Array2::from_shape_fn((count, 2), |(k, a)| {
+        ((k * if a == 0 { 7919 } else { 104_729 }) % span) as f64 / 100.0
+    });
+    let mut out = vec![0.0; count];
+    let ns = try_median_ns(repeats, || {
+        f.eval_many(pts.view(), &mut out).map_err(num_err)
+    })?;
+    Ok(ns * 1e-9)
+}
+
 /// Runs the engine studies and presents them.
 pub fn section(profile: &Profile) -> Result<Section, ReportError> {
     let mut figures = vec![];
@@ -252,6 +282,20 @@ pub fn section(profile: &Profile) -> Result<Section, ReportError> {
         .map_err(CliError::numerical)?;
     let t1 = seconds(&one, reps)?;
     let t2 = seconds(&two, reps)?;
+    let tb = block_seconds(one.as_slice().expect("standard layout"), reps)?;
+    let points = n2 * n2;
+    let te = eval_seconds(&two, points, reps)?;
+    for (name, t) in [("blocks1d_cubic", tb), ("eval2d_cubic", te)] {
+        figures.push(
+            Figure::cost(
+                format!("engine.throughput.{name}.seconds"),
+                t,
+                "s",
+                TIME_BAND,
+            )
+            .with_floor(1e-3),
+        );
+    }
     figures.push(
         Figure::cost(
             "engine.throughput.filter1d_cubic.seconds",
@@ -280,6 +324,19 @@ pub fn section(profile: &Profile) -> Result<Section, ReportError> {
             format!("2-D, {n2}×{n2}"),
             num(t2),
             num((n2 * n2) as f64 / t2 / 1e6),
+        ],
+        vec![
+            format!(
+                "1-D, {n1} samples, certified blocks ({} threads)",
+                rayon::current_num_threads()
+            ),
+            num(tb),
+            num(n1 as f64 / tb / 1e6),
+        ],
+        vec![
+            format!("evaluation, {points} points on {n2}×{n2}"),
+            num(te),
+            num(points as f64 / te / 1e6),
         ],
     ];
 
@@ -320,10 +377,13 @@ pub fn section(profile: &Profile) -> Result<Section, ReportError> {
         ],
         &res_rows,
     ) + &paragraph(
-        "In-process throughput of the cubic mirror prefilter (median wall time, all threads).",
+        "In-process throughput of the cubic mirror prefilter, sequential per line and in certified blocks \
+         (tolerance 1e-15), and of batch evaluation of the 2-D interpolant at scattered points (median wall \
+         time, all threads; Msamples/s counts points for the evaluation). Ratios to scipy: \
+         benches/peers/scipy_ratio.py.",
     ) + &table(
-        "Prefilter throughput",
-        &["array", "seconds", "Msamples/s"],
+        "Prefilter and evaluation throughput",
+        &["case", "seconds", "Msamples/s"],
         &speed_rows,
     );
     Ok(Section {
@@ -336,7 +396,8 @@ pub fn section(profile: &Profile) -> Result<Section, ReportError> {
             "scipy_worst_ulps": {"spline_filter1d": f1d, "spline_filter": fnd, "map_coordinates": map},
             "truncated": trunc_json,
             "residual": res_json,
-            "throughput": {"filter1d_seconds": t1, "n1": n1, "filter2d_seconds": t2, "n2": n2},
+            "throughput": {"filter1d_seconds": t1, "n1": n1, "filter2d_seconds": t2, "n2": n2,
+                "blocks1d_seconds": tb, "eval2d_seconds": te, "eval2d_points": points},
         }),
         figures,
     })

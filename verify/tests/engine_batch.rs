@@ -1,0 +1,184 @@
+//! Batch evaluation (`Interpolant::eval_many`: located in batches, rows
+//! prefetched, closed-form cubic weights) against the single-point path
+//! (`Interpolant::eval`: de Boor weights, the recursive sum with per-index
+//! bounds), itself tested against scipy and MPFR elsewhere. Counts that are
+//! not multiples of the batch (32) or chunk (2048) sizes, points inside,
+//! outside and far outside the grid (the `grid-constant` fallback), any
+//! strides, 1 to 4 dimensions, degrees 0 to 7, every mode.
+
+use splinelab::ndarray::{Array2, ArrayD, IxDyn};
+use splinelab::prelude::*;
+use splinelab_verify::rng::SplitMix64;
+
+/// `count` points of `ndim` coordinates, mostly in `[−3, ν + 2]` per axis,
+/// every 97th far outside (±1e6) and every 89th on a grid point.
+fn points(count: usize, shape: &[usize], seed: u64) -> Array2<f64> {
+    let mut r = SplitMix64::new(seed);
+    Array2::from_shape_fn((count, shape.len()), |(k, a)| {
+        let n = shape[a] as f64;
+        match () {
+            _ if k % 97 == 5 => {
+                if r.unit() < 0.5 {
+                    -1e6
+                } else {
+                    1e6 + 0.25
+                }
+            }
+            _ if k % 89 == 3 => (r.unit() * n).floor(),
+            _ => r.range(-3.0, n + 2.0),
+        }
+    })
+}
+
+fn data(shape: &[usize], seed: u64) -> ArrayD<f64> {
+    let total = shape.iter().product();
+    ArrayD::from_shape_vec(IxDyn(shape), SplitMix64::new(seed).signal(total)).unwrap()
+}
+
+/// Worst `|batch − single|` over the points, and the largest coefficient.
+fn compare<T: Real + Send + Sync>(f: &Interpolant<T>, pts: &Array2<f64>) -> (f64, f64) {
+    let mut out = vec![T::zero(); pts.nrows()];
+    f.eval_many(pts.view(), &mut out).unwrap();
+    let worst = pts
+        .rows()
+        .into_iter()
+        .zip(&out)
+        .map(|(p, v)| {
+            let single = f.eval(p.as_slice().unwrap()).unwrap();
+            (v.clone() - single).to_f64().abs()
+        })
+        .fold(0.0f64, f64::max);
+    let cmax = f
+        .coefficients()
+        .iter()
+        .fold(0.0f64, |m, c| m.max(c.to_f64().abs()));
+    (worst, cmax)
+}
+
+#[test]
+fn batch_equals_single_point_evaluation() {
+    let cases: [(&[usize], &[u32], usize); 4] = [
+        (&[37], &[0, 1, 2, 3, 4, 5, 7], 4133),
+        (&[23, 17], &[0, 1, 2, 3, 5, 7], 2113),
+        (&[9, 11, 7], &[1, 3, 5], 1061),
+        (&[5, 6, 4, 5], &[2, 3], 233),
+    ];
+    for (shape, degrees, count) in cases {
+        let a = data(shape, shape.len() as u64);
+        let pts = points(count, shape, 11 + shape.len() as u64);
+        for &d in degrees {
+            for mode in Mode::ALL {
+                let mut opts = Options::new(d, mode);
+                opts.cval = 0.375;
+                let f = Interpolant::new(&a, opts).unwrap();
+                let (worst, cmax) = compare(&f, &pts);
+                // Other degrees: the same weights and sums, bit for bit. Cubic:
+                // closed-form weights, each within a few ulps of de Boor's;
+                // `m^D` terms of non-negative weights summing to 1.
+                let tol = if d == 3 {
+                    8.0 * f64::EPSILON * cmax
+                } else {
+                    0.0
+                };
+                assert!(
+                    worst <= tol,
+                    "{shape:?} degree {d} {mode:?}: batch differs by {worst:e} > {tol:e}"
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn batch_ignores_the_layout_of_the_points() {
+    let shape = [40, 33];
+    let f = Interpolant::new(&data(&shape, 3), Options::new(3, Mode::Reflect)).unwrap();
+    let pts = points(3001, &shape, 5);
+    // The transpose of an (ndim, count) array, as `map_coordinates` passes it.
+    let by_axis = pts.t().as_standard_layout().into_owned();
+    let (mut a, mut b) = (vec![0.0; 3001], vec![0.0; 3001]);
+    f.eval_many(pts.view(), &mut a).unwrap();
+    f.eval_many(by_axis.t(), &mut b).unwrap();
+    assert_eq!(a, b);
+}
+
+#[test]
+fn batch_in_mpfr_and_f32_equals_single_point_evaluation() {
+    let shape = [12, 9];
+    let pts = points(517, &shape, 9);
+    let a = data(&shape, 4);
+    let a128 = a.mapv(Mp::<128>::from_f64_exact);
+    let f = Interpolant::new(&a128, Options::new(3, Mode::GridConstant)).unwrap();
+    // Above 53 bits the cubic weights come from de Boor as in `eval`.
+    assert_eq!(compare(&f, &pts).0, 0.0);
+    let a32 = a.mapv(|v| v as f32);
+    let f = Interpolant::new(&a32, Options::new(3, Mode::Mirror)).unwrap();
+    let (worst, cmax) = compare(&f, &pts);
+    assert!(worst <= 8.0 * f64::from(f32::EPSILON) * cmax, "{worst:e}");
+}
+
+#[test]
+fn batch_rejects_bad_input_with_typed_errors() {
+    let f = Interpolant::new(&data(&[10, 10], 1), Options::new(3, Mode::Mirror)).unwrap();
+    let mut pts = points(100, &[10, 10], 2);
+    let mut out = vec![0.0; 100];
+    assert!(matches!(
+        f.eval_many(pts.view(), &mut out[..99]),
+        Err(PrefilterError::BufferLength {
+            expected: 100,
+            got: 99
+        })
+    ));
+    assert!(matches!(
+        f.eval_many(pts.t(), &mut out[..2]),
+        Err(PrefilterError::PointDimension {
+            expected: 2,
+            got: 100
+        })
+    ));
+    pts[[70, 1]] = f64::NAN;
+    assert!(matches!(
+        f.eval_many(pts.view(), &mut out),
+        Err(PrefilterError::NonFiniteCoordinate(141))
+    ));
+}
+
+/// The cubic batch path computes exactly its documented arithmetic: weights
+/// `v³/6, 2/3 − u²(2 − u)/2, 2/3 − v²(2 − v)/2, u³/6` of `u = x − ⌊x⌋`,
+/// `Σ_{l0} w0[l0] · (Σ_{l1} w1[l1] · D[i0 + l0, i1 + l1])` from zero, in
+/// that order, with `i = ⌊x⌋ − 1`: bit for bit, at points whose window lies
+/// inside the grid.
+#[test]
+fn cubic_batch_is_its_documented_sum_bit_for_bit() {
+    let shape = [30, 26];
+    let f = Interpolant::new(&data(&shape, 8), Options::new(3, Mode::Mirror)).unwrap();
+    let d = f.coefficients();
+    let mut r = SplitMix64::new(21);
+    let pts = Array2::from_shape_fn((2500, 2), |(_, a)| r.range(1.0, shape[a] as f64 - 2.0));
+    let mut out = vec![0.0; pts.nrows()];
+    f.eval_many(pts.view(), &mut out).unwrap();
+    let weights = |x: f64| {
+        let u = x - x.floor();
+        let v = 1.0 - u;
+        let (u2, v2) = (u * u, v * v);
+        let w = [
+            v2 * v / 6.0,
+            2.0 / 3.0 - 0.5 * u2 * (2.0 - u),
+            2.0 / 3.0 - 0.5 * v2 * (2.0 - v),
+            u2 * u / 6.0,
+        ];
+        (x.floor() as usize - 1, w)
+    };
+    for (p, got) in pts.rows().into_iter().zip(&out) {
+        let ((i0, w0), (i1, w1)) = (weights(p[0]), weights(p[1]));
+        let mut sum = 0.0;
+        for l0 in 0..4 {
+            let mut dot = 0.0;
+            for l1 in 0..4 {
+                dot += w1[l1] * d[[i0 + l0, i1 + l1]];
+            }
+            sum += w0[l0] * dot;
+        }
+        assert_eq!(got.to_bits(), sum.to_bits(), "at {p}");
+    }
+}
