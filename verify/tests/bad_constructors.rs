@@ -13,18 +13,18 @@ use splinelab::bspline::knots::{KnotError, KnotVector};
 use splinelab::bspline::nurbs::{NurbsCurve, NurbsSurface};
 use splinelab::curves::CurveError;
 use splinelab::curves::catmull_rom::{CatmullRom, Spacing};
+use splinelab::curves::global_cubic::{CubicEnds, control_points as cubic_control_points};
 use splinelab::curves::hermite::Hermite;
 use splinelab::curves::rational_bezier::RationalBezier;
+use splinelab::curves::sspline_curve::SsplineCurve;
+use splinelab::curves::sspline_surface::{Direction, SsplineSurface};
 use splinelab::qi::circle_tangent::start_tangent;
 use splinelab::qi::cubic_spline::{ClampedCubicSpline, Parameterization};
 use splinelab::qi::tangent::unit_direction;
 use splinelab::qi::{QiError, QiOptions, interpolate};
 use splinelab::quadrature::{GaussLegendre, QuadratureError, choose_order};
 use splinelab::scalar::prelude::*;
-use splinelab::sspline::curve::SsplineCurve;
 use splinelab::sspline::end_conditions::{EndCondition, EndRule};
-use splinelab::sspline::global_cubic::{CubicEnds, control_points as cubic_control_points};
-use splinelab::sspline::surface::{Direction, SsplineSurface};
 use splinelab::sspline::{
     Criterion, MAX_HALF_WIDTH, SplineFamily, SsplineError, TruncatedBasis, TruncationAnalysis,
     WidthChooser, truncation_width,

@@ -13,9 +13,12 @@
 
 pub mod catmull_rom;
 pub mod flatten;
+pub mod global_cubic;
 pub mod greedy_flatten;
 pub mod hermite;
 pub mod rational_bezier;
+pub mod sspline_curve;
+pub mod sspline_surface;
 
 use crate::bernstein::bezier::BezierError;
 use crate::bspline::de_boor::BSplineError;

@@ -13,17 +13,17 @@
 //! Moving one interior data point changes exactly the `2n + 1` control points
 //! `D_{k−n..=k+n}` — the paper's local-modification claim.
 
-use super::end_conditions::{EndCondition, EndRule};
-use super::{SplineFamily, TruncatedBasis};
 use crate::bspline::de_boor::BSpline;
 use crate::bspline::knots::KnotVector;
 use crate::param_curve::{ParamCurve, widen};
 use crate::scalar::Real;
+use crate::sspline::end_conditions::{EndCondition, EndRule};
+use crate::sspline::{SplineFamily, TruncatedBasis};
 use crate::validation::{at_least, finite_point_at, finite_points, finite_vector};
 use nalgebra::SVector;
 
 /// S-spline curves and surfaces share [`crate::curves::CurveError`].
-pub use crate::curves::CurveError;
+pub use super::CurveError;
 
 /// One direction of an S-spline: basis family, coefficients `c_0..c_n`, end
 /// rule, data count, and the range of control indices it needs.
@@ -182,7 +182,8 @@ impl<T: Real, const D: usize> SsplineCurve<T, D> {
     ///
     /// ```
     /// use nalgebra::Vector2;
-    /// use splinelab::sspline::{SplineFamily, curve::SsplineCurve, end_conditions::EndCondition};
+    /// use splinelab::curves::sspline_curve::SsplineCurve;
+    /// use splinelab::sspline::{SplineFamily, end_conditions::EndCondition};
     /// let p: Vec<Vector2<f64>> = (0..8).map(|i| Vector2::new(i as f64, (i * i % 5) as f64)).collect();
     /// let q = SsplineCurve::new(&SplineFamily::Order(4), 20, &p, EndCondition::Free).unwrap();
     /// assert!((q.eval(&3.0).unwrap() - p[3]).norm() < 1e-9);
