@@ -22,8 +22,7 @@ use crate::sspline::{SplineFamily, TruncatedBasis};
 use crate::validation::{at_least, finite_point_at, finite_points, finite_vector};
 use nalgebra::SVector;
 
-/// S-spline curves and surfaces share [`crate::curves::CurveError`].
-pub use super::CurveError;
+use super::CurveError;
 
 /// One direction of an S-spline: basis family, coefficients `c_0..c_n`, end
 /// rule, data count, and the range of control indices it needs.
