@@ -10,7 +10,7 @@ use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_m
 use nalgebra::Vector2;
 use splinelab::bspline::de_boor::BSpline;
 use splinelab::bspline::knots::KnotVector;
-use splinelab::sspline::global_cubic::{CubicEnds, interpolant};
+use splinelab::curves::global_cubic::{CubicEnds, interpolant};
 use std::hint::black_box;
 
 const POINTS: usize = 1000;

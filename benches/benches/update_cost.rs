@@ -5,10 +5,10 @@
 
 use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
 use nalgebra::{Vector2, Vector3};
-use splinelab::sspline::curve::SsplineCurve;
+use splinelab::curves::global_cubic::{CubicEnds, control_points, surface_control_points};
+use splinelab::curves::sspline_curve::SsplineCurve;
+use splinelab::curves::sspline_surface::{Direction, SsplineSurface};
 use splinelab::sspline::end_conditions::{EndCondition, EndRule};
-use splinelab::sspline::global_cubic::{CubicEnds, control_points, surface_control_points};
-use splinelab::sspline::surface::{Direction, SsplineSurface};
 use splinelab::sspline::{Criterion as Width, SplineFamily, truncation_width};
 use std::hint::black_box;
 

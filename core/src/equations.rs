@@ -27,14 +27,14 @@
 //! | 12–13, 17 | `c_i = Σ_r κ_r ξ_r^{|i|}` | [`PoleExpansion`](crate::sspline::euler_frobenius::PoleExpansion) |
 //! | 16 | Euler–Frobenius polynomial and its poles | [`polynomial`](crate::sspline::euler_frobenius::polynomial), [`poles`](crate::sspline::euler_frobenius::poles), [`poles_rounded`](crate::sspline::coefficients::poles_rounded) |
 //! | 18 | cubic `c_i = √3 (√3 − 2)^{|i|}` | [`cubic_coefficients_closed_form`](crate::sspline::beta2::cubic_coefficients_closed_form) |
-//! | 20 | S-spline curve `Q(u) = Σ P_i S(u − i)` | [`SsplineCurve`](crate::sspline::curve::SsplineCurve) |
+//! | 20 | S-spline curve `Q(u) = Σ P_i S(u − i)` | [`SsplineCurve`](crate::curves::sspline_curve::SsplineCurve) |
 //! | 21–23 | free, periodic and end-tangent ends | [`EndCondition`](crate::sspline::end_conditions::EndCondition), [`EndRule`](crate::sspline::end_conditions::EndRule) |
-//! | 24–25 | tensor-product surfaces, curves of curves | [`SsplineSurface`](crate::sspline::surface::SsplineSurface) |
+//! | 24–25 | tensor-product surfaces, curves of curves | [`SsplineSurface`](crate::curves::sspline_surface::SsplineSurface) |
 //! | 26–29 | Beta2 S-spline, `c_i = κ₀ ξ₀^{|i|}` | [`coefficients_closed_form`](crate::sspline::beta2::coefficients_closed_form) |
 //! | 36 | Beta2 segments `b_{−2..1}` | [`segments`](crate::sspline::beta2::segments) |
 //! | 38 | Beta2 pole `ξ₀` | [`pole_closed_form`](crate::sspline::beta2::pole_closed_form) |
 //! | 40 | Beta2 weight `κ₀` | [`kappa_closed_form`](crate::sspline::beta2::kappa_closed_form) |
-//! | §3 (local update) | one edited point moves `2n + 1` control points | [`SsplineCurve::move_point`](crate::sspline::curve::SsplineCurve::move_point), [`SsplineSurface::move_point`](crate::sspline::surface::SsplineSurface::move_point) |
+//! | §3 (local update) | one edited point moves `2n + 1` control points | [`SsplineCurve::move_point`](crate::curves::sspline_curve::SsplineCurve::move_point), [`SsplineSurface::move_point`](crate::curves::sspline_surface::SsplineSurface::move_point) |
 //! | (tail bound) | `Σ_{|i|>n} |c_i| ≤ 2 Σ_r |κ_r| |ξ_r|^{n+1}/(1 − |ξ_r|)` | [`PoleExpansion::tail_bound`](crate::sspline::euler_frobenius::PoleExpansion::tail_bound), [`truncation_width`](crate::sspline::truncation_width) |
 //! | (full build) | coefficients of sampled data, exact or truncated | [`RecursivePrefilter`](crate::sspline::prefilter::RecursivePrefilter), [`ConvolutionPrefilter`](crate::sspline::prefilter::ConvolutionPrefilter) |
 //!

@@ -5,6 +5,7 @@
 //! pivoting). Both run in `f64` and in [`Mp`](crate::scalar::Mp).
 
 use crate::scalar::Real;
+use crate::validation::{InputError, finite_entries};
 use nalgebra::DMatrix;
 use nalgebra::linalg::SVD;
 
@@ -19,9 +20,9 @@ pub enum ConditionError {
         /// Number of columns.
         cols: usize,
     },
-    /// An entry is NaN or infinite.
-    #[error("matrix has a non-finite entry")]
-    NonFinite,
+    /// An entry is NaN or infinite (the first, in column-major order).
+    #[error(transparent)]
+    Input(#[from] InputError),
     /// The matrix is singular in the working precision (a zero singular value
     /// or a zero pivot): its condition number is infinite.
     #[error("matrix is singular in the working precision")]
@@ -43,10 +44,7 @@ fn check<T: Real>(a: &DMatrix<T>) -> Result<(), ConditionError> {
             cols: a.ncols(),
         });
     }
-    if a.iter().any(|x| !x.is_finite()) {
-        return Err(ConditionError::NonFinite);
-    }
-    Ok(())
+    Ok(finite_entries("matrix", a)?)
 }
 
 /// The singular values of `a`, in decreasing order.
@@ -109,4 +107,28 @@ pub fn cond_inf<T: Real>(a: &DMatrix<T>) -> Result<T, ConditionError> {
         return Err(ConditionError::Singular);
     }
     Ok(norm_inf(a) * norm_inf(&inv))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scalar::Mp;
+
+    #[test]
+    fn a_non_finite_entry_is_named_by_its_position_in_f64_and_mpfr() {
+        let mut a = DMatrix::from_row_slice(2, 2, &[2.0f64, 1.0, 1.0, 2.0]);
+        a[(0, 1)] = f64::NEG_INFINITY;
+        let at = InputError::NonFiniteEntry {
+            what: "matrix",
+            row: 0,
+            col: 1,
+        };
+        assert_eq!(cond2(&a), Err(ConditionError::Input(at.clone())));
+        let m = a.map(Mp::<96>::from_f64_exact);
+        assert_eq!(cond_inf(&m), Err(ConditionError::Input(at)));
+        assert_eq!(
+            singular_values(&m).unwrap_err().to_string(),
+            "matrix entry (0, 1) is not finite"
+        );
+    }
 }

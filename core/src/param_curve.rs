@@ -18,10 +18,10 @@
 //! | [`RationalBezier`](crate::curves::rational_bezier::RationalBezier) | ✓ | |
 //! | [`BSpline`](crate::bspline::de_boor::BSpline) | ✓ | ✓ |
 //! | [`NurbsCurve`](crate::bspline::nurbs::NurbsCurve) | ✓ | |
-//! | [`SsplineCurve`](crate::sspline::curve::SsplineCurve) | ✓ | |
+//! | [`SsplineCurve`](crate::curves::sspline_curve::SsplineCurve) | ✓ | |
 //! | [`ClampedCubicSpline`](crate::qi::cubic_spline::ClampedCubicSpline) | ✓ | ✓ |
 //! | [`QiInterpolation`](crate::qi::interpolate::QiInterpolation) | ✓ | ✓ |
-//! | [`Patch`](crate::surface_deformation::patch::Patch), [`SsplineSurface`](crate::sspline::surface::SsplineSurface), [`NurbsSurface`](crate::bspline::nurbs::NurbsSurface) | surface | [`Patch`](crate::surface_deformation::patch::Patch) |
+//! | [`Patch`](crate::surface_deformation::patch::Patch), [`SsplineSurface`](crate::curves::sspline_surface::SsplineSurface), [`NurbsSurface`](crate::bspline::nurbs::NurbsSurface) | surface | [`Patch`](crate::surface_deformation::patch::Patch) |
 
 use crate::scalar::Real;
 use nalgebra::SVector;

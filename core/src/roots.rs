@@ -22,6 +22,7 @@
 //! its step is at the rounding-noise level of `p`.
 
 use crate::scalar::Real;
+use crate::validation::{InputError, finite_scalars};
 
 /// Why a root computation failed.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -34,10 +35,14 @@ pub enum RootsError {
         /// Number of roots requested.
         wanted: usize,
     },
-    /// A coefficient is NaN or infinite, or the leading one is zero.
-    #[error("coefficient {index} is zero (leading) or not finite")]
-    BadCoefficient {
-        /// Index of the offending coefficient (power of x).
+    /// A coefficient is NaN or infinite.
+    #[error(transparent)]
+    Input(#[from] InputError),
+    /// The leading coefficient is zero (or there is none): the list's length
+    /// does not give the degree.
+    #[error("coefficient {index}, the leading one, is zero or missing")]
+    ZeroLeading {
+        /// Index of the leading coefficient (power of x).
         index: usize,
     },
     /// The iteration did not settle within its iteration limit.
@@ -158,12 +163,10 @@ pub fn palindromic_inner_roots<T: Real>(a: &[T], count: usize) -> Result<Vec<T>,
 }
 
 fn check_coefficients<T: Real>(a: &[T]) -> Result<(), RootsError> {
-    if let Some(index) = a.iter().position(|c| !c.is_finite()) {
-        return Err(RootsError::BadCoefficient { index });
-    }
+    finite_scalars("coefficient", a)?;
     match a.last() {
         Some(lead) if !lead.is_zero() => Ok(()),
-        _ => Err(RootsError::BadCoefficient {
+        _ => Err(RootsError::ZeroLeading {
             index: a.len().saturating_sub(1),
         }),
     }
@@ -285,12 +288,19 @@ mod tests {
     fn rejects_bad_input() {
         assert_eq!(
             largest_real_roots(&[1.0, 0.0], 1, &0.0),
-            Err(RootsError::BadCoefficient { index: 1 })
+            Err(RootsError::ZeroLeading { index: 1 })
         );
         assert_eq!(
-            largest_real_roots(&[1.0, f64::NAN, 1.0], 1, &0.0),
-            Err(RootsError::BadCoefficient { index: 1 })
+            largest_real_roots::<f64>(&[], 0, &0.0),
+            Err(RootsError::ZeroLeading { index: 0 })
         );
+        let e = largest_real_roots(&[1.0, f64::NAN, 1.0], 1, &0.0).unwrap_err();
+        let at = InputError::NonFiniteAt {
+            what: "coefficient",
+            index: 1,
+        };
+        assert_eq!(e, RootsError::Input(at));
+        assert_eq!(e.to_string(), "coefficient 1 is not finite");
         assert!(matches!(
             largest_real_roots(&[1.0, 1.0], 2, &0.0),
             Err(RootsError::TooManyRoots { .. })

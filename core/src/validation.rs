@@ -6,14 +6,14 @@
 //! written once here and its message reads the same everywhere.
 
 use crate::scalar::Real;
-use nalgebra::SVector;
+use nalgebra::{DMatrix, SVector};
 
 /// Why an input was refused before any computation: one shape for all
 /// modules.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
 pub enum InputError {
     /// Fewer points than the construction needs.
-    #[error("{what} needs at least {needed} points, got {got}")]
+    #[error("{what} needs at least {needed} point{}, got {got}", plural(*needed))]
     TooFewPoints {
         /// The construction (e.g. "a Catmull–Rom spline").
         what: &'static str,
@@ -31,12 +31,27 @@ pub enum InputError {
         /// Position of the offending element.
         index: usize,
     },
+    /// An entry of a matrix (a right-hand side, a matrix whose condition is
+    /// asked) is NaN or infinite.
+    #[error("{what} entry ({row}, {col}) is not finite")]
+    NonFiniteEntry {
+        /// What the matrix is (e.g. "right-hand side").
+        what: &'static str,
+        /// Row of the first offending entry (column-major order).
+        row: usize,
+        /// Its column.
+        col: usize,
+    },
     /// A single named input (parameter, radius, tangent) is NaN or infinite.
     #[error("{name} is not finite")]
     NonFinite {
         /// Which input.
         name: &'static str,
     },
+}
+
+fn plural(n: usize) -> &'static str {
+    if n == 1 { "" } else { "s" }
 }
 
 /// `Ok` when `got ≥ needed`, else [`InputError::TooFewPoints`].
@@ -99,6 +114,42 @@ pub fn finite_vector<T: Real, const D: usize>(
     }
 }
 
+/// [`finite`] for one scalar that sits at `index` of a list, when the list
+/// is checked element by element together with other conditions.
+pub fn finite_at<T: Real>(what: &'static str, index: usize, x: &T) -> Result<(), InputError> {
+    if x.is_finite() {
+        Ok(())
+    } else {
+        Err(InputError::NonFiniteAt { what, index })
+    }
+}
+
+/// `Ok` when every entry of `a` is finite, else
+/// [`InputError::NonFiniteEntry`] at the first that is not, in column-major
+/// order (nalgebra's storage order). **Cost** one pass.
+///
+/// ```
+/// use nalgebra::DMatrix;
+/// use splinelab::scalar::{Mp, Real};
+/// use splinelab::validation::{InputError, finite_entries};
+/// let nan = Mp::<128>::from_f64_exact(f64::NAN);
+/// let one = Mp::<128>::from_f64_exact(1.0);
+/// let a = DMatrix::from_row_slice(2, 2, &[one.clone(), one.clone(), nan, one]);
+/// let e = finite_entries("matrix", &a).unwrap_err();
+/// assert_eq!(e, InputError::NonFiniteEntry { what: "matrix", row: 1, col: 0 });
+/// assert_eq!(e.to_string(), "matrix entry (1, 0) is not finite");
+/// ```
+pub fn finite_entries<T: Real>(what: &'static str, a: &DMatrix<T>) -> Result<(), InputError> {
+    match a.iter().position(|x| !x.is_finite()) {
+        Some(k) => Err(InputError::NonFiniteEntry {
+            what,
+            row: k % a.nrows(),
+            col: k / a.nrows(),
+        }),
+        None => Ok(()),
+    }
+}
+
 /// [`finite_points`] for one point that sits at `index` of a list (an
 /// edited data point).
 pub fn finite_point_at<T: Real, const D: usize>(
@@ -123,6 +174,41 @@ mod tests {
     use crate::scalar::Mp;
 
     #[test]
+    fn too_few_reads_in_the_singular_for_one() {
+        let one = at_least("a curve", 1, 0).unwrap_err().to_string();
+        assert_eq!(one, "a curve needs at least 1 point, got 0");
+        let two = at_least("a curve", 2, 0).unwrap_err().to_string();
+        assert_eq!(two, "a curve needs at least 2 points, got 0");
+    }
+
+    #[test]
+    fn matrix_entries_are_found_in_column_major_order() {
+        let mut a = nalgebra::DMatrix::from_element(3, 2, 1.0f64);
+        assert!(finite_entries("m", &a).is_ok());
+        a[(2, 1)] = f64::INFINITY;
+        a[(0, 1)] = f64::NAN;
+        let e = finite_entries("m", &a).unwrap_err();
+        assert_eq!(
+            e,
+            InputError::NonFiniteEntry {
+                what: "m",
+                row: 0,
+                col: 1
+            }
+        );
+        a[(2, 0)] = f64::NAN;
+        let e = finite_entries("m", &a).unwrap_err();
+        assert_eq!(
+            e,
+            InputError::NonFiniteEntry {
+                what: "m",
+                row: 2,
+                col: 0
+            }
+        );
+    }
+
+    #[test]
     fn checks_refuse_nan_and_infinities_in_f64_and_mpfr() {
         for x in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
             assert_eq!(finite("t", &x), Err(InputError::NonFinite { name: "t" }));
@@ -140,6 +226,14 @@ mod tests {
             assert_eq!(e.to_string(), "knot 2 is not finite");
         }
         assert!(finite_scalars::<f64>("knot", &[]).is_ok());
+        assert_eq!(
+            finite_at("node", 3, &f64::NAN),
+            Err(InputError::NonFiniteAt {
+                what: "node",
+                index: 3
+            })
+        );
+        assert!(finite_at("node", 3, &-f64::MAX).is_ok());
         assert!(finite("t", &f64::MAX).is_ok());
     }
 }

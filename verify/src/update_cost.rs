@@ -16,13 +16,13 @@ use rug::Rational;
 use serde::Serialize;
 use splinelab::bspline::de_boor::BSpline;
 use splinelab::bspline::knot_insertion::InsertionError;
+use splinelab::curves::global_cubic::{CubicEnds, control_points};
+use splinelab::curves::sspline_surface::{Direction, SsplineSurface};
+use splinelab::curves::{CurveError, sspline_curve::SsplineCurve};
 use splinelab::scalar::prelude::*;
-use splinelab::sspline::curve::{CurveError, SsplineCurve};
 use splinelab::sspline::end_conditions::{EndCondition, EndRule};
-use splinelab::sspline::global_cubic::{CubicEnds, control_points};
 use splinelab::sspline::node_values::node_values_exact;
 use splinelab::sspline::prefilter::{ConvolutionPrefilter, PrefilterError, RecursivePrefilter};
-use splinelab::sspline::surface::{Direction, SsplineSurface};
 use splinelab::sspline::{
     Criterion, SplineFamily, SsplineError, f64_saturation_width, truncation_width,
 };

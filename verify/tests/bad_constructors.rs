@@ -13,18 +13,18 @@ use splinelab::bspline::knots::{KnotError, KnotVector};
 use splinelab::bspline::nurbs::{NurbsCurve, NurbsSurface};
 use splinelab::curves::CurveError;
 use splinelab::curves::catmull_rom::{CatmullRom, Spacing};
+use splinelab::curves::global_cubic::{CubicEnds, control_points as cubic_control_points};
 use splinelab::curves::hermite::Hermite;
 use splinelab::curves::rational_bezier::RationalBezier;
+use splinelab::curves::sspline_curve::SsplineCurve;
+use splinelab::curves::sspline_surface::{Direction, SsplineSurface};
 use splinelab::qi::circle_tangent::start_tangent;
 use splinelab::qi::cubic_spline::{ClampedCubicSpline, Parameterization};
 use splinelab::qi::tangent::unit_direction;
 use splinelab::qi::{QiError, QiOptions, interpolate};
 use splinelab::quadrature::{GaussLegendre, QuadratureError, choose_order};
 use splinelab::scalar::prelude::*;
-use splinelab::sspline::curve::SsplineCurve;
 use splinelab::sspline::end_conditions::{EndCondition, EndRule};
-use splinelab::sspline::global_cubic::{CubicEnds, control_points as cubic_control_points};
-use splinelab::sspline::surface::{Direction, SsplineSurface};
 use splinelab::sspline::{
     Criterion, MAX_HALF_WIDTH, SplineFamily, SsplineError, TruncatedBasis, TruncationAnalysis,
     WidthChooser, truncation_width,
@@ -354,33 +354,50 @@ fn beziers<T: Real>(s: &mut Sweep) {
         s,
         "Bezier::new([])",
         Bezier::<T, 2>::new(vec![]),
-        BezierError::Empty
+        BezierError::Input(InputError::TooFewPoints {
+            needed: 1,
+            got: 0,
+            ..
+        })
     );
     for x in NON_FINITE {
         refuses!(
             s,
             &format!("Bezier point {x}"),
             Bezier::new(with_bad::<T>(3, 0, x)),
-            BezierError::NonFiniteCoefficient { index: 0 }
+            BezierError::Input(InputError::NonFiniteAt {
+                what: "control point",
+                index: 0
+            })
         );
         refuses!(
             s,
             &format!("BernsteinPoly {x}"),
             BernsteinPoly::<T>::new(reals(&[1.0, x])),
-            BezierError::NonFiniteCoefficient { index: 1 }
+            BezierError::Input(InputError::NonFiniteAt {
+                what: "coefficient",
+                index: 1
+            })
         );
         refuses!(
             s,
             &format!("BernsteinPoly::from_f64 {x}"),
             BernsteinPoly::<T>::from_f64(&[x]),
-            BezierError::NonFiniteCoefficient { index: 0 }
+            BezierError::Input(InputError::NonFiniteAt {
+                what: "coefficient",
+                index: 0
+            })
         );
     }
     refuses!(
         s,
         "BernsteinPoly::new([])",
         BernsteinPoly::<T>::new(vec![]),
-        BezierError::Empty
+        BezierError::Input(InputError::TooFewPoints {
+            needed: 1,
+            got: 0,
+            ..
+        })
     );
     let quadratic = Bezier::new(line::<T>(3)).unwrap();
     rational_and_hermite::<T>(s, &quadratic);
@@ -996,7 +1013,12 @@ fn samples<T: Real>(s: &mut Sweep) {
     use BvError::*;
     use InverseMappingError as I;
     let grid = |u: &[f64], v: &[f64]| SampleGrid::<T>::new(reals(u), reals(v));
-    refuses!(s, "SampleGrid empty", grid(&[], &[]), I::Nodes(NoNodes));
+    refuses!(
+        s,
+        "SampleGrid empty",
+        grid(&[], &[]),
+        I::Nodes(Input(InputError::TooFewPoints { got: 0, .. }))
+    );
     refuses!(
         s,
         "SampleGrid one node",
@@ -1032,13 +1054,19 @@ fn samples<T: Real>(s: &mut Sweep) {
             s,
             &format!("SampleGrid node {x}"),
             grid(&[0.0, x], &[0.0, 1.0]),
-            I::Nodes(NonFiniteNode { .. })
+            I::Nodes(Input(InputError::NonFiniteAt {
+                what: "node",
+                index: 1
+            }))
         );
         refuses!(
             s,
             &format!("BvBidiagonal node {x}"),
             BvBidiagonal::<T>::new(&reals(&[0.0, x])),
-            NonFiniteNode { .. }
+            Input(InputError::NonFiniteAt {
+                what: "node",
+                index: 1
+            })
         );
     }
     for family in NodeFamily::ALL {
@@ -1059,7 +1087,7 @@ fn samples<T: Real>(s: &mut Sweep) {
         s,
         "BvBidiagonal empty",
         BvBidiagonal::<T>::new(&[]),
-        NoNodes
+        Input(InputError::TooFewPoints { got: 0, .. })
     );
     refuses!(
         s,

@@ -10,6 +10,7 @@ use splinelab::bernstein::compensated::{
     compensated_de_casteljau, compensated_de_casteljau_bounded, compensated_with,
 };
 use splinelab::scalar::{DekkerProduct, FmaProduct, Mp, Real};
+use splinelab::validation::InputError;
 use splinelab_verify::bezier_eval::{
     ExactPoly, Family, Method, Prepared, check_bounds, find_zero_result, gamma, jiang_example,
     measure, unit_roundoff,
@@ -247,10 +248,22 @@ fn power_form_is_less_accurate_than_de_casteljau_on_wilkinson() {
 
 #[test]
 fn bad_input_is_a_typed_error() {
-    assert_eq!(Prepared::<f64>::new(vec![]).err(), Some(BezierError::Empty));
+    let too_few = InputError::TooFewPoints {
+        what: "a Bernstein polynomial",
+        needed: 1,
+        got: 0,
+    };
+    assert_eq!(
+        Prepared::<f64>::new(vec![]).err(),
+        Some(BezierError::Input(too_few))
+    );
+    let at = InputError::NonFiniteAt {
+        what: "coefficient",
+        index: 1,
+    };
     assert_eq!(
         Prepared::new(vec![0.0, f64::INFINITY]).err(),
-        Some(BezierError::NonFiniteCoefficient { index: 1 })
+        Some(BezierError::Input(at))
     );
     let prep = Prepared::new(vec![1.0, 2.0, 3.0]).unwrap();
     for method in Method::ALL {

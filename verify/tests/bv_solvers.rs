@@ -14,6 +14,7 @@ use splinelab::surface_deformation::bv_solve::{
 use splinelab::surface_deformation::inverse_mapping::{SampleGrid, control_points, sample};
 use splinelab::surface_deformation::patch::{Patch, Point3};
 use splinelab::surface_deformation::vandermonde::{NodeFamily, bernstein_vandermonde};
+use splinelab::validation::InputError;
 use splinelab_verify::bv_solvers::{RhsKind, measure, right_hand_sides};
 use splinelab_verify::exact::solve_rational;
 use splinelab_verify::metrics::ulps_f64;
@@ -150,7 +151,11 @@ fn bad_input_is_a_typed_error_and_nothing_is_solved() {
         bad[(4, 0)] = f64::NAN;
         assert_eq!(
             solve_tensor(&ok, &ok, &bad, s),
-            Err(BvError::NonFiniteRhs { row: 4, col: 0 })
+            Err(BvError::Input(InputError::NonFiniteEntry {
+                what: "right-hand side",
+                row: 4,
+                col: 0
+            }))
         );
     }
 }

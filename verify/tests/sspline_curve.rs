@@ -6,12 +6,12 @@
 
 use nalgebra::{SVector, Vector2, Vector3};
 use proptest::prelude::*;
+use splinelab::curves::global_cubic::{CubicEnds, control_points, interpolant};
+use splinelab::curves::sspline_surface::{Direction, SsplineSurface};
+use splinelab::curves::{CurveError, sspline_curve::SsplineCurve};
 use splinelab::qi::cubic_spline::{ClampedCubicSpline, Parameterization};
 use splinelab::scalar::prelude::*;
-use splinelab::sspline::curve::{CurveError, SsplineCurve};
 use splinelab::sspline::end_conditions::{EndCondition, EndRule};
-use splinelab::sspline::global_cubic::{CubicEnds, control_points, interpolant};
-use splinelab::sspline::surface::{Direction, SsplineSurface};
 use splinelab::sspline::{SplineFamily, TruncatedBasis};
 use splinelab::validation::InputError;
 

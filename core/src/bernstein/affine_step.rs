@@ -1,4 +1,5 @@
-//! The de Casteljau step `a ← a·r + b·t`, in place with borrowed operands.
+//! The de Casteljau / de Boor step `a ← a·r + b·t` and the convolution
+//! step `a ← a + b`, `b ← b·c`, in place with borrowed operands.
 
 use crate::scalar::Real;
 use nalgebra::SVector;
@@ -22,15 +23,29 @@ use nalgebra::SVector;
 /// a.affine_step(&r, &Mp::from(3.0), &t);
 /// assert_eq!(a, Mp::from(1.5));
 /// ```
+///
+/// [`scale_in_place`](Self::scale_in_place) and [`accumulate`](Self::accumulate) are the two
+/// halves with no temporary at all, for a caller that owns `b` (a
+/// convolution `Σ_j c_j P_j`: scale the owned copy of `P_j`, add it).
 pub trait AffineStep<T> {
     /// `self ← self·r + b·t`.
     fn affine_step(&mut self, r: &T, b: &Self, t: &T);
+    /// `self ← self·r` (each coordinate one correctly rounded product).
+    fn scale_in_place(&mut self, r: &T);
+    /// `self ← self + b` (each coordinate one correctly rounded sum).
+    fn accumulate(&mut self, b: &Self);
 }
 
 impl<T: Real> AffineStep<T> for T {
     fn affine_step(&mut self, r: &T, b: &T, t: &T) {
         *self *= r;
         *self += &(b.clone() * t);
+    }
+    fn scale_in_place(&mut self, r: &T) {
+        *self *= r;
+    }
+    fn accumulate(&mut self, b: &T) {
+        *self += b;
     }
 }
 
@@ -40,16 +55,26 @@ impl<T: Real, const D: usize> AffineStep<T> for SVector<T, D> {
             a.affine_step(r, b, t);
         }
     }
+    fn scale_in_place(&mut self, r: &T) {
+        for a in self.iter_mut() {
+            *a *= r;
+        }
+    }
+    fn accumulate(&mut self, b: &Self) {
+        for (a, b) in self.iter_mut().zip(b.iter()) {
+            *a += b;
+        }
+    }
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
     use crate::scalar::Mp;
     use nalgebra::Vector3;
 
     /// Deterministic values in `[−1, 1]` with full 53-bit significands.
-    fn values(n: usize) -> Vec<f64> {
+    pub(crate) fn values(n: usize) -> Vec<f64> {
         let mut x = 0x9E37_79B9_7F4A_7C15u64;
         (0..n)
             .map(|_| {
@@ -74,7 +99,12 @@ mod tests {
             let q = Vector3::new(w[3].clone(), w[6].clone(), w[7].clone());
             let mut s = p.clone();
             s.affine_step(r, &q, t);
-            assert_eq!(s, p * r.clone() + q * t.clone());
+            assert_eq!(s, p.clone() * r.clone() + q.clone() * t.clone());
+            // The convolution step of `convolve_at`: acc + b·c.
+            let (mut acc, mut b) = (p.clone(), q.clone());
+            b.scale_in_place(t);
+            acc.accumulate(&b);
+            assert_eq!(acc, p + q * t.clone());
         }
     }
 

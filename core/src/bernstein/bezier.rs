@@ -19,24 +19,17 @@ use super::basis::binomial;
 use crate::param_curve::{ParamCurve, ParamCurveDeriv, unit};
 use crate::scalar::Real;
 use crate::scalar::running_error::{RoundingModel, Running};
+use crate::validation::{self, InputError, at_least, finite_points, finite_scalars};
 use nalgebra::SVector;
 use rug::Rational;
 
 /// Why a Bernstein polynomial or Bézier curve could not be built or evaluated.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum BezierError {
-    /// No coefficients (or control points) were given.
-    #[error("a Bernstein polynomial needs at least one coefficient")]
-    Empty,
-    /// Coefficient (or control point) `index` is NaN or infinite.
-    #[error("coefficient {index} is not finite")]
-    NonFiniteCoefficient {
-        /// Position of the offending coefficient.
-        index: usize,
-    },
-    /// The parameter `t` is NaN or infinite.
-    #[error("the parameter t is not finite")]
-    NonFiniteParameter,
+    /// No coefficients (or control points), a coefficient or control point
+    /// that is NaN or infinite, or a parameter `t` that is.
+    #[error(transparent)]
+    Input(#[from] InputError),
     /// An intermediate result or the error bound overflowed (or became NaN).
     #[error("{method}: intermediate result overflowed at degree {degree}")]
     Overflow {
@@ -94,9 +87,7 @@ impl<T: Real> Evaluation<T> {
 
 /// Checks that `t` is finite; returns whether it lies outside `[0, 1]`.
 pub fn check_parameter<T: Real>(t: &T) -> Result<bool, BezierError> {
-    if !t.is_finite() {
-        return Err(BezierError::NonFiniteParameter);
-    }
+    validation::finite("the parameter t", t)?;
     Ok(*t < T::zero() || *t > T::one())
 }
 
@@ -151,9 +142,7 @@ where
     T: Real,
     V: Clone + AffineStep<T>,
 {
-    if points.is_empty() {
-        return Err(BezierError::Empty);
-    }
+    at_least("a Bézier curve", 1, points.len())?;
     check_parameter(t)?;
     Ok(de_casteljau_lerp(points, &(T::one() - t), t))
 }
@@ -171,9 +160,7 @@ where
     T: Real,
     V: Clone + AffineStep<T>,
 {
-    if points.is_empty() {
-        return Err(BezierError::Empty);
-    }
+    at_least("a Bézier curve", 1, points.len())?;
     check_parameter(t)?;
     let r = T::one() - t;
     let mut b = points.to_vec();
@@ -206,12 +193,8 @@ pub struct BernsteinPoly<T> {
 impl<T: Real> BernsteinPoly<T> {
     /// Validates the coefficients `b_0, …, b_n` (degree `n`).
     pub fn new(coeffs: Vec<T>) -> Result<Self, BezierError> {
-        if coeffs.is_empty() {
-            return Err(BezierError::Empty);
-        }
-        if let Some(index) = coeffs.iter().position(|c| !c.is_finite()) {
-            return Err(BezierError::NonFiniteCoefficient { index });
-        }
+        at_least("a Bernstein polynomial", 1, coeffs.len())?;
+        finite_scalars("coefficient", &coeffs)?;
         let n = coeffs.len() - 1;
         let model = RoundingModel::<T>::new();
         let binomials = (0..=n)
@@ -230,9 +213,7 @@ impl<T: Real> BernsteinPoly<T> {
 
     /// Converts f64 coefficients exactly (`T` has at least 53 bits).
     pub fn from_f64(coeffs: &[f64]) -> Result<Self, BezierError> {
-        if let Some(index) = coeffs.iter().position(|c| !c.is_finite()) {
-            return Err(BezierError::NonFiniteCoefficient { index });
-        }
+        finite_scalars("coefficient", coeffs)?;
         Self::new(coeffs.iter().map(|&c| T::from_f64_exact(c)).collect())
     }
 
@@ -314,12 +295,8 @@ pub struct Bezier<T: Real, const D: usize> {
 impl<T: Real, const D: usize> Bezier<T, D> {
     /// Validates the control points (non-empty, all coordinates finite).
     pub fn new(points: Vec<SVector<T, D>>) -> Result<Self, BezierError> {
-        if points.is_empty() {
-            return Err(BezierError::Empty);
-        }
-        if let Some(index) = points.iter().position(|p| p.iter().any(|x| !x.is_finite())) {
-            return Err(BezierError::NonFiniteCoefficient { index });
-        }
+        at_least("a Bézier curve", 1, points.len())?;
+        finite_points("control point", &points)?;
         Ok(Bezier { points })
     }
 
@@ -393,17 +370,26 @@ mod tests {
 
     #[test]
     fn bad_input_is_an_error() {
-        assert_eq!(BernsteinPoly::<f64>::new(vec![]), Err(BezierError::Empty));
+        let e = BernsteinPoly::<f64>::new(vec![]).unwrap_err();
         assert_eq!(
-            BernsteinPoly::new(vec![1.0, f64::NAN]),
-            Err(BezierError::NonFiniteCoefficient { index: 1 })
+            e.to_string(),
+            "a Bernstein polynomial needs at least 1 point, got 0"
         );
+        let e = BernsteinPoly::new(vec![1.0, f64::NAN]).unwrap_err();
+        let at = InputError::NonFiniteAt {
+            what: "coefficient",
+            index: 1,
+        };
+        assert_eq!(e, BezierError::Input(at));
+        assert_eq!(e.to_string(), "coefficient 1 is not finite");
         let p = BernsteinPoly::new(vec![1.0f64, 2.0]).unwrap();
+        let e = p.de_casteljau(&f64::INFINITY).unwrap_err();
+        assert_eq!(e.to_string(), "the parameter t is not finite");
+        let e = de_casteljau::<f64, f64>(&[], &0.5).unwrap_err();
         assert_eq!(
-            p.de_casteljau(&f64::INFINITY),
-            Err(BezierError::NonFiniteParameter)
+            e.to_string(),
+            "a Bézier curve needs at least 1 point, got 0"
         );
-        assert_eq!(de_casteljau::<f64, f64>(&[], &0.5), Err(BezierError::Empty));
     }
 
     /// The cubic of seed 002 in expanded form, evaluated in Mp<200> (exact for

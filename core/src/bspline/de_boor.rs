@@ -2,12 +2,12 @@
 //! the Cox–de Boor basis, and derivatives (seed 003 eq 1–2).
 
 use super::knots::{KnotError, KnotVector};
+use crate::bernstein::affine_step::AffineStep;
 use crate::param_curve::{ParamCurve, ParamCurveDeriv};
 use crate::scalar::Real;
 use crate::validation::{InputError, at_least, finite_points};
 use nalgebra::SVector;
 use serde::{Deserialize, Serialize};
-use std::ops::{Add, Mul};
 
 /// Why a B-spline could not be built or evaluated.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -158,7 +158,7 @@ pub(crate) fn de_boor_window<T, V>(
 ) -> V
 where
     T: Real,
-    V: Clone + Add<Output = V> + Mul<T, Output = V>,
+    V: AffineStep<T>,
 {
     de_boor_in_place(order, knots, &mut d, span, t);
     d.swap_remove(order - 1)
@@ -170,15 +170,18 @@ where
 pub(crate) fn de_boor_in_place<T, V>(order: usize, knots: &[T], d: &mut [V], span: usize, t: &T)
 where
     T: Real,
-    V: Clone + Add<Output = V> + Mul<T, Output = V>,
+    V: AffineStep<T>,
 {
     let k = order;
     for r in 1..k {
         for j in (r..k).rev() {
             let i = span + 1 - k + j;
-            let alpha =
-                (t.clone() - knots[i].clone()) / (knots[i + k - r].clone() - knots[i].clone());
-            d[j] = d[j - 1].clone() * (T::one() - alpha.clone()) + d[j].clone() * alpha;
+            let alpha = (t.clone() - &knots[i]) / (knots[i + k - r].clone() - &knots[i]);
+            let beta = T::one() - &alpha;
+            // d_j ← d_j·α + d_{j−1}·(1 − α): the two products, then their
+            // sum (commutative, so bitwise the textbook d_{j−1}(1 − α) + d_j α).
+            let (below, from_j) = d.split_at_mut(j);
+            from_j[0].affine_step(&alpha, &below[j - 1], &beta);
         }
     }
 }
@@ -430,7 +433,61 @@ impl<T: Real, const D: usize> ParamCurveDeriv<T, D> for BSpline<T, D> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::bernstein::affine_step::tests::values;
+    use crate::scalar::Mp;
     use nalgebra::Vector2;
+    use std::ops::{Add, Mul};
+
+    /// The de Boor triangle as it was written before the in-place step.
+    fn cloning_de_boor<T, V>(k: usize, knots: &[T], d: &mut [V], span: usize, t: &T)
+    where
+        T: Real,
+        V: Clone + Add<Output = V> + Mul<T, Output = V>,
+    {
+        for r in 1..k {
+            for j in (r..k).rev() {
+                let i = span + 1 - k + j;
+                let alpha =
+                    (t.clone() - knots[i].clone()) / (knots[i + k - r].clone() - knots[i].clone());
+                d[j] = d[j - 1].clone() * (T::one() - alpha.clone()) + d[j].clone() * alpha;
+            }
+        }
+    }
+
+    /// In-place de Boor equals the cloning form bit for bit, scalars and
+    /// points, every span of a random knot vector, in f64 and MPFR.
+    fn de_boor_same_as_cloning_form<T: Real>() {
+        let v: Vec<T> = values(240).into_iter().map(T::from_f64_exact).collect();
+        let mut knots = v[..14].to_vec();
+        knots.sort_by(|a, b| a.partial_cmp(b).expect("finite"));
+        let pts: Vec<Vector2<T>> = v[14..]
+            .chunks_exact(2)
+            .map(|w| Vector2::new(w[0].clone(), w[1].clone()))
+            .collect();
+        for k in [2, 4, 6] {
+            for span in k - 1..knots.len() - k {
+                for t in &v[100..110] {
+                    let mut a: Vec<T> = v[120..120 + k].to_vec();
+                    let mut b = a.clone();
+                    de_boor_in_place(k, &knots, &mut a, span, t);
+                    cloning_de_boor(k, &knots, &mut b, span, t);
+                    assert_eq!(a, b, "scalar k={k} span={span}");
+                    let mut p = pts[..k].to_vec();
+                    let mut q = p.clone();
+                    de_boor_in_place(k, &knots, &mut p, span, t);
+                    cloning_de_boor(k, &knots, &mut q, span, t);
+                    assert_eq!(p, q, "points k={k} span={span}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn in_place_de_boor_is_bitwise_the_cloning_form() {
+        de_boor_same_as_cloning_form::<f64>();
+        de_boor_same_as_cloning_form::<Mp<24>>();
+        de_boor_same_as_cloning_form::<Mp<113>>();
+    }
 
     fn v(x: f64, y: f64) -> Vector2<f64> {
         Vector2::new(x, y)

@@ -5,12 +5,12 @@
 
 use super::de_boor::{BSpline, BSplineError, check_structure, de_boor_window, find_span};
 use super::knots::KnotVector;
+use crate::bernstein::affine_step::AffineStep;
 use crate::param_curve::{ParamCurve, ParamSurface};
 use crate::scalar::Real;
 use crate::validation::{finite, finite_points};
 use nalgebra::{SVector, Vector2, Vector3};
 use rug::Rational;
-use std::ops::{Add, Mul};
 
 fn check_weights<T: Real>(weights: &[T]) -> Result<(), BSplineError> {
     match weights
@@ -56,23 +56,19 @@ impl<T: Real, const D: usize> Weighted<T, D> {
     }
 }
 
-impl<T: Real, const D: usize> Add for Weighted<T, D> {
-    type Output = Self;
-    fn add(self, o: Self) -> Self {
-        Weighted {
-            point: self.point + o.point,
-            weight: self.weight + o.weight,
-        }
+/// Coordinate by coordinate: the point's, then the weight's.
+impl<T: Real, const D: usize> AffineStep<T> for Weighted<T, D> {
+    fn affine_step(&mut self, r: &T, b: &Self, t: &T) {
+        self.point.affine_step(r, &b.point, t);
+        self.weight.affine_step(r, &b.weight, t);
     }
-}
-
-impl<T: Real, const D: usize> Mul<T> for Weighted<T, D> {
-    type Output = Self;
-    fn mul(self, a: T) -> Self {
-        Weighted {
-            point: self.point * a.clone(),
-            weight: self.weight * a,
-        }
+    fn scale_in_place(&mut self, r: &T) {
+        self.point.scale_in_place(r);
+        self.weight.scale_in_place(r);
+    }
+    fn accumulate(&mut self, b: &Self) {
+        self.point.accumulate(&b.point);
+        self.weight.accumulate(&b.weight);
     }
 }
 

@@ -1,7 +1,14 @@
 //! The curves of seed 002 (Takayama, *Curves*): cubic Hermite segments,
 //! rational Bézier curves (exact circular arcs), Catmull–Rom splines by the
 //! Barry–Goldman pyramid, and adaptive flattening of Bézier curves by
-//! de Casteljau subdivision.
+//! de Casteljau subdivision; and the curves and surfaces of seed 000 built on
+//! the S-spline basis of [`sspline`](crate::sspline): [`sspline_curve`],
+//! [`sspline_surface`], and the global cubic interpolant they are compared
+//! with ([`global_cubic`]).
+//!
+//! All share one [`CurveError`]. The dependency runs one way: this module
+//! uses `sspline`'s coefficients and [`SsplineError`]; `sspline` (basis,
+//! coefficients, prefilter engine) never names a curve.
 //!
 //! Polynomial Bézier curves themselves ([`Bezier`](crate::bernstein::bezier::Bezier)),
 //! tensor Bézier patches ([`Patch`](crate::surface_deformation::patch::Patch)) and
@@ -13,17 +20,20 @@
 
 pub mod catmull_rom;
 pub mod flatten;
+pub mod global_cubic;
 pub mod greedy_flatten;
 pub mod hermite;
 pub mod rational_bezier;
+pub mod sspline_curve;
+pub mod sspline_surface;
 
 use crate::bernstein::bezier::BezierError;
 use crate::bspline::de_boor::BSplineError;
 use crate::sspline::SsplineError;
 use crate::validation::InputError;
 
-/// Why a curve (of this module, or an S-spline curve or surface of
-/// [`sspline`](crate::sspline)) could not be built, evaluated or edited.
+/// Why a curve or surface of this module (seed 002's, or an S-spline curve
+/// or surface) could not be built, evaluated or edited.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum CurveError {
     /// Too few points, or a point, tangent or scalar input that is not finite.

@@ -28,18 +28,15 @@ pub mod beta2;
 pub mod block_filter;
 pub mod bspline_uniform;
 pub mod coefficients;
-pub mod curve;
 pub mod end_conditions;
 pub mod euler_frobenius;
 pub mod family;
-pub mod global_cubic;
 pub mod interpolant;
 pub mod line_filter;
 pub mod mode;
 pub mod nd_prefilter;
 pub mod node_values;
 pub mod prefilter;
-pub mod surface;
 pub mod truncation;
 pub mod width;
 

@@ -67,6 +67,7 @@
 
 use super::vandermonde::bernstein_vandermonde;
 use crate::scalar::Real;
+use crate::validation::{InputError, at_least, finite_at, finite_entries};
 use nalgebra::DMatrix;
 use nalgebra::linalg::LU;
 use rug::Rational;
@@ -74,15 +75,10 @@ use rug::Rational;
 /// Why a Bernstein–Vandermonde system could not be set up or solved.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum BvError {
-    /// No nodes were given.
-    #[error("at least one node is required")]
-    NoNodes,
-    /// A node is NaN or infinite.
-    #[error("node {index} is not finite")]
-    NonFiniteNode {
-        /// Position in the node list.
-        index: usize,
-    },
+    /// No nodes, a node that is NaN or infinite, or a right-hand side entry
+    /// that is.
+    #[error(transparent)]
+    Input(#[from] InputError),
     /// A node lies outside `[0, 1]` (the Bézier parameter domain).
     #[error("node {index} = {value} is outside [0, 1]")]
     NodeOutOfRange {
@@ -112,14 +108,6 @@ pub enum BvError {
         /// Rows given.
         got: usize,
     },
-    /// The right-hand side has a NaN or infinite entry.
-    #[error("right-hand side entry ({row}, {col}) is not finite")]
-    NonFiniteRhs {
-        /// Row of the entry.
-        row: usize,
-        /// Column of the entry.
-        col: usize,
-    },
     /// LU met a zero pivot: singular in the working precision.
     #[error("the matrix is singular in the working precision")]
     Singular,
@@ -129,13 +117,9 @@ pub enum BvError {
 /// increasing — exactly the condition under which the Bernstein–Vandermonde
 /// matrix is totally positive and nonsingular.
 pub fn check_nodes<T: Real>(nodes: &[T]) -> Result<(), BvError> {
-    if nodes.is_empty() {
-        return Err(BvError::NoNodes);
-    }
+    at_least("a Bernstein–Vandermonde system", 1, nodes.len())?;
     for (index, t) in nodes.iter().enumerate() {
-        if !t.is_finite() {
-            return Err(BvError::NonFiniteNode { index });
-        }
+        finite_at("node", index, t)?;
         if *t < T::zero() || *t > T::one() {
             return Err(BvError::NodeOutOfRange {
                 index,
@@ -161,14 +145,7 @@ fn check_rhs<T: Real>(rhs: &DMatrix<T>, expected: usize) -> Result<(), BvError> 
             got: rhs.nrows(),
         });
     }
-    for col in 0..rhs.ncols() {
-        for row in 0..rhs.nrows() {
-            if !rhs[(row, col)].is_finite() {
-                return Err(BvError::NonFiniteRhs { row, col });
-            }
-        }
-    }
-    Ok(())
+    Ok(finite_entries("right-hand side", rhs)?)
 }
 
 /// The Marco–Martínez bidiagonal factorisation of the inverse of a
@@ -262,18 +239,18 @@ impl<T: Real> BvBidiagonal<T> {
         for j in 0..n {
             // Descending i: each update uses the previous pass's r_{i−1}.
             for i in (j + 1..=n).rev() {
-                let d = self.lower[i][j].clone() * r[i - 1].clone();
-                r[i] = r[i].clone() - d;
+                let d = self.lower[i][j].clone() * &r[i - 1];
+                r[i] -= &d;
             }
         }
         for (ri, p) in r.iter_mut().zip(&self.pivots) {
-            *ri = ri.clone() / p.clone();
+            *ri /= p;
         }
         for j in (0..n).rev() {
             // Ascending i: r_i is still the previous pass's value when used.
             for i in j + 1..=n {
-                let d = self.upper[i][j].clone() * r[i].clone();
-                r[i - 1] = r[i - 1].clone() - d;
+                let d = self.upper[i][j].clone() * &r[i];
+                r[i - 1] -= &d;
             }
         }
     }
@@ -525,6 +502,52 @@ mod tests {
     use crate::surface_deformation::vandermonde::NodeFamily;
     use rug::ops::Pow;
 
+    /// `solve_in_place` as it was written before the borrowed-operand form.
+    fn cloning_solve<T: Real>(f: &BvBidiagonal<T>, r: &mut [T]) {
+        let n = f.degree();
+        for j in 0..n {
+            for i in (j + 1..=n).rev() {
+                let d = f.lower[i][j].clone() * r[i - 1].clone();
+                r[i] = r[i].clone() - d;
+            }
+        }
+        for (ri, p) in r.iter_mut().zip(&f.pivots) {
+            *ri = ri.clone() / p.clone();
+        }
+        for j in (0..n).rev() {
+            for i in j + 1..=n {
+                let d = f.upper[i][j].clone() * r[i].clone();
+                r[i - 1] = r[i - 1].clone() - d;
+            }
+        }
+    }
+
+    /// Marco–Martínez with borrowed operands equals the cloning form bit for
+    /// bit, on every node family and random full-precision right-hand sides.
+    fn solve_same_as_cloning_form<T: Real>() {
+        let v: Vec<T> = crate::bernstein::affine_step::tests::values(64)
+            .into_iter()
+            .map(T::from_f64_exact)
+            .collect();
+        for family in NodeFamily::ALL {
+            for degree in [1, 5, 17] {
+                let f = BvBidiagonal::new(&family.nodes::<T>(degree).unwrap()).unwrap();
+                let mut a = v[..=degree].to_vec();
+                let mut b = a.clone();
+                f.solve_in_place(&mut a);
+                cloning_solve(&f, &mut b);
+                assert_eq!(a, b, "{family} degree {degree}");
+            }
+        }
+    }
+
+    #[test]
+    fn borrowed_marco_martinez_is_bitwise_the_cloning_form() {
+        solve_same_as_cloning_form::<f64>();
+        solve_same_as_cloning_form::<Mp<24>>();
+        solve_same_as_cloning_form::<Mp<113>>();
+    }
+
     fn exact_bv(t: &[Rational]) -> Vec<Vec<Rational>> {
         let n = t.len() - 1;
         t.iter()
@@ -616,11 +639,21 @@ mod tests {
 
     #[test]
     fn bad_nodes_are_typed_errors() {
-        assert_eq!(check_nodes::<f64>(&[]), Err(BvError::NoNodes));
+        let e = check_nodes::<f64>(&[]).unwrap_err();
         assert_eq!(
-            check_nodes(&[0.0, f64::NAN]),
-            Err(BvError::NonFiniteNode { index: 1 })
+            e.to_string(),
+            "a Bernstein–Vandermonde system needs at least 1 point, got 0"
         );
+        let at = InputError::NonFiniteAt {
+            what: "node",
+            index: 1,
+        };
+        assert_eq!(check_nodes(&[0.0, f64::NAN]), Err(BvError::Input(at)));
+        // Checked in order: an earlier out-of-range node is reported first.
+        assert!(matches!(
+            check_nodes(&[1.5, f64::NAN]),
+            Err(BvError::NodeOutOfRange { index: 0, .. })
+        ));
         assert_eq!(
             check_nodes(&[0.0, 1.5]),
             Err(BvError::NodeOutOfRange {
@@ -645,9 +678,7 @@ mod tests {
             }
         );
         let r = DMatrix::from_column_slice(2, 1, &[1.0, f64::INFINITY]);
-        assert_eq!(
-            solve_1d(&[0.0, 1.0], &r, Method1d::MarcoMartinez).unwrap_err(),
-            BvError::NonFiniteRhs { row: 1, col: 0 }
-        );
+        let e = solve_1d(&[0.0, 1.0], &r, Method1d::MarcoMartinez).unwrap_err();
+        assert_eq!(e.to_string(), "right-hand side entry (1, 0) is not finite");
     }
 }

@@ -10,6 +10,7 @@ use rug::Rational;
 use serde::{Deserialize, Serialize};
 use splinelab::bernstein::bezier::{BezierError, Evaluation};
 use splinelab::scalar::Real;
+use splinelab::validation::InputError;
 
 /// One evaluation measured exactly.
 #[derive(Debug, Clone)]
@@ -85,7 +86,11 @@ pub fn measure(
     t: f64,
 ) -> Result<Measured, EvalError> {
     let eval = prepared.evaluate(method, &t)?;
-    let tq = Rational::from_f64(t).ok_or(BezierError::NonFiniteParameter)?;
+    let tq = Rational::from_f64(t)
+        .ok_or(InputError::NonFinite {
+            name: "the parameter t",
+        })
+        .map_err(BezierError::from)?;
     let p = exact.value(&tq);
     let v = Rational::from_f64(eval.value).ok_or(BezierError::Overflow {
         method: "exact",

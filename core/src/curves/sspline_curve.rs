@@ -13,17 +13,17 @@
 //! Moving one interior data point changes exactly the `2n + 1` control points
 //! `D_{k−n..=k+n}` — the paper's local-modification claim.
 
-use super::end_conditions::{EndCondition, EndRule};
-use super::{SplineFamily, TruncatedBasis};
+use crate::bernstein::affine_step::AffineStep;
 use crate::bspline::de_boor::BSpline;
 use crate::bspline::knots::KnotVector;
 use crate::param_curve::{ParamCurve, widen};
 use crate::scalar::Real;
+use crate::sspline::end_conditions::{EndCondition, EndRule};
+use crate::sspline::{SplineFamily, TruncatedBasis};
 use crate::validation::{at_least, finite_point_at, finite_points, finite_vector};
 use nalgebra::SVector;
 
-/// S-spline curves and surfaces share [`crate::curves::CurveError`].
-pub use crate::curves::CurveError;
+use super::CurveError;
 
 /// One direction of an S-spline: basis family, coefficients `c_0..c_n`, end
 /// rule, data count, and the range of control indices it needs.
@@ -146,13 +146,17 @@ impl<T: Real> Axis<T> {
 /// agree bitwise).
 pub(crate) fn convolve_at<T: Real, V>(axis: &Axis<T>, slot: usize, get: impl Fn(i64) -> V) -> V
 where
-    V: Clone + std::ops::Add<Output = V> + std::ops::Mul<T, Output = V>,
+    V: AffineStep<T>,
 {
     let n = axis.half_width() as i64;
     let k = axis.first + slot as i64;
-    let mut acc = get(k - n) * axis.c[n as usize].clone();
+    let mut acc = get(k - n);
+    acc.scale_in_place(&axis.c[n as usize]);
     for j in (-n..n).rev() {
-        acc = acc + get(k - j) * axis.c[j.unsigned_abs() as usize].clone();
+        // `get` hands over an owned point: scale it in place, add it.
+        let mut term = get(k - j);
+        term.scale_in_place(&axis.c[j.unsigned_abs() as usize]);
+        acc.accumulate(&term);
     }
     acc
 }
@@ -182,7 +186,8 @@ impl<T: Real, const D: usize> SsplineCurve<T, D> {
     ///
     /// ```
     /// use nalgebra::Vector2;
-    /// use splinelab::sspline::{SplineFamily, curve::SsplineCurve, end_conditions::EndCondition};
+    /// use splinelab::curves::sspline_curve::SsplineCurve;
+    /// use splinelab::sspline::{SplineFamily, end_conditions::EndCondition};
     /// let p: Vec<Vector2<f64>> = (0..8).map(|i| Vector2::new(i as f64, (i * i % 5) as f64)).collect();
     /// let q = SsplineCurve::new(&SplineFamily::Order(4), 20, &p, EndCondition::Free).unwrap();
     /// assert!((q.eval(&3.0).unwrap() - p[3]).norm() < 1e-9);
@@ -334,5 +339,45 @@ impl<T: Real, const D: usize> ParamCurve<T, D> for SsplineCurve<T, D> {
     }
     fn eval(&self, t: &T) -> Result<SVector<T, D>, CurveError> {
         SsplineCurve::eval(self, t)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::bernstein::affine_step::tests::values;
+    use crate::scalar::Mp;
+    use nalgebra::Vector3;
+
+    /// `convolve_at` equals the cloning form it replaced
+    /// (`acc = acc + P·c`, same order), bit for bit, in f64 and MPFR.
+    fn convolution_same_as_cloning_form<T: Real>() {
+        let v: Vec<T> = values(420).into_iter().map(T::from_f64_exact).collect();
+        let pts: Vec<Vector3<T>> = v
+            .chunks_exact(3)
+            .map(|w| Vector3::new(w[0].clone(), w[1].clone(), w[2].clone()))
+            .collect();
+        let get = |i: i64| pts[i.rem_euclid(pts.len() as i64) as usize].clone();
+        for (m, n) in [(4, 3), (6, 11)] {
+            let family = SplineFamily::Order(m);
+            let mut axis = Axis::<T>::new(&family, n, EndRule::Periodic, pts.len()).unwrap();
+            // Full-precision coefficients, so that every product rounds.
+            axis.c = v[..=n].to_vec();
+            for slot in 0..axis.count {
+                let k = axis.first + slot as i64;
+                let mut old = get(k - n as i64) * axis.c[n].clone();
+                for j in (-(n as i64)..n as i64).rev() {
+                    old = old + get(k - j) * axis.c[j.unsigned_abs() as usize].clone();
+                }
+                assert_eq!(convolve_at(&axis, slot, get), old, "m={m} slot={slot}");
+            }
+        }
+    }
+
+    #[test]
+    fn in_place_convolution_is_bitwise_the_cloning_form() {
+        convolution_same_as_cloning_form::<f64>();
+        convolution_same_as_cloning_form::<Mp<24>>();
+        convolution_same_as_cloning_form::<Mp<113>>();
     }
 }

@@ -13,11 +13,12 @@
 //! `(2n_u + 1)(2n_v + 1)` places (interior point): the paper's "square of
 //! the support width".
 
-use super::SplineFamily;
-use super::curve::{Axis, CurveError, convolve_at};
-use super::end_conditions::EndRule;
+use super::CurveError;
+use super::sspline_curve::{Axis, convolve_at};
 use crate::param_curve::{ParamSurface, widen};
 use crate::scalar::Real;
+use crate::sspline::SplineFamily;
+use crate::sspline::end_conditions::EndRule;
 use crate::validation::{finite_point_at, finite_points};
 use nalgebra::SVector;
 

@@ -17,10 +17,10 @@
 //! componentwise relative error of a few `u` times the condition number
 //! (`≤ 3` in the ∞-norm for `(1, 4, 1)/6`). The clamped case is checked
 //! against the Hermite-form solver of `qi::cubic_spline` (a second algorithm).
-//! The result is the same representation as [`super::curve::SsplineCurve`]
+//! The result is the same representation as [`super::sspline_curve::SsplineCurve`]
 //! (order 4, knots `k − 2 + ℤ`), so both are evaluated by one B-spline code.
 
-use super::curve::CurveError;
+use super::CurveError;
 use crate::bspline::de_boor::BSpline;
 use crate::bspline::knots::KnotVector;
 use crate::scalar::Real;
@@ -47,7 +47,7 @@ pub enum CubicEnds<T: Real, const D: usize> {
 ///
 /// ```
 /// use nalgebra::Vector1;
-/// use splinelab::sspline::global_cubic::{CubicEnds, control_points};
+/// use splinelab::curves::global_cubic::{CubicEnds, control_points};
 /// // Data of the line P_i = i: the interpolant is the line, D_k = k.
 /// let p: Vec<Vector1<f64>> = (0..5).map(|i| Vector1::new(i as f64)).collect();
 /// let d = control_points(&p, &CubicEnds::Natural).unwrap();
@@ -122,7 +122,7 @@ fn solve<T: Real, const D: usize>(
 
 /// The interpolant as an order-4 [`BSpline`] on the knots `−3, −2, …, ν + 2`
 /// (domain `[0, ν − 1]`): the same view as
-/// [`super::curve::SsplineCurve::to_bspline`].
+/// [`super::sspline_curve::SsplineCurve::to_bspline`].
 pub fn interpolant<T: Real, const D: usize>(
     data: &[SVector<T, D>],
     ends: &CubicEnds<T, D>,
