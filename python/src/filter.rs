@@ -6,10 +6,11 @@
 //! faults of an 80 MB `Vec` cost more than the filter itself).
 //!
 //! The input, whatever its strides, is read once into the output, which is
-//! then filtered in place. A single line (1-D) is copied and checked for
-//! non-finite values in one pass, blocks that fit in L1, then filtered
-//! with [`LineFilter::apply`]; other shapes are copied and handed to the
-//! engine's N-D filter (which checks once per call).
+//! then filtered in place. A single line (1-D) is copied and filtered with
+//! [`LineFilter::apply`]; the exact route is checked afterwards by its
+//! first coefficient (the recursions spread any NaN/inf there), the
+//! truncated one while copying, in L1-sized blocks. Other shapes are copied
+//! and handed to the engine's N-D filter (which checks once per call).
 
 use crate::cache;
 use crate::error::value_error;
@@ -109,10 +110,35 @@ fn filter_into<T: Real + Copy + Send + Sync + 'static>(
         return filter_nd(src, out, axes, filter.as_deref());
     };
     // One line: the same call the engine makes for a single lane.
-    let max = copy_checked(s, d)?;
-    f.check_magnitude(max, 1)?;
+    if f.half_width().is_some() {
+        let max = copy_checked(s, d)?;
+        f.check_magnitude(max, 1)?;
+        f.apply(d, &mut Vec::new());
+        return Ok(());
+    }
+    if s.is_empty() {
+        return Err(PrefilterError::Empty);
+    }
+    // The exact recursions carry a NaN or infinity (input or overflow) from
+    // wherever it appears to the end and back to `d[0]` (every pole's
+    // anti-causal pass ends there): checking `d[0]` afterwards replaces a
+    // pass over the input. On failure `d` holds garbage and the error says why.
+    d.copy_from_slice(s);
     f.apply(d, &mut Vec::new());
-    Ok(())
+    if d[0].is_finite() {
+        return Ok(());
+    }
+    if let Some(i) = s.iter().position(|x| !x.is_finite()) {
+        return Err(PrefilterError::NonFinite(i));
+    }
+    let max = s.iter().fold(0.0f64, |m, x| m.max(x.to_f64().abs()));
+    f.check_magnitude(max, 1)?;
+    // Finite data within the growth bound cannot overflow (LineFilter::growth).
+    Err(PrefilterError::Overflow {
+        max,
+        growth: f.growth(),
+        limit: max,
+    })
 }
 
 /// The general case: copy (strided), then the engine's N-D filter.
