@@ -36,6 +36,7 @@ import dask.array as da
 import numpy as np
 
 import splinelab
+from splinelab._ndimage import _axis, _filter, _filter_mode
 
 __all__ = ["spline_filter", "spline_filter1d", "depth", "bound"]
 
@@ -89,12 +90,12 @@ def _map(darr, axes, order, mode, tol, output, threads, route):
     dtype = np.dtype(output)
     d = depth(order, tol, route)
     depths = {ax: (d if ax in axes else 0) for ax in range(darr.ndim)}
-    # Edge blocks extend by scipy's filter rule for `mode` (splinelab._filter).
-    boundary = "periodic" if splinelab._filter_mode(mode, False) == "grid-wrap" else "none"
+    # Edge blocks extend by scipy's filter rule for `mode` (splinelab._ndimage._filter).
+    boundary = "periodic" if _filter_mode(mode, False) == "grid-wrap" else "none"
     block_tol = tol if route == "truncated" else None
 
     def block(x):
-        return splinelab._filter(x, axes, order, dtype, mode, block_tol, threads)
+        return _filter(x, axes, order, dtype, mode, block_tol, threads)
 
     return darr.map_overlap(block, depth=depths, boundary=boundary, dtype=dtype, meta=np.array((), dtype=dtype))
 
@@ -128,4 +129,4 @@ def spline_filter1d(
     :func:`spline_filter`.
     """
     darr = da.asarray(darr)
-    return _map(darr, [splinelab._axis(axis, darr.ndim)], order, mode, tol, output, threads, route)
+    return _map(darr, [_axis(axis, darr.ndim)], order, mode, tol, output, threads, route)

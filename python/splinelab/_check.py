@@ -1,0 +1,147 @@
+"""`check`: your own numbers against certified references."""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+
+from . import _splinelab as _ext
+from ._sspline import _family
+from ._validate import _int, _mode, _opt_float, _real_array
+
+def _vector(x, what):
+    a = _real_array(x, what)
+    if a.ndim != 1:
+        raise ValueError(f"{what} must be 1-D, got shape {a.shape}")
+    return a
+
+
+def _values(values, format):
+    v = _vector(values, "values")
+    fmt = format or ("f32" if v.dtype == np.float32 else "f64")
+    return v.astype(np.float64).tolist(), fmt
+
+
+def _list(x, what):
+    return _vector(x, what).astype(np.float64).tolist()
+
+
+def _check_prefilter(samples, coeffs, degree=None, order=None, mode="mirror", max_ulps=None, format=None):
+    d = _check_degree(degree, order)
+    user, fmt = _values(coeffs, format)
+    return _ext.check_prefilter(_list(samples, "samples"), user, fmt, d, _mode(mode), _opt_float(max_ulps, "max_ulps"))
+
+
+def _check_degree(degree, order):
+    if degree is not None and order is not None:
+        raise ValueError("give degree= or order= (= degree + 1), not both")
+    return _int(order, "order") - 1 if order is not None else _int(3 if degree is None else degree, "degree")
+
+
+def _check_interp(
+    samples, coordinates, values, degree=None, order=None, mode="mirror", cval=0.0, max_ulps=None, format=None
+):
+    s = _real_array(samples, "samples")
+    if s.ndim not in (1, 2):
+        raise ValueError(f"samples must be 1-D or 2-D, got {s.ndim}-D")
+    c = np.asarray(_real_array(coordinates, "coordinates"), dtype=np.float64)
+    if c.ndim == 1 and s.ndim == 1:
+        c = c[None, :]
+    if c.ndim != 2 or c.shape[0] != s.ndim:
+        raise ValueError(f"coordinates must have shape ({s.ndim}, count) as in map_coordinates, got {c.shape}")
+    user, fmt = _values(values, format)
+    return _ext.check_interp(
+        np.ascontiguousarray(s, dtype=np.float64).ravel().tolist(), list(s.shape),
+        c.T.ravel().tolist(), user, fmt, _check_degree(degree, order), _mode(mode), _opt_float(cval, "cval"),
+        _opt_float(max_ulps, "max_ulps"),
+    )
+
+
+def _check_cond(nodes, values, basis="bernstein", norm="2", max_ulps=None, format=None):
+    if isinstance(nodes, np.ndarray) and nodes.ndim == 1 or (len(nodes) > 0 and np.ndim(nodes[0]) == 0):
+        sets = [_list(nodes, "nodes")]
+    else:
+        sets = [_list(n, "nodes") for n in nodes]
+    user, fmt = _values(values, format)
+    return _ext.check_cond(sets, str(basis), str(norm), user, fmt, _opt_float(max_ulps, "max_ulps"))
+
+
+def _check_coeffs(values, order=None, degree=None, tension=None, max_ulps=None, format=None):
+    m = _family(degree, order) if tension is None else 4
+    user, fmt = _values(values, format)
+    t = None if tension is None else str(tension)
+    return _ext.check_coeffs(user, fmt, m, t, _opt_float(max_ulps, "max_ulps"))
+
+
+def _check_bspline_eval(knots, coeffs, degree, x, values, extrapolate=True, max_ulps=None, format=None):
+    user, fmt = _values(values, format)
+    return _ext.check_bspline_eval(
+        _list(knots, "knots"), _list(coeffs, "coeffs"), _int(degree, "degree"), _list(x, "x"),
+        user, fmt, bool(extrapolate), _opt_float(max_ulps, "max_ulps"),
+    )
+
+
+def _check_bezier_eval(coeffs, t, values, max_ulps=None, format=None):
+    user, fmt = _values(values, format)
+    return _ext.check_bezier_eval(_list(coeffs, "coeffs"), _list(t, "t"), user, fmt, _opt_float(max_ulps, "max_ulps"))
+
+
+def _spline(s, what):
+    try:
+        t, c, k = s
+    except (TypeError, ValueError):
+        raise TypeError(f"{what} must be a (t, c, k) triple") from None
+    return (_list(t, f"{what} t"), _list(c, f"{what} c"), _int(k, f"{what} k"))
+
+
+def _check_knot_insertion(before, after, max_ulps=None, format=None):
+    return _ext.check_knot_insertion(
+        _spline(before, "before"), _spline(after, "after"), format or "f64", _opt_float(max_ulps, "max_ulps")
+    )
+
+
+_KINDS = {
+    "prefilter": _check_prefilter,
+    "coeffs": _check_coeffs,
+    "bspline-eval": _check_bspline_eval,
+    "bezier-eval": _check_bezier_eval,
+    "knot-insertion": _check_knot_insertion,
+    "interp": _check_interp,
+    "cond": _check_cond,
+}
+
+
+def check(kind, **kwargs):
+    """Checks your own numbers against certified references (``splinelab check KIND --json``).
+
+    Returns the same dict as the command line's ``--json`` (``kind``, ``n``,
+    ``reference_bits``, ``worst``, ``regions``, ``digits_min``, ``failed``,
+    ``verdict``, ...). Keywords per kind (as the command's options):
+
+    - 'prefilter': ``samples, coeffs, degree=3`` (or ``order=degree+1``),
+      ``mode='mirror'`` ('mirror', 'reflect', 'grid-wrap'); degree 1..15;
+    - 'coeffs': ``values, order=/degree=/tension=``;
+    - 'bspline-eval': ``knots, coeffs, degree, x, values, extrapolate=True``;
+    - 'bezier-eval': ``coeffs, t, values``;
+    - 'knot-insertion': ``before=(t, c, k), after=(t, c, k)``;
+    - 'interp': ``samples`` (1-D or 2-D), ``coordinates`` (shape (ndim, count),
+      as map_coordinates), ``values``, ``degree=3``, ``mode='mirror'``,
+      ``cval=0.0`` (for 'grid-constant'; scipy's 'constant' and 'wrap' are
+      not checked);
+    - 'cond': ``nodes`` (one node set, or a list of sets), ``values`` (one
+      condition number per set), ``basis='bernstein'`` or 'monomial',
+      ``norm='2'`` or 'inf'.
+
+    Every kind takes ``max_ulps=`` (verdict 'fail' when an element exceeds
+    it) and ``format=`` ('f64'/'f32'; default: the values' dtype).
+
+    >>> import numpy as np, splinelab
+    >>> s = np.array([1.0, 2.0, 0.5, 3.0, 1.0, 0.0, 2.0, 1.0])
+    >>> r = splinelab.check("prefilter", samples=s, coeffs=splinelab.spline_filter1d(s), max_ulps=16)
+    >>> r["kind"], r["verdict"], r["degree"]
+    ('prefilter', 'pass', 3)
+    """
+    if kind not in _KINDS:
+        raise ValueError(f"unknown check kind {kind!r} (expected one of {', '.join(_KINDS)})")
+    return json.loads(_KINDS[kind](**kwargs))

@@ -1,0 +1,89 @@
+"""The S-spline functions of seed 000: truncation widths, coefficients, the filter bound."""
+
+from __future__ import annotations
+
+import json
+
+from . import _splinelab as _ext
+from ._validate import _degree, _int, _opt_float
+
+def _family(degree, order):
+    """The paper's B-spline order m from degree= or order= (m = degree + 1)."""
+    if degree is not None and order is not None:
+        raise ValueError("give degree= or order= (= degree + 1), not both")
+    if order is not None:
+        return _int(order, "order")
+    return _int(3 if degree is None else degree, "degree") + 1
+
+
+def truncation_width(degree=None, order=None, tension=None, *, tol, criterion="uniform"):
+    """The smallest truncation half-width ``n`` meeting ``tol`` (``splinelab width --json``).
+
+    Here ``order`` is the papers' B-spline order ``m = degree + 1`` (give
+    one of ``degree`` and ``order``; default cubic, degree 3 — as
+    everywhere in splinelab, degree 0..199 means scipy's ``order``).
+    ``tension`` (a decimal or ``'p/q'`` string, exact) selects the cubic Beta2
+    family. ``criterion``: 'uniform' (worst curve error for ``|P| <= 1``),
+    'coeff' (``|c_n| < tol``, the paper's rule) or 'knot'.
+
+    Returns a dict: ``n``, ``bound`` (guaranteed tail bound, rounded up),
+    ``achieved``, ``criterion``, ``tol``, ``order``, ``tension``, ``family``,
+    ``support_radius``, ``f64_saturation_n``.
+
+    >>> import splinelab
+    >>> w = splinelab.truncation_width(degree=3, tol=1e-10)
+    >>> w['n'], w['bound'] < 1e-10
+    (18, True)
+    """
+    m = _family(degree, order)
+    t = None if tension is None else str(tension)
+    tol = _opt_float(tol, "tol")
+    n, achieved, bound, crit, saturation, half_support, m, tension, family = _ext.truncation_width(
+        m, t, tol, str(criterion)
+    )
+    return {
+        "order": m, "tension": tension, "family": family, "tol": tol, "criterion": crit, "n": n,
+        "achieved": achieved, "bound": bound, "support_radius": n + half_support, "f64_saturation_n": saturation,
+    }
+
+
+def coefficients(degree=None, order=None, tension=None, *, count=10, bits=None):
+    """The S-spline coefficients ``c_0 .. c_{count-1}`` (``splinelab coeffs``).
+
+    ``order`` is the papers' ``m = degree + 1`` (default cubic). With
+    ``bits=None``: a float64 array, each correctly rounded (partial
+    fractions with >= 128 guard bits, rounded once). With ``bits=B``
+    (16..2048): a list of decimal strings carrying ``B`` bits, computed at
+    the next compiled MPFR precision >= ``B``.
+
+    >>> import splinelab
+    >>> c = splinelab.coefficients(degree=3, count=2)
+    >>> float(c[0]) == 3 ** 0.5
+    True
+    >>> splinelab.coefficients(degree=3, count=1, bits=100)[0][:20]
+    '1.732050807568877293'
+    """
+    m = _family(degree, order)
+    t = None if tension is None else str(tension)
+    count = _int(count, "count")
+    if bits is None:
+        return _ext.coefficients_f64(m, t, count)
+    return json.loads(_ext.coefficients_decimal(m, t, count, _int(bits, "bits")))["c"]
+
+
+def filter_bound(order, tol=None, ndim=1):
+    """Certified bound of the prefilter for ``order`` (the degree) and ``tol``.
+
+    Returns a dict: ``half_width`` (``None`` for the exact filter),
+    ``bound`` (per-axis tail ``b``), ``amplification`` (``A = 1/|V(-1)|``:
+    ``max|c| <= A max|s|``) and ``total``: ``(A + b)**ndim - A**ndim``, so
+    that ``|truncated - exact| <= total * max|input|`` over ``ndim`` axes.
+
+    >>> import splinelab
+    >>> b = splinelab.filter_bound(3, 1e-10, ndim=2)
+    >>> b['half_width'], round(b['amplification'], 12)
+    (18, 3.0)
+    """
+    n, b, amp = _ext.filter_bound(_degree(order), _opt_float(tol, "tol"))
+    d = _int(ndim, "ndim")
+    return {"half_width": n, "bound": b, "amplification": amp, "total": (amp + b) ** d - amp**d}
