@@ -7,8 +7,11 @@ data, A/B alternated (not run by CI).
 For each case, runs scipy and our `engine_peer` binary alternately `ROUNDS`
 times (each side reports the median of its own repetitions, excluding
 process start-up), and prints one JSON object per case:
-{"case", "threads", "scipy_s", "ours_s", "ratio"}  (ratio = scipy_s / ours_s,
-> 1 means we are faster). scipy is single-threaded; ours uses
+{"case", "threads", "scipy_s", "ours_s", "ratio", "memcpy_s", "ours_over_memcpy"}
+(ratio = scipy_s / ours_s, > 1 means we are faster; memcpy_s is the median
+time of `np.copyto` of the same bytes — the array for the filters, the
+points for eval2d — taken in the same rounds, one thread: the memory wall
+each route is measured against, ours_over_memcpy = ours_s / memcpy_s). scipy is single-threaded; ours uses
 RAYON_NUM_THREADS = --threads, except the `blocks1d` cases (the 1-D
 block route), which always use both cores (RAYON_NUM_THREADS=2).
 """
@@ -58,6 +61,25 @@ def scipy_case(kind, degree, n, reps):
     raise ValueError(kind)
 
 
+def case_bytes(kind, n):
+    """The elements a plain copy moves for the case (f64)."""
+    if kind in ("filter1d", "blocks1d"):
+        return n
+    if kind == "filter2d":
+        return n * n
+    if kind == "filter3d":
+        return n ** 3
+    if kind == "eval2d":
+        return 2 * 1_000_000
+    raise ValueError(kind)
+
+
+def memcpy_case(kind, n, reps):
+    src = data(case_bytes(kind, n))
+    dst = np.empty_like(src)
+    return median_time(lambda: np.copyto(dst, src), reps)
+
+
 def ours_case(binary, threads, kind, degree, n, reps):
     env = dict(os.environ, RAYON_NUM_THREADS=str(threads))
     out = subprocess.run([binary, kind, str(degree), str(n), str(reps)],
@@ -88,13 +110,16 @@ def main():
         if args.only and kind != args.only:
             continue
         threads = 2 if kind == "blocks1d" else args.threads
-        ours, theirs = [], []
+        ours, theirs, copies = [], [], []
         for _ in range(ROUNDS):
             theirs.append(scipy_case(kind, degree, n, reps))
             ours.append(ours_case(args.bin, threads, kind, degree, n, reps))
+            copies.append(memcpy_case(kind, n, reps))
         s, o = sorted(theirs)[ROUNDS // 2], sorted(ours)[ROUNDS // 2]
+        c = sorted(copies)[ROUNDS // 2]
         print(json.dumps({"case": f"{kind} degree {degree} n {n}", "threads": threads,
-                          "scipy_s": s, "ours_s": o, "ratio": s / o}), flush=True)
+                          "scipy_s": s, "ours_s": o, "ratio": s / o,
+                          "memcpy_s": c, "ours_over_memcpy": o / c}), flush=True)
 
 
 if __name__ == "__main__":
