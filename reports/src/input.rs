@@ -41,12 +41,27 @@ pub fn max_input_bytes() -> Result<u64, CliError> {
     }
 }
 
-/// Reads `path` as UTF-8 text (no `-` for stdin: every command takes a file).
+/// Reads `path` as UTF-8 text (no `-` for stdin: every command takes a file),
+/// within the limits of [`read_bytes`].
+pub fn read_text(path: &Path) -> Result<String, CliError> {
+    String::from_utf8(read_bytes(path)?).map_err(|e| {
+        input_error(
+            path,
+            format!(
+                "not UTF-8 text (invalid byte at offset {})",
+                e.utf8_error().valid_up_to()
+            ),
+        )
+    })
+}
+
+/// Reads the bytes of `path`.
 ///
 /// Only a regular file is read (a FIFO with no writer would block for ever,
 /// `/dev/zero` would never end), and at most [`max_input_bytes`]: a larger
-/// file is refused with the limit and how to raise it.
-pub fn read_text(path: &Path) -> Result<String, CliError> {
+/// file is refused with the limit and how to raise it. Nothing larger than
+/// the limit is allocated, whatever the file says about itself.
+pub fn read_bytes(path: &Path) -> Result<Vec<u8>, CliError> {
     use std::io::Read;
     let io = |e: std::io::Error| input_error(path, e.to_string());
     let meta = std::fs::metadata(path).map_err(io)?;
@@ -78,15 +93,7 @@ pub fn read_text(path: &Path) -> Result<String, CliError> {
     if bytes.len() as u64 > limit {
         return Err(too_big(bytes.len() as u64));
     }
-    String::from_utf8(bytes).map_err(|e| {
-        input_error(
-            path,
-            format!(
-                "not UTF-8 text (invalid byte at offset {})",
-                e.utf8_error().valid_up_to()
-            ),
-        )
-    })
+    Ok(bytes)
 }
 
 /// Parses `text`, the contents of `path`, as a `T` (serde's message names the
