@@ -38,6 +38,13 @@ pub struct Profile {
     pub quick: bool,
 }
 
+impl Profile {
+    /// `quick` or `full`, as `summary.json` records it.
+    pub fn name(&self) -> &'static str {
+        if self.quick { "quick" } else { "full" }
+    }
+}
+
 /// What a study contributes to the report.
 #[derive(Debug, Clone)]
 pub struct Section {
@@ -148,9 +155,10 @@ pub fn write_report(
     let mut timings = Map::new();
     let mut figures = Vec::new();
     let bar = progress(sections::SECTIONS.len(), quiet);
-    for section_fn in sections::SECTIONS {
+    let profile_cases = format!("{} profile's cases", profile.name());
+    for entry in sections::SECTIONS {
         let t = Instant::now();
-        let section = section_fn(profile)?;
+        let section = (entry.run)(profile)?;
         bar.set_message(section.title.clone());
         bar.inc(1);
         let seconds = t.elapsed().as_secs_f64();
@@ -162,14 +170,18 @@ pub fn write_report(
         ));
         summary.insert(section.id.to_string(), section.summary);
         check_figures(section.id, &section.figures)?;
-        figures.extend(section.figures);
+        let over = match entry.cases {
+            sections::Cases::Fixed => "fixed cases",
+            sections::Cases::ByProfile => &profile_cases,
+        };
+        figures.extend(section.figures.into_iter().map(|f| f.measured_over(over)));
         let time = Figure::cost(
             format!("report.{}.seconds", section.id),
             seconds,
             "s",
             TIME_BAND,
         );
-        figures.push(time.with_floor(TIME_FLOOR));
+        figures.push(time.with_floor(TIME_FLOOR).measured_over(&profile_cases));
         timings.insert(section.id.to_string(), json!(seconds));
     }
     bar.finish_and_clear();
