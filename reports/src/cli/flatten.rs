@@ -15,7 +15,7 @@
 //! above [`UNIFORM_WORK`] or with `--no-uniform`.
 
 use crate::error::CliError;
-use crate::input::{array_field, input_error, parse_object, read_text};
+use crate::input::{array_field, excerpt, input_error, parse_object, read_text};
 use crate::outln;
 use crate::output::{emit, print_json};
 use clap::Args;
@@ -121,7 +121,12 @@ pub struct FlattenArgs {
 fn coordinates(index: usize, p: &Value) -> Result<Vec<f64>, String> {
     p.as_array()
         .and_then(|a| a.iter().map(Value::as_f64).collect::<Option<Vec<f64>>>())
-        .ok_or_else(|| format!("points[{index}]: not an array of numbers, got {p}"))
+        .ok_or_else(|| {
+            format!(
+                "points[{index}]: not an array of numbers, got {}",
+                excerpt(&p.to_string())
+            )
+        })
 }
 
 /// Parses and validates the input file's text (`path` names it in errors):
