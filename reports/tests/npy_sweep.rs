@@ -89,7 +89,7 @@ fn ours(descr: &str) -> bool {
 fn npy(version: u8, dict: &str, body: &[u8]) -> Vec<u8> {
     let mut header = dict.as_bytes().to_vec();
     let prefix = if version == 1 { 10 } else { 12 };
-    while (prefix + header.len() + 1) % 64 != 0 {
+    while !(prefix + header.len() + 1).is_multiple_of(64) {
         header.push(b' ');
     }
     header.push(b'\n');
@@ -126,7 +126,7 @@ fn hostile_files() -> Vec<Hostile> {
         for (shape, count) in SHAPES {
             for body in BODIES {
                 k += 1;
-                let fortran = if k % 2 == 0 { "True" } else { "False" };
+                let fortran = if k.is_multiple_of(2) { "True" } else { "False" };
                 let claim = count.map(|c| c * item_size(descr) as u128);
                 // Bodies are at most a few KiB whatever the claim: 0x3F bytes
                 // are finite numbers in either byte order and width.
