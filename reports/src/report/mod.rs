@@ -75,7 +75,7 @@ caption{font-weight:bold;margin-bottom:.3em}figure{margin:1.5em 0}figcaption{fon
 nav li{margin:.2em 0}.meta{color:#666;font-size:90%}\
 .scroll,table{overflow-x:auto;max-width:100%}table{display:block}td{white-space:nowrap}\
 svg{max-width:100%;height:auto}.summary{background:#f4f7fb;border:1px solid #bcd;padding:.3em 1em;margin:1em 0}\
-.summary table{margin:.3em 0}.prov th{text-align:left}.prov td{text-align:left;white-space:normal;word-break:break-word}";
+.summary code{word-break:break-all}.prov th{text-align:left}.prov td{text-align:left;white-space:normal;word-break:break-word}";
 
 fn render_section(s: &Section, seconds: f64, dir: &Path) -> Result<String, CliError> {
     let mut html = format!(
@@ -162,15 +162,14 @@ fn summary_box(
                     escape(&f.unit)
                 )
             });
-            format!(
-                "<tr><td style=\"text-align:left\"><a href=\"#{id}\">{}</a></td><td style=\"text-align:left\">{figure}</td></tr>",
-                escape(title)
-            )
+            format!("<li><a href=\"#{id}\">{}</a>: {figure}</li>", escape(title))
         })
         .collect();
+    // A list, not a table: it wraps on a phone where a two-column table
+    // would push the figures off screen.
     format!(
         "<div class=\"summary\"><p><b>{} figures</b> in {} sections ({} profile). {}</p>\
-         <div class=\"scroll\"><table><tr><th>section</th><th>headline figure</th></tr>{rows}</table></div></div>\n",
+         <p>Headline figure of each section:</p><ul>{rows}</ul></div>\n",
         figures.len(),
         headlines.len(),
         profile.name(),
