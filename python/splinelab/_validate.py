@@ -30,8 +30,20 @@ def _opt_float(value, what):
     return float(value)
 
 
+# The most threads= accepted: the CLI's clamp of RAYON_NUM_THREADS
+# (reports/src/threads.rs). A larger request is refused, not clamped: an
+# explicit argument that cannot be honoured is an error, and 10**6 would
+# otherwise start a million threads.
+MAX_THREADS = 256
+
+
 def _threads(threads):
-    return None if threads is None else _int(threads, "threads")
+    if threads is None:
+        return None
+    n = _int(threads, "threads")
+    if not 1 <= n <= MAX_THREADS:
+        raise ValueError(f"threads={n} is outside 1..{MAX_THREADS} (None: one thread per core)")
+    return n
 
 
 def _mode(mode):

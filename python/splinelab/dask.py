@@ -51,7 +51,12 @@ def _route(route):
 
 
 def _width_tol(tol, route):
-    """The tolerance the half-width is certified for (see the module doc)."""
+    """The tolerance the half-width is certified for (see the module doc).
+    ``tol=None`` is refused: the overlap is certified for a tolerance, and
+    without one it would be the spline's support only (a silent error of
+    order 1 at every chunk edge)."""
+    if tol is None:
+        raise ValueError(f"tol=None: the chunked filter needs a tolerance to certify its overlap (default {DEFAULT_TOL})")
     return tol / 2 if _route(route) == "recursive" else tol
 
 

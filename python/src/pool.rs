@@ -10,11 +10,20 @@ use std::sync::{Arc, Mutex, OnceLock};
 
 static POOLS: OnceLock<Mutex<HashMap<usize, Arc<ThreadPool>>>> = OnceLock::new();
 
+/// The most threads a pool may have: the CLI's clamp of `RAYON_NUM_THREADS`
+/// (`splinelab_reports::threads::MAX_THREADS`); `splinelab._validate`
+/// refuses larger requests first, this is the backstop for direct calls.
+pub const MAX_THREADS: usize = 256;
+
+/// Pools kept at once: a program that tries many sizes keeps the last few,
+/// not one pool (and its threads) per size ever asked for.
+const KEPT_POOLS: usize = 4;
+
 fn pool(threads: usize) -> PyResult<Arc<ThreadPool>> {
-    if threads == 0 {
-        return Err(value_error(
-            "threads must be at least 1 (or None for all cores)",
-        ));
+    if !(1..=MAX_THREADS).contains(&threads) {
+        return Err(value_error(format!(
+            "threads={threads} is outside 1..{MAX_THREADS} (None: one thread per core)"
+        )));
     }
     let mut pools = POOLS
         .get_or_init(|| Mutex::new(HashMap::new()))
@@ -29,6 +38,9 @@ fn pool(threads: usize) -> PyResult<Arc<ThreadPool>> {
             .build()
             .map_err(value_error)?,
     );
+    if pools.len() >= KEPT_POOLS {
+        pools.clear();
+    }
     pools.insert(threads, p.clone());
     Ok(p)
 }

@@ -4,7 +4,8 @@
 //! comments). Every failure is a [`CliError::Input`] naming the file.
 
 use crate::error::CliError;
-use crate::input::{input_error, parse_json, read_text};
+use crate::input::{input_error, parse_json, read_bytes, read_text};
+use crate::npy_layout::{NpyFloat, validate};
 use ndarray::ArrayD;
 use ndarray_npy::{ReadNpyError, ReadNpyExt};
 use serde_json::Value;
@@ -51,21 +52,25 @@ pub fn read_1d(path: &Path) -> Result<(Vec<f64>, UserFormat), CliError> {
     read_array(path)?.into_1d(path)
 }
 
+/// Reads a `.npy` file whole (within the input limit), checks its header
+/// against its length ([`crate::npy_layout::validate`]) and only then lets
+/// `ndarray-npy` decode it: either byte order, C or Fortran order.
 fn read_npy(path: &Path) -> Result<UserArray, CliError> {
-    let open = || std::fs::File::open(path).map_err(|e| input_error(path, e.to_string()));
+    let bytes = read_bytes(path)?;
+    let layout = validate(&bytes).map_err(|why| input_error(path, why))?;
     let why = |e: ReadNpyError| input_error(path, format!("not a valid f64/f32 .npy file: {e}"));
-    match ArrayD::<f64>::read_npy(open()?) {
-        Ok(a) => Ok(from_nd(a, UserFormat::F64)),
-        Err(ReadNpyError::WrongDescriptor(_)) => match ArrayD::<f32>::read_npy(open()?) {
-            Ok(a) => Ok(from_nd(a.mapv(f64::from), UserFormat::F32)),
-            Err(ReadNpyError::WrongDescriptor(d)) => Err(input_error(
-                path,
-                format!("dtype {d} is not supported: expected float64 ('<f8') or float32 ('<f4')"),
-            )),
-            Err(e) => Err(why(e)),
-        },
-        Err(e) => Err(why(e)),
-    }
+    Ok(match layout.dtype {
+        NpyFloat::F64 => from_nd(
+            ArrayD::<f64>::read_npy(&bytes[..]).map_err(why)?,
+            UserFormat::F64,
+        ),
+        NpyFloat::F32 => from_nd(
+            ArrayD::<f32>::read_npy(&bytes[..])
+                .map_err(why)?
+                .mapv(f64::from),
+            UserFormat::F32,
+        ),
+    })
 }
 
 fn from_nd(a: ArrayD<f64>, format: UserFormat) -> UserArray {

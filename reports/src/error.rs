@@ -1,5 +1,6 @@
 //! The command line's error type.
 
+use crate::output::path_text;
 use std::path::PathBuf;
 
 /// Everything that can go wrong in a command. Each is reported as
@@ -15,7 +16,7 @@ pub enum CliError {
         why: String,
     },
     /// An input file could not be read or parsed.
-    #[error("cannot read {path}: {why}")]
+    #[error("cannot read {}: {why}", path_text(path))]
     Input {
         /// The file.
         path: PathBuf,
@@ -23,7 +24,7 @@ pub enum CliError {
         why: String,
     },
     /// An output file could not be written.
-    #[error("cannot write {path}: {source}")]
+    #[error("cannot write {}: {source}", path_text(path))]
     Output {
         /// The file.
         path: PathBuf,

@@ -41,12 +41,27 @@ pub fn max_input_bytes() -> Result<u64, CliError> {
     }
 }
 
-/// Reads `path` as UTF-8 text (no `-` for stdin: every command takes a file).
+/// Reads `path` as UTF-8 text (no `-` for stdin: every command takes a file),
+/// within the limits of [`read_bytes`].
+pub fn read_text(path: &Path) -> Result<String, CliError> {
+    String::from_utf8(read_bytes(path)?).map_err(|e| {
+        input_error(
+            path,
+            format!(
+                "not UTF-8 text (invalid byte at offset {})",
+                e.utf8_error().valid_up_to()
+            ),
+        )
+    })
+}
+
+/// Reads the bytes of `path`.
 ///
 /// Only a regular file is read (a FIFO with no writer would block for ever,
 /// `/dev/zero` would never end), and at most [`max_input_bytes`]: a larger
-/// file is refused with the limit and how to raise it.
-pub fn read_text(path: &Path) -> Result<String, CliError> {
+/// file is refused with the limit and how to raise it. Nothing larger than
+/// the limit is allocated, whatever the file says about itself.
+pub fn read_bytes(path: &Path) -> Result<Vec<u8>, CliError> {
     use std::io::Read;
     let io = |e: std::io::Error| input_error(path, e.to_string());
     let meta = std::fs::metadata(path).map_err(io)?;
@@ -78,15 +93,7 @@ pub fn read_text(path: &Path) -> Result<String, CliError> {
     if bytes.len() as u64 > limit {
         return Err(too_big(bytes.len() as u64));
     }
-    String::from_utf8(bytes).map_err(|e| {
-        input_error(
-            path,
-            format!(
-                "not UTF-8 text (invalid byte at offset {})",
-                e.utf8_error().valid_up_to()
-            ),
-        )
-    })
+    Ok(bytes)
 }
 
 /// Parses `text`, the contents of `path`, as a `T` (serde's message names the
@@ -153,7 +160,33 @@ pub fn kind(v: &Value) -> &'static str {
     }
 }
 
-/// serde's message prefixed by what kind of failure it is.
+/// Most characters of the user's input a message quotes.
+pub const QUOTE_CAP: usize = 80;
+
+/// `text` as quoted in a message: at most [`QUOTE_CAP`] characters (the
+/// head, an ellipsis with the count left out, the tail), control characters
+/// escaped, so a mistyped 4 kB value does not flood the terminal.
+pub fn excerpt(text: &str) -> String {
+    let shown: Vec<char> = text
+        .chars()
+        .flat_map(|c| {
+            if c.is_control() {
+                c.escape_default().collect::<Vec<_>>()
+            } else {
+                vec![c]
+            }
+        })
+        .collect();
+    if shown.len() <= QUOTE_CAP {
+        return shown.into_iter().collect();
+    }
+    let head: String = shown[..QUOTE_CAP - 20].iter().collect();
+    let tail: String = shown[shown.len() - 12..].iter().collect();
+    format!("{head}…[{} characters]…{tail}", shown.len() - QUOTE_CAP + 8)
+}
+
+/// serde's message prefixed by what kind of failure it is, each quoted
+/// piece of the input in it (`string "…"`) cut to an [`excerpt`].
 fn describe(e: &serde_json::Error) -> String {
     let what = match e.classify() {
         Category::Eof => "truncated JSON",
@@ -161,7 +194,19 @@ fn describe(e: &serde_json::Error) -> String {
         Category::Data => "unexpected JSON content",
         Category::Io => "I/O error",
     };
-    format!("{what}: {e}")
+    let message = e.to_string();
+    let capped: Vec<String> = message
+        .split('"')
+        .enumerate()
+        .map(|(i, piece)| {
+            if i % 2 == 1 {
+                excerpt(piece)
+            } else {
+                piece.to_string()
+            }
+        })
+        .collect();
+    format!("{what}: {}", capped.join("\""))
 }
 
 #[cfg(test)]
@@ -208,6 +253,13 @@ mod tests {
         assert_eq!(
             why(array_field(p, &map, "c")),
             "cannot read in.json: missing field \"c\" (an array)"
+        );
+        let long = format!("[\"{}\"]", "word ".repeat(800));
+        let message = why(parse_json::<Vec<f64>>(p, &long));
+        assert!(message.chars().count() < 200, "{message}");
+        assert!(
+            message.contains("word word") && message.contains("characters]"),
+            "{message}"
         );
         assert!(
             why(read_text(Path::new("/nonexistent/in.json")))

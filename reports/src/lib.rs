@@ -11,6 +11,7 @@ pub mod error;
 pub mod html;
 pub mod input;
 pub mod interrupt;
+pub mod npy_layout;
 pub mod output;
 pub mod report;
 pub mod threads;

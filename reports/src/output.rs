@@ -14,34 +14,70 @@ pub fn write_atomic(path: &Path, contents: &[u8]) -> Result<(), CliError> {
 /// temporary file is written first (any failure removes them all and leaves
 /// the targets untouched), and only then renamed into place.
 pub fn write_all_atomic(files: &[(&Path, &[u8])]) -> Result<(), CliError> {
-    let err = |path: &Path, source| CliError::Output {
+    PendingFiles::write(files)?.commit()
+}
+
+/// Files written beside their targets and not yet moved into place: a
+/// command writes its files ([`PendingFiles::write`]), then does whatever
+/// else can fail (printing its summary to stdout, which may be `/dev/full`),
+/// and only then [`PendingFiles::commit`]s. Dropped uncommitted (an error
+/// returned with `?`), the temporaries are removed and no target is touched.
+#[derive(Debug)]
+pub struct PendingFiles {
+    /// (target, temporary) pairs, in order.
+    moves: Vec<(PathBuf, PathBuf)>,
+    _registered: Vec<crate::interrupt::Registered>,
+}
+
+impl PendingFiles {
+    /// Writes every temporary; on a failure removes those written and
+    /// returns the error naming the target.
+    pub fn write(files: &[(&Path, &[u8])]) -> Result<Self, CliError> {
+        // A folder in a target's place is the one thing that makes a rename
+        // fail after the writes succeeded: refuse it before writing anything.
+        if let Some((path, _)) = files.iter().find(|(path, _)| path.is_dir()) {
+            return Err(output_error(
+                path,
+                std::io::Error::from(std::io::ErrorKind::IsADirectory),
+            ));
+        }
+        let mut pending = PendingFiles {
+            moves: Vec::with_capacity(files.len()),
+            _registered: Vec::with_capacity(files.len()),
+        };
+        for (path, contents) in files {
+            let tmp = temporary(path);
+            pending._registered.push(crate::interrupt::register(&tmp));
+            pending.moves.push((path.to_path_buf(), tmp.clone()));
+            std::fs::write(&tmp, contents).map_err(|e| output_error(path, e))?;
+        }
+        Ok(pending)
+    }
+
+    /// Renames every temporary over its target.
+    pub fn commit(mut self) -> Result<(), CliError> {
+        while !self.moves.is_empty() {
+            let (path, tmp) = &self.moves[0];
+            std::fs::rename(tmp, path).map_err(|e| output_error(path, e))?;
+            self.moves.remove(0);
+        }
+        Ok(())
+    }
+}
+
+impl Drop for PendingFiles {
+    fn drop(&mut self) {
+        for (_, tmp) in &self.moves {
+            let _ = std::fs::remove_file(tmp);
+        }
+    }
+}
+
+fn output_error(path: &Path, source: std::io::Error) -> CliError {
+    CliError::Output {
         path: path.to_path_buf(),
         source,
-    };
-    // A folder in a target's place is the one thing that makes a rename fail
-    // after the writes succeeded: refuse it before writing anything.
-    if let Some((path, _)) = files.iter().find(|(path, _)| path.is_dir()) {
-        return Err(err(
-            path,
-            std::io::Error::from(std::io::ErrorKind::IsADirectory),
-        ));
     }
-    let tmps: Vec<PathBuf> = files.iter().map(|(path, _)| temporary(path)).collect();
-    let _registered: Vec<_> = tmps.iter().map(|t| crate::interrupt::register(t)).collect();
-    let cleanup = |tmps: &[PathBuf]| tmps.iter().for_each(|t| drop(std::fs::remove_file(t)));
-    for ((path, contents), tmp) in files.iter().zip(&tmps) {
-        if let Err(e) = std::fs::write(tmp, contents) {
-            cleanup(&tmps);
-            return Err(err(path, e));
-        }
-    }
-    for (k, ((path, _), tmp)) in files.iter().zip(&tmps).enumerate() {
-        if let Err(e) = std::fs::rename(tmp, path) {
-            cleanup(&tmps[k..]);
-            return Err(err(path, e));
-        }
-    }
-    Ok(())
 }
 
 /// `DIR/.NAME.tmpPID`, beside `path`.
@@ -293,8 +329,38 @@ pub fn print_json(value: &serde_json::Value) -> Result<(), CliError> {
     emit(&format!("{text}\n"))
 }
 
-/// A path as JSON text: lossy for a path that is not UTF-8 (serde refuses
-/// those, and `json!` would panic on them).
+/// A path as text for messages and JSON: as it is when it is UTF-8, else
+/// with each byte that is not part of valid UTF-8 written `\xNN` (serde
+/// refuses non-UTF-8 paths, `json!` would panic on them, and a lossy
+/// conversion prints U+FFFD and loses which file was meant). Control
+/// characters are escaped too, so a name cannot move the terminal's cursor.
 pub fn path_text(path: &Path) -> String {
-    path.to_string_lossy().into_owned()
+    use std::os::unix::ffi::OsStrExt;
+    let mut out = String::new();
+    for chunk in path.as_os_str().as_bytes().utf8_chunks() {
+        for c in chunk.valid().chars() {
+            if c.is_control() {
+                out.extend(c.escape_default());
+            } else {
+                out.push(c);
+            }
+        }
+        for b in chunk.invalid() {
+            out.push_str(&format!("\\x{b:02X}"));
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn paths_that_are_not_utf8_are_shown_with_escaped_bytes() {
+        use std::os::unix::ffi::OsStrExt;
+        let p = Path::new(std::ffi::OsStr::from_bytes(b"/tmp/\xff\xfeA\x1b.json"));
+        assert_eq!(path_text(p), "/tmp/\\xFF\\xFEA\\u{1b}.json");
+        assert_eq!(path_text(Path::new("/tmp/é.json")), "/tmp/é.json");
+    }
 }

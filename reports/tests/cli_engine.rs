@@ -532,7 +532,7 @@ fn emitted_c_header_compiles_and_reproduces_the_table() {
     let header = std::fs::read_to_string(&h).unwrap();
     for needle in [
         "splinelab",
-        "#define tbl_HALF_WIDTH",
+        "#define TBL_HALF_WIDTH",
         "static const double tbl_coeffs[",
         "bound",
         "1e-10",
@@ -542,7 +542,7 @@ fn emitted_c_header_compiles_and_reproduces_the_table() {
     let prog = dir.join("main.c");
     std::fs::write(
         &prog,
-        "#include <stdio.h>\n#include \"tbl.h\"\nint main(void) {\n  for (int i = 0; i <= tbl_HALF_WIDTH; i++) printf(\"%.17g\\n\", tbl_coeffs[i]);\n  return 0;\n}\n",
+        "#include <stdio.h>\n#include \"tbl.h\"\nint main(void) {\n  for (int i = 0; i <= TBL_HALF_WIDTH; i++) printf(\"%.17g\\n\", tbl_coeffs[i]);\n  return 0;\n}\n",
     )
     .unwrap();
     let exe = dir.join("main");
@@ -556,7 +556,7 @@ fn emitted_c_header_compiles_and_reproduces_the_table() {
     let printed = String::from_utf8(Command::new(&exe).output().unwrap().stdout).unwrap();
     let got: Vec<f64> = printed.lines().map(|l| l.parse().unwrap()).collect();
     let n: usize = header
-        .split("#define tbl_HALF_WIDTH ")
+        .split("#define TBL_HALF_WIDTH ")
         .nth(1)
         .and_then(|t| t.split_whitespace().next())
         .and_then(|t| t.parse().ok())

@@ -219,3 +219,100 @@ fn bad_input_is_a_clear_error_with_non_zero_exit() {
         assert!(!err.contains("panicked"), "{err}");
     }
 }
+
+/// The polyline `flatten_points` returned, as the library's type.
+fn polyline_of(v: &Value) -> splinelab::curves::flatten::Polyline<f64, 2> {
+    let xs = |key: &str| v[key].as_array().unwrap().clone();
+    splinelab::curves::flatten::Polyline {
+        params: xs("params").iter().map(|t| t.as_f64().unwrap()).collect(),
+        points: xs("polyline")
+            .iter()
+            .map(|p| {
+                nalgebra::SVector::<f64, 2>::new(p[0].as_f64().unwrap(), p[1].as_f64().unwrap())
+            })
+            .collect(),
+    }
+}
+
+/// The largest deviation judged in 256-bit MPFR over the `worst` segments
+/// of the f64 measure (all of them when fewer): a segment whose true
+/// deviation passed `tol` would have an f64 measure within the rounding
+/// floor of it, far above the threshold of the top few hundred.
+fn deviation_judged_in_mpfr(points: &[[f64; 2]], v: &Value, worst: usize) -> f64 {
+    use splinelab::bernstein::bezier::Bezier;
+    use splinelab::curves::flatten::{Polyline, max_deviation};
+    let curve = Bezier::new(
+        points
+            .iter()
+            .map(|p| nalgebra::SVector::<f64, 2>::new(p[0], p[1]))
+            .collect(),
+    )
+    .unwrap();
+    let poly = polyline_of(v);
+    let piece = |j: usize| Polyline {
+        params: poly.params[j..j + 2].to_vec(),
+        points: poly.points[j..j + 2].to_vec(),
+    };
+    let mut measured: Vec<(f64, usize)> = (0..poly.segments())
+        .map(|j| (max_deviation(&curve, &piece(j), 32).unwrap(), j))
+        .collect();
+    measured.sort_by(|a, b| b.0.total_cmp(&a.0));
+    measured
+        .iter()
+        .take(worst)
+        .map(|&(_, j)| {
+            splinelab_verify::flatten_reference::deviation_in_mpfr(&curve, &piece(j), 32).unwrap()
+        })
+        .fold(0.0, f64::max)
+}
+
+#[test]
+fn at_1e_12_the_deviation_stays_within_the_tolerance_judged_in_mpfr() {
+    use splinelab_reports::cli::flatten::{FlattenMethod, flatten_points};
+    // The kind of case (a cubic, a parabola) and degree-20 curves
+    // with pseudo-random control points, scaled to 1e-4 so that 1e-12 stays
+    // within the command's work limit.
+    // The cubic is scaled to 1e-2 and only the parabola is flattened at unit
+    // scale by greedy chords alone, to keep the test to seconds.
+    let mut curves: Vec<Vec<[f64; 2]>> = vec![
+        vec![[0.0, 0.0], [1.0, 2.0], [2.0, 0.0]],
+        vec![[0.0, 0.0], [0.01, 0.02], [0.03, -0.01], [0.04, 0.0]],
+    ];
+    let mut state = 0x2545_f491_4f6c_dd1d_u64;
+    let mut uniform = || {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        (state >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+    };
+    for _ in 0..3 {
+        curves.push(
+            (0..21)
+                .map(|_| [1e-4 * uniform(), 1e-4 * uniform()])
+                .collect(),
+        );
+    }
+    for points in &curves {
+        let rows: Vec<Vec<f64>> = points.iter().map(|p| p.to_vec()).collect();
+        let unit_scale = points.iter().flatten().any(|x| x.abs() >= 1.0);
+        for method in [FlattenMethod::Greedy, FlattenMethod::Subdivision] {
+            if unit_scale && method == FlattenMethod::Subdivision {
+                continue;
+            }
+            let v = flatten_points(&rows, 1e-12, method, false).unwrap();
+            let measured = v["max_deviation"].as_f64().unwrap();
+            assert!(
+                measured <= 1e-12,
+                "{method:?} degree {}: {measured:e}",
+                points.len() - 1
+            );
+            let judged = deviation_judged_in_mpfr(points, &v, 200);
+            assert!(
+                judged <= 1e-12,
+                "{method:?} degree {}: MPFR {judged:e}",
+                points.len() - 1
+            );
+            assert!(v["target_tol"].as_f64().unwrap() < 1e-12);
+        }
+    }
+}

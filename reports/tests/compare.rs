@@ -193,3 +193,94 @@ fn the_regressed_figure_is_named_in_its_chart_and_numbered_globally() {
     let svg = std::fs::read_to_string(dir.join("out/compare_bezier.svg")).unwrap();
     assert!(svg.contains("REGRESSED #2 bezier.max_rel_error"), "{svg}");
 }
+
+/// `summary()` with a profile and what each figure was measured over: the
+/// first two over fixed cases, the timing over the profile's cases.
+fn with_profile(profile: &str, digits_over: &str) -> Value {
+    let mut s = summary();
+    s["profile"] = json!(profile);
+    s["figures"][0]["over"] = json!("fixed cases");
+    s["figures"][1]["over"] = json!(digits_over);
+    s["figures"][2]["over"] = json!(format!("{profile} profile's cases"));
+    s
+}
+
+fn compare_files(dir: &Path, base: &Value, cur: &Value, extra: &[&str]) -> (i32, String) {
+    let b = write(dir, "base.json", base);
+    let c = write(dir, "cur.json", cur);
+    let out = splinelab()
+        .args(["compare", "--baseline"])
+        .arg(&b)
+        .arg("--current")
+        .arg(&c)
+        .arg("--out")
+        .arg(dir.join("out"))
+        .args(extra)
+        .output()
+        .unwrap();
+    (
+        out.status.code().unwrap(),
+        String::from_utf8_lossy(&out.stdout).into_owned() + &String::from_utf8_lossy(&out.stderr),
+    )
+}
+
+#[test]
+fn across_profiles_only_figures_measured_over_the_same_cases_gate() {
+    let dir = scratch("across");
+    let base = with_profile("quick", "quick profile's cases");
+    // The full profile samples more points: this figure drops a digit for
+    // that reason alone, and must not gate.
+    let mut cur = with_profile("full", "full profile's cases");
+    cur["figures"][1]["value"] = json!(1e-14);
+    let (code, out) = compare_files(&dir, &base, &cur, &[]);
+    assert_eq!(code, 0, "{out}");
+    assert!(
+        out.contains("baseline: quick, current: full")
+            && out.contains(
+                "measured over other cases than the baseline's (shown, not gated): \
+                 bezier.max_rel_error"
+            ),
+        "{out}"
+    );
+    // A figure over fixed cases still gates across profiles.
+    cur["figures"][0]["value"] = json!(10.0);
+    let (code, out) = compare_files(&dir, &base, &cur, &[]);
+    assert_eq!(code, 1, "{out}");
+    assert!(
+        out.contains("REGRESSED conditioning.cond2_f64_digits.x"),
+        "{out}"
+    );
+    // A baseline figure the full run lacks is listed, not a regression.
+    let mut cur = with_profile("full", "full profile's cases");
+    cur["figures"].as_array_mut().unwrap().remove(0);
+    let (code, out) = compare_files(&dir, &base, &cur, &[]);
+    assert_eq!(code, 0, "{out}");
+    assert!(out.contains("only in the baseline"), "{out}");
+}
+
+#[test]
+fn within_one_profile_a_missing_gated_figure_is_a_regression_unless_allowed() {
+    let dir = scratch("missing");
+    let base = with_profile("quick", "quick profile's cases");
+    let mut cur = base.clone();
+    cur["figures"].as_array_mut().unwrap().remove(1);
+    let (code, out) = compare_files(&dir, &base, &cur, &[]);
+    assert_eq!(code, 1, "{out}");
+    assert!(
+        out.contains("MISSING 1 gated figure(s)") && out.contains("bezier.max_rel_error"),
+        "{out}"
+    );
+    let html = std::fs::read_to_string(dir.join("out/index.html")).unwrap();
+    assert!(html.contains("missing from the current run"), "{html}");
+    let (code, out) = compare_files(&dir, &base, &cur, &["--allow-missing"]);
+    assert_eq!(code, 0, "{out}");
+    assert!(
+        out.contains("only in the baseline, not compared: bezier.max_rel_error"),
+        "{out}"
+    );
+    // A missing wall-clock timing does not gate (it would not gate if present).
+    let mut cur = base.clone();
+    cur["figures"].as_array_mut().unwrap().remove(2);
+    let (code, out) = compare_files(&dir, &base, &cur, &[]);
+    assert_eq!(code, 0, "{out}");
+}

@@ -3,7 +3,7 @@
 use crate::error::CliError;
 use crate::outln;
 use crate::output::emit;
-use crate::report::compare::{compare, read_figures, read_profile, write_compare};
+use crate::report::compare::{Gates, compare, read_figures, read_profile, write_compare};
 use clap::Args;
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -25,6 +25,10 @@ pub struct CompareArgs {
     /// deterministic figures are reliable gates.
     #[arg(long)]
     pub timings: bool,
+    /// Accept gated figures of the baseline that the current run (same
+    /// profile) no longer has; without it each is a regression (exit 1).
+    #[arg(long)]
+    pub allow_missing: bool,
 }
 
 /// Runs `splinelab compare`: exit 0 when no gated figure regressed, 1 when
@@ -35,8 +39,12 @@ pub fn run(args: &CompareArgs) -> Result<ExitCode, CliError> {
     let baseline = read_figures(&args.baseline)?;
     let current = read_figures(&args.current)?;
     let profiles = (read_profile(&args.baseline)?, read_profile(&args.current)?);
-    let outcome = compare(&baseline, &current, &args.current, args.timings, profiles)?;
-    let regressed = write_compare(&args.out, &outcome, (&args.baseline, &args.current))?;
+    let gates = Gates {
+        timings: args.timings,
+        allow_missing: args.allow_missing,
+    };
+    let outcome = compare(&baseline, &current, &args.current, gates, profiles)?;
+    let (staged, regressed) = write_compare(&args.out, &outcome, (&args.baseline, &args.current))?;
     let mut text = String::new();
     if let Some(note) = outcome.profile_note() {
         outln!(text, "{note}");
@@ -55,7 +63,19 @@ pub fn run(args: &CompareArgs) -> Result<ExitCode, CliError> {
             );
         }
     }
-    let ungated = outcome.rows.iter().filter(|r| !r.gated).count();
+    if !outcome.incomparable.is_empty() {
+        outln!(
+            text,
+            "{} figure(s) measured over other cases than the baseline's (shown, not gated): {}",
+            outcome.incomparable.len(),
+            outcome.incomparable.join(", ")
+        );
+    }
+    let ungated = outcome
+        .rows
+        .iter()
+        .filter(|r| r.comparable && !r.gated)
+        .count();
     outln!(
         text,
         "compared {} figures ({} wall-clock timings shown but not gated{}): {} regressed",
@@ -78,13 +98,23 @@ pub fn run(args: &CompareArgs) -> Result<ExitCode, CliError> {
             r.baseline.unit
         );
     }
+    if !outcome.missing.is_empty() {
+        outln!(
+            text,
+            "MISSING {} gated figure(s) from the current run (same profile; --allow-missing \
+             accepts this): {}",
+            outcome.missing.len(),
+            outcome.missing.join(", ")
+        );
+    }
     outln!(
         text,
         "compare page: {}",
         args.out.join("index.html").display()
     );
     emit(&text)?;
-    Ok(if regressed.is_empty() {
+    staged.commit()?;
+    Ok(if !outcome.failed() {
         ExitCode::SUCCESS
     } else {
         ExitCode::from(1)

@@ -19,7 +19,7 @@
 use crate::error::CliError;
 use crate::input::{input_error, parse_json, read_text};
 use crate::outln;
-use crate::output::{emit, path_text, print_json, write_all_atomic};
+use crate::output::{PendingFiles, emit, path_text, print_json};
 use crate::report::bernstein_inverse::surface_chart;
 use clap::Args;
 use serde::Deserialize;
@@ -303,23 +303,50 @@ pub fn parse_input(path: &Path, text: &str) -> Result<DeformInput, CliError> {
     parse_json(path, text)
 }
 
-/// Creates `dir` and writes `files` into it as one step: a failure leaves no
-/// file behind, and removes `dir` again if this call created it.
-fn write_outputs(dir: &Path, files: &[(PathBuf, String)]) -> Result<(), CliError> {
-    let existed = dir.exists();
-    std::fs::create_dir_all(dir).map_err(|source| CliError::Output {
-        path: dir.to_path_buf(),
-        source,
-    })?;
-    let contents: Vec<(&Path, &[u8])> = files
-        .iter()
-        .map(|(p, c)| (p.as_path(), c.as_bytes()))
-        .collect();
-    write_all_atomic(&contents).inspect_err(|_| {
-        if !existed {
+/// Files written into `dir` but not yet in place ([`PendingFiles`]), and
+/// `dir` itself when this run created it: dropped uncommitted (a later step
+/// failed, stdout included), the temporaries go and so does the new folder.
+struct StagedOutputs {
+    files: Option<PendingFiles>,
+    created: Option<PathBuf>,
+}
+
+impl StagedOutputs {
+    /// Creates `dir` if needed and writes `files` beside their targets.
+    fn write(dir: &Path, files: &[(PathBuf, String)]) -> Result<Self, CliError> {
+        let mut staged = StagedOutputs {
+            files: None,
+            created: (!dir.exists()).then(|| dir.to_path_buf()),
+        };
+        std::fs::create_dir_all(dir).map_err(|source| CliError::Output {
+            path: dir.to_path_buf(),
+            source,
+        })?;
+        let contents: Vec<(&Path, &[u8])> = files
+            .iter()
+            .map(|(p, c)| (p.as_path(), c.as_bytes()))
+            .collect();
+        staged.files = Some(PendingFiles::write(&contents)?);
+        Ok(staged)
+    }
+
+    /// Moves the files into place; the folder stays.
+    fn commit(mut self) -> Result<(), CliError> {
+        if let Some(files) = self.files.take() {
+            files.commit()?;
+        }
+        self.created = None;
+        Ok(())
+    }
+}
+
+impl Drop for StagedOutputs {
+    fn drop(&mut self) {
+        drop(self.files.take());
+        if let Some(dir) = &self.created {
             let _ = std::fs::remove_dir(dir);
         }
-    })
+    }
 }
 
 /// Runs `splinelab deform`.
@@ -367,8 +394,9 @@ pub fn run(args: &DeformArgs) -> Result<(), CliError> {
     if let Some(e) = example {
         files.push((args.out.join("input.json"), e));
     }
-    // All computed: only now touch the file system.
-    write_outputs(&args.out, &files)?;
+    // All computed: only now touch the file system; the files move into
+    // place only after the summary reached stdout (which can fail too).
+    let staged = StagedOutputs::write(&args.out, &files)?;
     let files: Vec<&PathBuf> = files.iter().map(|(p, _)| p).collect();
     if args.json {
         print_json(&json!({
@@ -410,7 +438,7 @@ pub fn run(args: &DeformArgs) -> Result<(), CliError> {
         }
         emit(&text)?;
     }
-    Ok(())
+    staged.commit()
 }
 
 #[cfg(test)]

@@ -7,15 +7,18 @@
 //! Input: a JSON file `{"points": [[x, y], …]}` (or `[x, y, z]` points), the
 //! control points of one Bézier curve of any degree. Output (`--json`):
 //! `method`, `polyline` (the vertices), `params` (their curve parameters),
-//! `segments`, the measured `max_deviation`, `uniform_compared`; then either
-//! `uniform_segments` and `uniform_max_deviation`, or (comparison skipped)
-//! `uniform_skipped` with the reason; and how deviations are measured
+//! `segments`, the measured `max_deviation` (always ≤ `tol`: the polyline
+//! is made for `target_tol`, `tol` less the f64 evaluation error bound, see
+//! [`aim`]), `uniform_compared`; then either `uniform_segments` and
+//! `uniform_max_deviation`, or (comparison skipped) `uniform_skipped` with
+//! the reason; a deviation that is not finite is null beside a
+//! `…_why` field saying so; and how deviations are measured
 //! (`deviation_samples` curve points per polyline segment, distance to that
 //! segment). The uniform comparison never blocks the polyline: it is skipped
 //! above [`UNIFORM_WORK`] or with `--no-uniform`.
 
 use crate::error::CliError;
-use crate::input::{array_field, input_error, parse_object, read_text};
+use crate::input::{array_field, excerpt, input_error, parse_object, read_text};
 use crate::outln;
 use crate::output::{emit, print_json};
 use clap::Args;
@@ -23,7 +26,8 @@ use nalgebra::SVector;
 use serde_json::{Value, json};
 use splinelab::bernstein::bezier::Bezier;
 use splinelab::curves::flatten::{
-    flatten, max_deviation, uniform_polyline, uniform_segments, uniform_segments_bound,
+    flatten, max_deviation, rounding_floor, uniform_polyline, uniform_segments,
+    uniform_segments_bound,
 };
 use splinelab::curves::greedy_flatten::flatten_greedy;
 use std::path::{Path, PathBuf};
@@ -121,7 +125,12 @@ pub struct FlattenArgs {
 fn coordinates(index: usize, p: &Value) -> Result<Vec<f64>, String> {
     p.as_array()
         .and_then(|a| a.iter().map(Value::as_f64).collect::<Option<Vec<f64>>>())
-        .ok_or_else(|| format!("points[{index}]: not an array of numbers, got {p}"))
+        .ok_or_else(|| {
+            format!(
+                "points[{index}]: not an array of numbers, got {}",
+                excerpt(&p.to_string())
+            )
+        })
 }
 
 /// Parses and validates the input file's text (`path` names it in errors):
@@ -194,9 +203,10 @@ fn run_dim<const D: usize>(
         .collect();
     let curve = Bezier::new(ctrl).map_err(CliError::numerical)?;
     check_work(&curve, tol)?;
+    let target = aim(&curve, tol)?;
     let poly = match method {
-        FlattenMethod::Greedy => flatten_greedy(&curve, &tol),
-        FlattenMethod::Subdivision => flatten(&curve, &tol),
+        FlattenMethod::Greedy => flatten_greedy(&curve, &target),
+        FlattenMethod::Subdivision => flatten(&curve, &target),
     }
     .map_err(CliError::numerical)?;
     let dev = |p| max_deviation(&curve, p, DEVIATION_SAMPLES).map_err(CliError::numerical);
@@ -213,11 +223,12 @@ fn run_dim<const D: usize>(
         "polyline": poly.points.iter().map(|p| p.iter().copied().collect::<Vec<f64>>()).collect::<Vec<_>>(),
         "params": poly.params,
         "segments": poly.segments(),
-        "max_deviation": dev(&poly)?,
+        "target_tol": target,
         "uniform_compared": skipped.is_none(),
         "deviation_samples": DEVIATION_SAMPLES,
         "deviation_measure": "max over polyline segments of the distance from equally spaced interior curve samples to that segment",
     });
+    set_measured(&mut out, "max_deviation", dev(&poly)?);
     match skipped {
         Some(why) => out["uniform_skipped"] = json!(why),
         None => {
@@ -225,10 +236,51 @@ fn run_dim<const D: usize>(
                 uniform_segments(&curve, &tol, DEVIATION_SAMPLES).map_err(CliError::numerical)?;
             let uniform = uniform_polyline(&curve, m).map_err(CliError::numerical)?;
             out["uniform_segments"] = json!(m);
-            out["uniform_max_deviation"] = json!(dev(&uniform)?);
+            set_measured(&mut out, "uniform_max_deviation", dev(&uniform)?);
         }
     }
     Ok(out)
+}
+
+/// The tolerance the polyline is made for: `tol` less a bound of the f64
+/// evaluation error of the deviation measure, so that the measured
+/// `max_deviation` (and the true one, judged in 256-bit MPFR by
+/// `reports/tests/cli_flatten.rs`) stays within `tol` itself. The bound is
+/// an eighth of [`rounding_floor`], `32 u max(n·max|P|, 1)`, above the
+/// `(2n + 8) u max|P|` that de Casteljau's error (Higham, *Accuracy and
+/// Stability*, §5: `γ_{2n}` of the sum of the absolute terms) and the
+/// point-to-chord distance add up to. Refused when what is left is below
+/// the floor itself.
+fn aim<const D: usize>(curve: &Bezier<f64, D>, tol: f64) -> Result<f64, CliError> {
+    let floor = rounding_floor(curve);
+    let target = tol - floor / 8.0;
+    if target < floor {
+        return Err(CliError::invalid(
+            "--tol",
+            format!(
+                "{tol:e} is below {:e}: f64 cannot certify this curve's deviation closer \
+                 (the rounding floor {floor:e} plus the evaluation margin {:e})",
+                floor * 1.125,
+                floor / 8.0
+            ),
+        ));
+    }
+    Ok(target)
+}
+
+/// Sets `out[key]` to a measured value, or (not finite: the curve's points
+/// overflow f64 when sampled) to null with `key_why` saying why: a null is
+/// never left unexplained.
+fn set_measured(out: &mut Value, key: &str, value: f64) {
+    if value.is_finite() {
+        out[key] = json!(value);
+    } else {
+        out[key] = Value::Null;
+        out[format!("{key}_why")] = json!(format!(
+            "not finite in f64 ({value}): the sampled curve points or distances overflow; scale the \
+             control points down"
+        ));
+    }
 }
 
 /// Runs `splinelab flatten`.

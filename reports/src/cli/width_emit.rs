@@ -157,8 +157,9 @@ impl Table {
         ]
     }
 
-    /// A C header: `#define PREFIX_HALF_WIDTH n` and
-    /// `static const double PREFIX_coeffs[PREFIX_HALF_WIDTH + 1]`.
+    /// A C header: `#define PREFIX_HALF_WIDTH n` (the macro upper-cased, as
+    /// C macros are, beside the include guard) and
+    /// `static const double prefix_coeffs[PREFIX_HALF_WIDTH + 1]`.
     pub fn c_header(&self, prefix: &str) -> String {
         let upper = prefix.to_ascii_uppercase();
         let ty = match self.dtype {
@@ -173,10 +174,10 @@ impl Table {
         s.push_str(" */\n");
         let _ = writeln!(s, "#ifndef {upper}_SSPLINE_COEFFS_H");
         let _ = writeln!(s, "#define {upper}_SSPLINE_COEFFS_H\n");
-        let _ = writeln!(s, "#define {prefix}_HALF_WIDTH {}\n", self.choice.n);
+        let _ = writeln!(s, "#define {upper}_HALF_WIDTH {}\n", self.choice.n);
         let _ = writeln!(
             s,
-            "static const {ty} {prefix}_coeffs[{prefix}_HALF_WIDTH + 1] = {{"
+            "static const {ty} {prefix}_coeffs[{upper}_HALF_WIDTH + 1] = {{"
         );
         for (i, c) in self.literals.iter().enumerate() {
             let _ = writeln!(s, "    {c}{suffix}, /* c_{i} */");

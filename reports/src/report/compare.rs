@@ -40,8 +40,11 @@ pub struct Comparison {
     /// The verdict.
     pub verdict: Verdict,
     /// Whether a regression of this figure fails the compare (wall-clock
-    /// figures only with `--timings`).
+    /// figures only with `--timings`; never a figure measured over other
+    /// cases than the baseline's, see [`comparable`]).
     pub gated: bool,
+    /// Whether both files measured it over the same cases.
+    pub comparable: bool,
 }
 
 /// Everything one compare found.
@@ -55,6 +58,12 @@ pub struct Outcome {
     pub only_current: Vec<String>,
     /// Names whose kind, unit or direction differ (not judged).
     pub changed: Vec<String>,
+    /// Names both files have, measured over different cases (a different
+    /// profile): shown, not gated.
+    pub incomparable: Vec<String>,
+    /// Gated figures of the baseline that the current run (same profile)
+    /// no longer has: each is a regression, unless `--allow-missing`.
+    pub missing: Vec<String>,
     /// The report profiles (`quick`, `full`) of baseline and current, when recorded.
     pub profiles: (Option<String>, Option<String>),
 }
@@ -68,17 +77,26 @@ impl Outcome {
             .collect()
     }
 
+    /// Whether the compare fails: a gated figure regressed or went missing.
+    pub fn failed(&self) -> bool {
+        !self.regressed().is_empty() || !self.missing.is_empty()
+    }
+
     /// A plain sentence on the profiles, when they differ or are unknown.
     pub fn profile_note(&self) -> Option<String> {
         let show = |p: &Option<String>| p.clone().unwrap_or_else(|| "not recorded".into());
         match &self.profiles {
             (Some(a), Some(b)) if a == b => None,
             (a, b) => Some(format!(
-                "The profiles differ (baseline: {}, current: {}): only the {} figures both runs \
-                 measure are compared; {} are only in the baseline and {} only in the current run.",
+                "The profiles differ (baseline: {}, current: {}): of the {} figures both runs \
+                 have, the {} measured over the same cases gate and the {} measured over \
+                 different cases are shown, not gated; {} are only in the baseline and {} only \
+                 in the current run.",
                 show(a),
                 show(b),
                 self.rows.len(),
+                self.rows.len() - self.incomparable.len(),
+                self.incomparable.len(),
                 self.only_baseline.len(),
                 self.only_current.len()
             )),
@@ -162,19 +180,43 @@ pub fn judge(baseline: &Figure, current: f64) -> Verdict {
     }
 }
 
-/// Compares the figures both files have (see the module doc);
-/// `timings` makes wall-clock figures gate too. An error only when the two
-/// files share no figure at all (comparing nothing would pass vacuously).
+/// Whether `b` and `c` were measured over the same cases: by their
+/// [`Figure::over`] when both files record it, else only within one profile
+/// (an older file, or a `check` summary, which has no profile).
+pub fn comparable(b: &Figure, c: &Figure, same_profile: bool) -> bool {
+    match (&b.over, &c.over) {
+        (Some(x), Some(y)) => x == y,
+        _ => same_profile,
+    }
+}
+
+/// How [`compare`] treats the figures.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Gates {
+    /// Wall-clock figures gate too (`--timings`).
+    pub timings: bool,
+    /// A gated baseline figure absent from a current run of the same
+    /// profile is listed, not a regression (`--allow-missing`).
+    pub allow_missing: bool,
+}
+
+/// Compares the figures both files have (see the module doc). Within one
+/// profile a gated baseline figure the current run lacks is a regression
+/// (a refactor that drops a measurement must say so), unless
+/// `gates.allow_missing`. An error only when the two files share no figure
+/// at all (comparing nothing would pass vacuously).
 pub fn compare(
     baseline: &[Figure],
     current: &[Figure],
     current_path: &Path,
-    timings: bool,
+    gates: Gates,
     profiles: (Option<String>, Option<String>),
 ) -> Result<Outcome, CliError> {
     let by_name: BTreeMap<&str, &Figure> = current.iter().map(|f| (f.name.as_str(), f)).collect();
     let base_names: std::collections::BTreeSet<&str> =
         baseline.iter().map(|f| f.name.as_str()).collect();
+    let same_profile = profiles.0 == profiles.1;
+    let gates_kind = |f: &Figure| gates.timings || !is_wall_clock(f);
     let mut out = Outcome {
         rows: Vec::new(),
         only_baseline: Vec::new(),
@@ -184,20 +226,32 @@ pub fn compare(
             .map(|f| f.name.clone())
             .collect(),
         changed: Vec::new(),
+        incomparable: Vec::new(),
+        missing: Vec::new(),
         profiles,
     };
     for b in baseline {
         match by_name.get(b.name.as_str()) {
+            None if same_profile && !gates.allow_missing && gates_kind(b) => {
+                out.missing.push(b.name.clone())
+            }
             None => out.only_baseline.push(b.name.clone()),
             Some(c) if (c.kind, c.better, &c.unit) != (b.kind, b.better, &b.unit) => {
                 out.changed.push(b.name.clone())
             }
-            Some(c) => out.rows.push(Comparison {
-                baseline: b.clone(),
-                current: c.value,
-                verdict: judge(b, c.value),
-                gated: timings || !is_wall_clock(b),
-            }),
+            Some(c) => {
+                let comparable = comparable(b, c, same_profile);
+                if !comparable {
+                    out.incomparable.push(b.name.clone());
+                }
+                out.rows.push(Comparison {
+                    baseline: b.clone(),
+                    current: c.value,
+                    verdict: judge(b, c.value),
+                    gated: comparable && gates_kind(b),
+                    comparable,
+                })
+            }
         }
     }
     if out.rows.is_empty() {
@@ -291,6 +345,7 @@ fn table(rows: &[Comparison]) -> String {
             (Verdict::Ok, _) => ("", "ok"),
             (Verdict::Improved, _) => ("improved", "improved"),
             (Verdict::Regressed, true) => ("regressed", "REGRESSED"),
+            (_, false) if !r.comparable => ("", "not gated: measured over other cases"),
             (Verdict::Regressed, false) => ("", "slower (timing, not gated; --timings gates it)"),
         };
         let tol = match b.kind {
@@ -329,14 +384,15 @@ fn name_list(title: &str, names: &[String]) -> String {
     )
 }
 
-/// Writes the compare page into `dir` (replaced whole at the end, see
-/// [`crate::output::StagedDir`]) and returns the gated figures that
-/// regressed.
+/// Writes the compare page into a folder staged for `dir` and returns it
+/// uncommitted with the gated figures that regressed: the caller commits it
+/// ([`crate::output::StagedDir::commit`]) once its own output has been
+/// written, so a failure there (stdout on a full disk) leaves no new folder.
 pub fn write_compare(
     dir: &Path,
     outcome: &Outcome,
     inputs: (&Path, &Path),
-) -> Result<Vec<String>, CliError> {
+) -> Result<(crate::output::StagedDir, Vec<String>), CliError> {
     let staged = crate::output::StagedDir::new(dir)?;
     let dir = staged.path();
     let rows = &outcome.rows;
@@ -373,6 +429,14 @@ pub fn write_compare(
             escape(&regressed.join(", "))
         )
     };
+    if !outcome.missing.is_empty() {
+        headline.push_str(&format!(
+            "<p class=\"regressed\">{} gated figure(s) missing from the current run \
+             (same profile; --allow-missing accepts this): {}</p>",
+            outcome.missing.len(),
+            escape(&outcome.missing.join(", "))
+        ));
+    }
     if let Some(note) = outcome.profile_note() {
         headline.push_str(&format!("<p class=\"note\">{}</p>", escape(&note)));
     }
@@ -385,6 +449,9 @@ pub fn write_compare(
     ) + &name_list(
         "Kind, unit or direction changed (not compared)",
         &outcome.changed,
+    ) + &name_list(
+        "Measured over other cases (shown, not gated)",
+        &outcome.incomparable,
     );
     let page = format!(
         "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\
@@ -406,8 +473,7 @@ pub fn write_compare(
         table(rows)
     );
     crate::output::write_atomic(&dir.join("index.html"), page.as_bytes())?;
-    staged.commit()?;
-    Ok(regressed)
+    Ok((staged, regressed))
 }
 
 #[cfg(test)]

@@ -1,4 +1,4 @@
-//! Report section "engine": the N-D interpolation engine (issue 14) against
+//! Report section "engine": the N-D interpolation engine against
 //! scipy.ndimage's committed outputs (verify/fixtures/scipy, made once by
 //! make_fixtures.py with scipy 1.17.1), the truncated route against its
 //! certified bound, the interpolation residual at high degree in MPFR
@@ -46,7 +46,7 @@ fn line_filter<T: Real>(
 
 /// Worst ulps (of max|reference|) of `spline_filter1d`, `spline_filter` and
 /// `map_coordinates` over the fixtures. scipy's `reflect` prefilter is
-/// wrong on lines shorter than ~20 samples (issue 14), so `reflect` is
+/// wrong on lines shorter than ~20 samples, so `reflect` is
 /// compared on the 37-sample line only.
 fn scipy_worst() -> Result<[f64; 3], ReportError> {
     let mut worst = [0.0f64; 3];
@@ -343,9 +343,11 @@ pub fn section(profile: &Profile) -> Result<Section, ReportError> {
     let html = paragraph(
         "The N-D engine (splinelab prefilter / interpolate, and the library's spline_filter, spline_filter1d, \
          map_coordinates) against scipy 1.17.1's own outputs (committed fixtures), in ulps of the largest \
-         reference value. scipy's reflect prefilter is wrong on lines shorter than about 20 samples, so reflect \
-         is compared on the 37-sample line only; map_coordinates differences up to ~70 ulps are scipy's \
-         (its 12-sample padding for nearest/grid-constant), see issue 14.",
+         reference value. scipy's reflect prefilter starts its recursion from a truncated sum and is off \
+         (5e-9 for a cubic on 7 samples) on lines shorter than about 20 samples, so reflect is compared on \
+         the 37-sample line only; map_coordinates differences up to ~70 ulps are scipy's own: for \
+         nearest and grid-constant it pads 12 samples and filters the padded line instead of computing \
+         the exact spline of the extended signal.",
     ) + &table(
         "Agreement with scipy.ndimage",
         &["function", "degrees", "worst ulps of max|ref|"],

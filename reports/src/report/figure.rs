@@ -50,6 +50,14 @@ pub struct Figure {
     /// look like a 10× slowdown. 0 when absent.
     #[serde(default)]
     pub floor: f64,
+    /// What the figure was measured over: `"fixed cases"` when its case set
+    /// is the same in every report profile, `"quick profile's cases"` /
+    /// `"full profile's cases"` when the profile chooses it (set by
+    /// [`crate::report::write_report`] from the section's registry entry).
+    /// `splinelab compare` gates a figure across profiles only when both
+    /// files say it was measured over the same thing. Absent in older files.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub over: Option<String>,
 }
 
 impl Figure {
@@ -85,7 +93,15 @@ impl Figure {
             better,
             tolerance,
             floor: 0.0,
+            over: None,
         }
+    }
+
+    /// The same figure with what it was measured over, unless the section
+    /// already said (see [`Figure::over`]).
+    pub fn measured_over(mut self, over: &str) -> Self {
+        self.over.get_or_insert_with(|| over.to_string());
+        self
     }
 
     /// The same figure with a noise floor (cost figures).

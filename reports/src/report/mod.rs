@@ -38,6 +38,13 @@ pub struct Profile {
     pub quick: bool,
 }
 
+impl Profile {
+    /// `quick` or `full`, as `summary.json` records it.
+    pub fn name(&self) -> &'static str {
+        if self.quick { "quick" } else { "full" }
+    }
+}
+
 /// What a study contributes to the report.
 #[derive(Debug, Clone)]
 pub struct Section {
@@ -67,7 +74,8 @@ table{border-collapse:collapse;margin:1em 0;font-size:90%}td,th{border:1px solid
 caption{font-weight:bold;margin-bottom:.3em}figure{margin:1.5em 0}figcaption{font-size:90%;color:#444}\
 nav li{margin:.2em 0}.meta{color:#666;font-size:90%}\
 .scroll,table{overflow-x:auto;max-width:100%}table{display:block}td{white-space:nowrap}\
-svg{max-width:100%;height:auto}.prov th{text-align:left}.prov td{text-align:left;white-space:normal;word-break:break-word}";
+svg{max-width:100%;height:auto}.summary{background:#f4f7fb;border:1px solid #bcd;padding:.3em 1em;margin:1em 0}\
+.summary code{word-break:break-all}.prov th{text-align:left}.prov td{text-align:left;white-space:normal;word-break:break-word}";
 
 fn render_section(s: &Section, seconds: f64, dir: &Path) -> Result<String, CliError> {
     let mut html = format!(
@@ -130,6 +138,95 @@ fn progress(len: usize, quiet: bool) -> ProgressBar {
     bar
 }
 
+/// The committed baseline the summary box compares with, when the report
+/// runs from the repository root (as `scripts/report.sh` does).
+pub const BASELINE: &str = "reports/baseline/summary.json";
+
+/// The box at the top of the page: how many figures, what the committed
+/// baseline comparison says (when it is there), and each section's headline
+/// figure (its first), linked to the section.
+fn summary_box(
+    figures: &[Figure],
+    headlines: &[(&str, String, Option<Figure>)],
+    profile: &Profile,
+) -> String {
+    let verdict = baseline_verdict(figures, profile);
+    let rows: String = headlines
+        .iter()
+        .map(|(id, title, f)| {
+            let figure = f.as_ref().map_or("—".to_string(), |f| {
+                format!(
+                    "<code>{}</code> = {} {}",
+                    escape(f.name.trim_start_matches(&format!("{id}."))),
+                    crate::html::num(f.value),
+                    escape(&f.unit)
+                )
+            });
+            format!("<li><a href=\"#{id}\">{}</a>: {figure}</li>", escape(title))
+        })
+        .collect();
+    // A list, not a table: it wraps on a phone where a two-column table
+    // would push the figures off screen.
+    format!(
+        "<div class=\"summary\"><p><b>{} figures</b> in {} sections ({} profile). {}</p>\
+         <p>Headline figure of each section:</p><ul>{rows}</ul></div>\n",
+        figures.len(),
+        headlines.len(),
+        profile.name(),
+        escape(&verdict)
+    )
+}
+
+/// One sentence on this run against [`BASELINE`]: how many gated figures
+/// regressed or went missing, or why it was not compared.
+fn baseline_verdict(figures: &[Figure], profile: &Profile) -> String {
+    let path = Path::new(BASELINE);
+    if !path.is_file() {
+        return format!("No baseline at {BASELINE} (run from the repository root to compare).");
+    }
+    let outcome = compare::read_figures(path).and_then(|base| {
+        let profiles = (
+            compare::read_profile(path)?,
+            Some(profile.name().to_string()),
+        );
+        compare::compare(&base, figures, path, compare::Gates::default(), profiles)
+    });
+    match outcome {
+        Err(e) => format!("Baseline not compared: {e}."),
+        Ok(o) => {
+            let gated = o.rows.iter().filter(|r| r.gated).count();
+            let regressed: Vec<String> = o
+                .regressed()
+                .iter()
+                .map(|r| r.baseline.name.clone())
+                .collect();
+            let mut s = format!(
+                "Against the committed baseline ({} profile): {} gated figures compared, {} regressed{}",
+                o.profiles.0.as_deref().unwrap_or("profile not recorded"),
+                gated,
+                regressed.len(),
+                if regressed.is_empty() {
+                    String::new()
+                } else {
+                    format!(" ({})", regressed.join(", "))
+                }
+            );
+            if !o.missing.is_empty() {
+                s.push_str(&format!(
+                    ", {} missing ({})",
+                    o.missing.len(),
+                    o.missing.join(", ")
+                ));
+            }
+            s.push_str(&format!(
+                "; {} not comparable across profiles.",
+                o.incomparable.len()
+            ));
+            s
+        }
+    }
+}
+
 /// Runs every section and writes `index.html`, `summary.json` and the
 /// charts into `dir`, replacing it whole at the end ([`StagedDir`]: an
 /// interrupted or failed run leaves the old folder as it was). Returns the
@@ -147,10 +244,12 @@ pub fn write_report(
     let mut summary = Map::new();
     let mut timings = Map::new();
     let mut figures = Vec::new();
+    let mut headlines = Vec::new();
     let bar = progress(sections::SECTIONS.len(), quiet);
-    for section_fn in sections::SECTIONS {
+    let profile_cases = format!("{} profile's cases", profile.name());
+    for entry in sections::SECTIONS {
         let t = Instant::now();
-        let section = section_fn(profile)?;
+        let section = (entry.run)(profile)?;
         bar.set_message(section.title.clone());
         bar.inc(1);
         let seconds = t.elapsed().as_secs_f64();
@@ -162,14 +261,23 @@ pub fn write_report(
         ));
         summary.insert(section.id.to_string(), section.summary);
         check_figures(section.id, &section.figures)?;
-        figures.extend(section.figures);
+        headlines.push((
+            section.id,
+            section.title.clone(),
+            section.figures.first().cloned(),
+        ));
+        let over = match entry.cases {
+            sections::Cases::Fixed => "fixed cases",
+            sections::Cases::ByProfile => &profile_cases,
+        };
+        figures.extend(section.figures.into_iter().map(|f| f.measured_over(over)));
         let time = Figure::cost(
             format!("report.{}.seconds", section.id),
             seconds,
             "s",
             TIME_BAND,
         );
-        figures.push(time.with_floor(TIME_FLOOR));
+        figures.push(time.with_floor(TIME_FLOOR).measured_over(&profile_cases));
         timings.insert(section.id.to_string(), json!(seconds));
     }
     bar.finish_and_clear();
@@ -189,8 +297,9 @@ pub fn write_report(
          <meta name=\"viewport\" content=\"width=device-width, initial-scale=1\"><title>splinelab report</title>\
          <style>{STYLE}</style></head><body>\n<h1>splinelab report</h1>\n<p class=\"meta\">Profile: {}; \
          computed in {total:.1} s. Machine-readable figures: <a href=\"summary.json\">summary.json</a>.</p>\n\
-         {}<nav><ul>{toc}<li><a href=\"#references\">References</a></li></ul></nav>\n{body}{}</body></html>\n",
+         {}{}<nav><ul>{toc}<li><a href=\"#references\">References</a></li></ul></nav>\n{body}{}</body></html>\n",
         if profile.quick { "quick" } else { "full" },
+        summary_box(&figures, &headlines, profile),
         provenance::provenance_html(&prov),
         provenance::references_html()
     );

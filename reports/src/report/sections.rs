@@ -1,16 +1,50 @@
-//! The registry of report sections, in page order. A study adds one line.
+//! The registry of report sections, in page order. A study adds one line,
+//! saying whether the report profile chooses its cases.
 
 use super::SectionFn;
 
+/// What a section's figures are measured over.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Cases {
+    /// The same cases in every profile: its figures compare across profiles.
+    Fixed,
+    /// The profile chooses the cases (more degrees, points or sets in the
+    /// full report): its figures compare only within one profile.
+    ByProfile,
+}
+
+/// One section: the function that runs it and what it is measured over.
+#[derive(Debug, Clone, Copy)]
+pub struct Entry {
+    /// Runs the study and presents it.
+    pub run: SectionFn,
+    /// Whether the profile chooses its cases.
+    pub cases: Cases,
+}
+
+const fn fixed(run: SectionFn) -> Entry {
+    Entry {
+        run,
+        cases: Cases::Fixed,
+    }
+}
+
+const fn by_profile(run: SectionFn) -> Entry {
+    Entry {
+        run,
+        cases: Cases::ByProfile,
+    }
+}
+
 /// Every section of the report, in the order they appear.
-pub const SECTIONS: &[SectionFn] = &[
-    super::conditioning::section,
-    super::bezier_eval::section,
-    super::qi::section,
-    super::bernstein_inverse::section,
-    super::sspline::section,
-    super::curves::section,
-    super::update_cost::section,
-    super::check::section,
-    super::engine::section,
+pub const SECTIONS: &[Entry] = &[
+    fixed(super::conditioning::section),
+    by_profile(super::bezier_eval::section),
+    by_profile(super::qi::section),
+    by_profile(super::bernstein_inverse::section),
+    by_profile(super::sspline::section),
+    by_profile(super::curves::section),
+    by_profile(super::update_cost::section),
+    fixed(super::check::section),
+    by_profile(super::engine::section),
 ];
