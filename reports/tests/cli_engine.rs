@@ -9,6 +9,7 @@ use ndarray::ArrayD;
 use ndarray_npy::{ReadNpyExt, WriteNpyExt};
 use rug::ops::Pow;
 use rug::{Float, Rational};
+use splinelab_verify::metrics::ulps_of_max;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
@@ -62,11 +63,7 @@ fn ok(args: &[&str]) -> String {
 /// max |a − b| / (ε max|b|).
 fn ulps(a: &ArrayD<f64>, b: &ArrayD<f64>) -> f64 {
     assert_eq!(a.shape(), b.shape());
-    let scale = b.iter().fold(0.0f64, |m, x| m.max(x.abs())) * f64::EPSILON;
-    a.iter()
-        .zip(b)
-        .fold(0.0f64, |m, (x, y)| m.max((x - y).abs()))
-        / scale
+    ulps_of_max(a, b)
 }
 
 #[test]

@@ -55,6 +55,39 @@ pub fn ulps_f64(x: f64, reference: &Float) -> f64 {
     (diff / ulp).to_f64()
 }
 
+/// `max_k |a_k − b_k| / (ε · max_k |b_k|)`: the worst difference of two
+/// f64 arrays in units of the machine epsilon of the reference's largest
+/// magnitude (how scipy agreement is judged: normwise, so small values are
+/// not held to their own ulps). Panics if the lengths differ (a test bug).
+///
+/// ```
+/// use splinelab_verify::metrics::ulps_of_max;
+/// let b = [1.0, -4.0, 0.5];
+/// let a = [1.0, -4.0 + 8.0 * f64::EPSILON, 0.5];
+/// assert_eq!(ulps_of_max(&a, &b), 2.0);
+/// ```
+pub fn ulps_of_max<'a>(
+    a: impl IntoIterator<Item = &'a f64>,
+    b: impl IntoIterator<Item = &'a f64, IntoIter: Clone>,
+) -> f64 {
+    let b = b.into_iter();
+    let scale = b.clone().fold(0.0f64, |m, x| m.max(x.abs())) * f64::EPSILON;
+    let (mut worst, mut count) = (0.0f64, (0usize, 0usize));
+    let mut a = a.into_iter();
+    for y in b {
+        count.1 += 1;
+        if let Some(x) = a.next() {
+            count.0 += 1;
+            worst = worst.max((x - y).abs());
+        }
+    }
+    assert!(
+        a.next().is_none() && count.0 == count.1,
+        "arrays of different lengths"
+    );
+    worst / scale
+}
+
 // ---- errors of geometric results, in units of `u` ------------------------
 //
 // Computed in MPFR at `2·BITS + 64` bits from the exact values of the

@@ -17,6 +17,7 @@
 
 use splinelab::ndarray::{Array2, ArrayD};
 use splinelab::prelude::*;
+use splinelab_verify::metrics::ulps_of_max;
 use std::path::PathBuf;
 
 const CVAL: f64 = 0.7;
@@ -42,12 +43,7 @@ fn read(name: &str) -> ArrayD<f64> {
 
 /// max |a − b| / (ε max|b|).
 fn ulps(a: &[f64], b: &[f64]) -> f64 {
-    assert_eq!(a.len(), b.len());
-    let scale = b.iter().fold(0.0f64, |m, x| m.max(x.abs())) * f64::EPSILON;
-    a.iter()
-        .zip(b)
-        .fold(0.0f64, |m, (x, y)| m.max((x - y).abs()))
-        / scale
+    ulps_of_max(a, b)
 }
 
 fn filter(d: u32, mode: Mode) -> LineFilter<f64> {

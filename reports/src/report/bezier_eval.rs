@@ -258,11 +258,7 @@ fn figures(d: &BezierEvalData) -> Vec<Figure> {
 
 /// Runs the Bézier evaluation study and presents it.
 pub fn section(profile: &Profile) -> Result<Section, ReportError> {
-    let params = if profile.quick {
-        BezierEvalParams::quick()
-    } else {
-        BezierEvalParams::full()
-    };
+    let params = profile.params(BezierEvalParams::quick, BezierEvalParams::full);
     let d = run_bezier_eval(&params).map_err(CliError::numerical)?;
     let mut html = paragraph(
         "Seed 002: evaluating a Bézier curve through its power form is \"simple and fast but may be \

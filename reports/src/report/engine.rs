@@ -12,6 +12,7 @@ use ndarray::{Array2, ArrayD};
 use serde_json::json;
 use splinelab::prelude::*;
 use splinelab_verify::interpolation_residual::residual;
+use splinelab_verify::metrics::ulps_of_max;
 use splinelab_verify::rng::SplitMix64;
 use splinelab_verify::timing::{try_median_ns, try_median_ns_fresh};
 use std::path::PathBuf;
@@ -26,10 +27,9 @@ fn fixture(name: &str) -> Result<ArrayD<f64>, ReportError> {
     Ok(read_samples(&path)?.0)
 }
 
-/// max |a − b| / (ε max|b|).
-fn ulps<'a>(a: impl Iterator<Item = &'a f64>, b: &ArrayD<f64>) -> f64 {
-    let scale = b.iter().fold(0.0f64, |m, x| m.max(x.abs())) * f64::EPSILON;
-    a.zip(b).fold(0.0f64, |m, (x, y)| m.max((x - y).abs())) / scale
+/// max |a − b| / (ε max|b|), verify's one ulps metric.
+fn ulps<'a>(a: impl Iterator<Item = &'a f64>, b: &'a ArrayD<f64>) -> f64 {
+    ulps_of_max(a, b)
 }
 
 fn num_err(e: NdimageError) -> CliError {
@@ -176,23 +176,25 @@ fn eval_seconds(data: &ArrayD<f64>, count: usize, repeats: usize) -> Result<f64,
     Ok(ns * 1e-9)
 }
 
-/// Runs the engine studies and presents them.
-pub fn section(profile: &Profile) -> Result<Section, ReportError> {
-    let mut figures = vec![];
+/// One part of the section: its HTML, its summary JSON and its figures.
+struct Part {
+    html: String,
+    json: serde_json::Value,
+    figures: Vec<Figure>,
+}
+
+/// Agreement with scipy's committed outputs, in ulps of max|reference|.
+fn scipy_part() -> Result<Part, ReportError> {
     let [f1d, fnd, map] = scipy_worst()?;
-    for (name, v) in [
+    let figures = [
         ("spline_filter1d", f1d),
         ("spline_filter", fnd),
         ("map_coordinates", map),
-    ] {
-        figures.push(Figure::error(
-            format!("engine.scipy.{name}.worst_ulps"),
-            v,
-            "ulps",
-            0.5,
-        ));
-    }
-    let scipy_rows = vec![
+    ]
+    .into_iter()
+    .map(|(name, v)| Figure::error(format!("engine.scipy.{name}.worst_ulps"), v, "ulps", 0.5))
+    .collect();
+    let rows = vec![
         vec![
             "spline_filter1d (1-D; 2-D axis 0)".into(),
             "2–5".into(),
@@ -205,14 +207,35 @@ pub fn section(profile: &Profile) -> Result<Section, ReportError> {
             num(map),
         ],
     ];
+    let html = paragraph(
+        "The N-D engine (splinelab prefilter / interpolate, and the library's spline_filter, spline_filter1d, \
+         map_coordinates) against scipy 1.17.1's own outputs (committed fixtures), in ulps of the largest \
+         reference value. scipy's reflect prefilter starts its recursion from a truncated sum and is off \
+         (5e-9 for a cubic on 7 samples) on lines shorter than about 20 samples, so reflect is compared on \
+         the 37-sample line only; map_coordinates differences up to ~70 ulps are scipy's own: for \
+         nearest and grid-constant it pads 12 samples and filters the padded line instead of computing \
+         the exact spline of the extended signal.",
+    ) + &table(
+        "Agreement with scipy.ndimage",
+        &["function", "degrees", "worst ulps of max|ref|"],
+        &rows,
+    );
+    let json = json!({"spline_filter1d": f1d, "spline_filter": fnd, "map_coordinates": map});
+    Ok(Part {
+        html,
+        json,
+        figures,
+    })
+}
 
+/// The truncated route against the exact one and its certified bound.
+fn truncation_part() -> Result<Part, ReportError> {
     let s = SplitMix64::new(7).signal(2000);
-    let mut trunc_rows = vec![];
-    let mut trunc_json = vec![];
+    let (mut rows, mut json_rows, mut figures) = (vec![], vec![], vec![]);
     for degree in [3u32, 5, 9] {
         for tol in [1e-4, 1e-8, 1e-12] {
             let t = truncation(degree, tol, &s)?;
-            trunc_rows.push(vec![
+            rows.push(vec![
                 t.degree.to_string(),
                 num(t.tol),
                 t.n.to_string(),
@@ -220,7 +243,7 @@ pub fn section(profile: &Profile) -> Result<Section, ReportError> {
                 num(t.error),
                 num(t.error / t.bound),
             ]);
-            trunc_json.push(json!({"degree": t.degree, "tol": t.tol, "n": t.n, "bound": t.bound, "error": t.error}));
+            json_rows.push(json!({"degree": t.degree, "tol": t.tol, "n": t.n, "bound": t.bound, "error": t.error}));
             if tol >= 1e-8 {
                 figures.push(Figure::error(
                     format!("engine.truncated.d{degree}.tol{tol:e}.error_over_bound"),
@@ -231,15 +254,33 @@ pub fn section(profile: &Profile) -> Result<Section, ReportError> {
             }
         }
     }
+    let html = paragraph(
+        "Truncated prefilter (certified width for a tolerance) against the exact one, 2000 samples in [−1, 1), \
+             mirror: the error must stay below the certified bound (ratio ≤ 1).",
+    ) + &table(
+        "Truncated vs exact",
+        &[
+            "degree",
+            "tol",
+            "half-width n",
+            "bound",
+            "max error / max|s|",
+            "error / bound",
+        ],
+        &rows,
+    );
+    Ok(Part {
+        html,
+        json: json!(json_rows),
+        figures,
+    })
+}
 
-    let degrees: &[u32] = if profile.quick {
-        &[7, 15, 31]
-    } else {
-        &[7, 15, 31, 57, 99]
-    };
+/// The interpolation residual at high degree, in MPFR and in f64.
+fn residual_part(profile: &Profile) -> Result<Part, ReportError> {
+    let degrees: &[u32] = profile.pick(&[7, 15, 31], &[7, 15, 31, 57, 99]);
     let s48 = SplitMix64::new(5).signal(48);
-    let mut res_rows = vec![];
-    let mut res_json = vec![];
+    let (mut rows, mut json_rows, mut figures) = (vec![], vec![], vec![]);
     for &degree in degrees {
         let (r256, _) = residual_in::<Mp<256>>(degree, &s48)?;
         let f64_res = if degree <= 31 {
@@ -262,111 +303,15 @@ pub fn section(profile: &Profile) -> Result<Section, ReportError> {
                 2.0,
             ));
         }
-        res_rows.push(vec![
+        rows.push(vec![
             degree.to_string(),
             num(r256),
             f64_res.map_or("refused (ill-conditioned)".into(), num),
         ]);
-        res_json
+        json_rows
             .push(json!({"degree": degree, "mp256_relative": r256, "f64_eps_of_max_d": f64_res}));
     }
-
-    let (n1, n2, reps) = if profile.quick {
-        (100_000, 256, 3)
-    } else {
-        (1_000_000, 1024, 5)
-    };
-    let one = ArrayD::from_shape_vec(vec![n1], SplitMix64::new(1).signal(n1))
-        .map_err(CliError::numerical)?;
-    let two = ArrayD::from_shape_vec(vec![n2, n2], SplitMix64::new(2).signal(n2 * n2))
-        .map_err(CliError::numerical)?;
-    let t1 = seconds(&one, reps)?;
-    let t2 = seconds(&two, reps)?;
-    let tb = block_seconds(one.as_slice().expect("standard layout"), reps)?;
-    let points = n2 * n2;
-    let te = eval_seconds(&two, points, reps)?;
-    for (name, t) in [("blocks1d_cubic", tb), ("eval2d_cubic", te)] {
-        figures.push(
-            Figure::cost(
-                format!("engine.throughput.{name}.seconds"),
-                t,
-                "s",
-                TIME_BAND,
-            )
-            .with_floor(1e-3),
-        );
-    }
-    figures.push(
-        Figure::cost(
-            "engine.throughput.filter1d_cubic.seconds",
-            t1,
-            "s",
-            TIME_BAND,
-        )
-        .with_floor(1e-3),
-    );
-    figures.push(
-        Figure::cost(
-            "engine.throughput.filter2d_cubic.seconds",
-            t2,
-            "s",
-            TIME_BAND,
-        )
-        .with_floor(1e-3),
-    );
-    let speed_rows = vec![
-        vec![
-            format!("1-D, {n1} samples"),
-            num(t1),
-            num(n1 as f64 / t1 / 1e6),
-        ],
-        vec![
-            format!("2-D, {n2}×{n2}"),
-            num(t2),
-            num((n2 * n2) as f64 / t2 / 1e6),
-        ],
-        vec![
-            format!(
-                "1-D, {n1} samples, certified blocks ({} threads)",
-                rayon::current_num_threads()
-            ),
-            num(tb),
-            num(n1 as f64 / tb / 1e6),
-        ],
-        vec![
-            format!("evaluation, {points} points on {n2}×{n2}"),
-            num(te),
-            num(points as f64 / te / 1e6),
-        ],
-    ];
-
     let html = paragraph(
-        "The N-D engine (splinelab prefilter / interpolate, and the library's spline_filter, spline_filter1d, \
-         map_coordinates) against scipy 1.17.1's own outputs (committed fixtures), in ulps of the largest \
-         reference value. scipy's reflect prefilter starts its recursion from a truncated sum and is off \
-         (5e-9 for a cubic on 7 samples) on lines shorter than about 20 samples, so reflect is compared on \
-         the 37-sample line only; map_coordinates differences up to ~70 ulps are scipy's own: for \
-         nearest and grid-constant it pads 12 samples and filters the padded line instead of computing \
-         the exact spline of the extended signal.",
-    ) + &table(
-        "Agreement with scipy.ndimage",
-        &["function", "degrees", "worst ulps of max|ref|"],
-        &scipy_rows,
-    ) + &paragraph(
-        "Truncated prefilter (certified width for a tolerance) against the exact one, 2000 samples in [−1, 1), \
-             mirror: the error must stay below the certified bound (ratio ≤ 1).",
-    ) + &table(
-        "Truncated vs exact",
-        &[
-            "degree",
-            "tol",
-            "half-width n",
-            "bound",
-            "max error / max|s|",
-            "error / bound",
-        ],
-        &trunc_rows,
-    ) + &paragraph(
         "Interpolation residual max_j |Σ D_i β(j−i) − s_j| / max|s| at high degree, 48 samples, mirror, judged \
              in 512-bit MPFR from the exact node values; f64 in units of ε·max|D| (above degree 31 f64 is refused \
              as ill-conditioned).",
@@ -377,30 +322,145 @@ pub fn section(profile: &Profile) -> Result<Section, ReportError> {
             "256-bit relative residual",
             "f64 residual / (ε·max|D|)",
         ],
-        &res_rows,
-    ) + &paragraph(
+        &rows,
+    );
+    Ok(Part {
+        html,
+        json: json!(json_rows),
+        figures,
+    })
+}
+
+/// Median seconds of a plain copy of `elements` f64 into a reused buffer:
+/// the memory wall each route is measured against.
+fn memcpy_seconds(elements: usize, repeats: usize) -> Result<f64, ReportError> {
+    let src = vec![1.0f64; elements];
+    let mut dst = vec![0.0f64; elements];
+    let ns = try_median_ns(repeats, || {
+        dst.copy_from_slice(std::hint::black_box(&src));
+        Ok::<_, CliError>(())
+    })?;
+    Ok(ns * 1e-9)
+}
+
+/// Throughput of the routes, each beside a plain copy of the same bytes.
+fn throughput_part(profile: &Profile) -> Result<Part, ReportError> {
+    let (n1, n2, reps) = *profile.pick(&(100_000, 256, 3), &(1_000_000, 1024, 5));
+    let one = ArrayD::from_shape_vec(vec![n1], SplitMix64::new(1).signal(n1))
+        .map_err(CliError::numerical)?;
+    let two = ArrayD::from_shape_vec(vec![n2, n2], SplitMix64::new(2).signal(n2 * n2))
+        .map_err(CliError::numerical)?;
+    let points = n2 * n2;
+    let t1 = seconds(&one, reps)?;
+    let t2 = seconds(&two, reps)?;
+    let tb = block_seconds(one.as_slice().expect("standard layout"), reps)?;
+    let te = eval_seconds(&two, points, reps)?;
+    // The copy moves the array (filters) or the points' coordinates (evaluation).
+    let (c1, c2, ce) = (
+        memcpy_seconds(n1, reps)?,
+        memcpy_seconds(n2 * n2, reps)?,
+        memcpy_seconds(2 * points, reps)?,
+    );
+    let cases = [
+        ("filter1d_cubic", format!("1-D, {n1} samples"), t1, c1, n1),
+        ("filter2d_cubic", format!("2-D, {n2}×{n2}"), t2, c2, n2 * n2),
+        (
+            "blocks1d_cubic",
+            format!(
+                "1-D, {n1} samples, certified blocks ({} threads)",
+                rayon::current_num_threads()
+            ),
+            tb,
+            c1,
+            n1,
+        ),
+        (
+            "eval2d_cubic",
+            format!("evaluation, {points} points on {n2}×{n2}"),
+            te,
+            ce,
+            points,
+        ),
+    ];
+    let figures = cases
+        .iter()
+        .map(|(name, _, t, _, _)| {
+            Figure::cost(
+                format!("engine.throughput.{name}.seconds"),
+                *t,
+                "s",
+                TIME_BAND,
+            )
+            .with_floor(1e-3)
+        })
+        .collect();
+    let rows: Vec<Vec<String>> = cases
+        .iter()
+        .map(|(_, label, t, c, n)| {
+            vec![
+                label.clone(),
+                num(*t),
+                num(*n as f64 / t / 1e6),
+                num(*c),
+                num(t / c),
+            ]
+        })
+        .collect();
+    let html = paragraph(
         "In-process throughput of the cubic mirror prefilter, sequential per line and in certified blocks \
          (tolerance 1e-15), and of batch evaluation of the 2-D interpolant at scattered points (median wall \
-         time, all threads; Msamples/s counts points for the evaluation). Ratios to scipy: \
-         benches/peers/scipy_ratio.py.",
+         time, all threads; Msamples/s counts points for the evaluation), each beside a plain copy of the \
+         same bytes on the same machine in the same run (the array for the filters, the points' coordinates \
+         for the evaluation; one thread): time / copy says how far each route is from the memory wall. \
+         Ratios to scipy: benches/peers/scipy_ratio.py.",
     ) + &table(
         "Prefilter and evaluation throughput",
-        &["case", "seconds", "Msamples/s"],
-        &speed_rows,
+        &[
+            "case",
+            "seconds",
+            "Msamples/s",
+            "copy of the same bytes (s)",
+            "time / copy",
+        ],
+        &rows,
     );
+    let json = json!({"filter1d_seconds": t1, "n1": n1, "filter2d_seconds": t2, "n2": n2,
+        "blocks1d_seconds": tb, "eval2d_seconds": te, "eval2d_points": points,
+        "memcpy_seconds": {"n1": c1, "n2_squared": c2, "eval2d_points": ce}});
+    Ok(Part {
+        html,
+        json,
+        figures,
+    })
+}
+
+/// Runs the engine studies and presents them.
+pub fn section(profile: &Profile) -> Result<Section, ReportError> {
+    let scipy = scipy_part()?;
+    let truncated = truncation_part()?;
+    let residual = residual_part(profile)?;
+    let throughput = throughput_part(profile)?;
+    let html = [&scipy, &truncated, &residual, &throughput]
+        .iter()
+        .map(|p| p.html.as_str())
+        .collect();
+    let summary = json!({
+        "scipy_worst_ulps": scipy.json,
+        "truncated": truncated.json,
+        "residual": residual.json,
+        "throughput": throughput.json,
+    });
+    let figures = [scipy, truncated, residual, throughput]
+        .into_iter()
+        .flat_map(|p| p.figures)
+        .collect();
     Ok(Section {
         id: "engine",
         title: "The interpolation engine: scipy agreement, certified truncation, high degrees"
             .into(),
         html,
         charts: vec![],
-        summary: json!({
-            "scipy_worst_ulps": {"spline_filter1d": f1d, "spline_filter": fnd, "map_coordinates": map},
-            "truncated": trunc_json,
-            "residual": res_json,
-            "throughput": {"filter1d_seconds": t1, "n1": n1, "filter2d_seconds": t2, "n2": n2,
-                "blocks1d_seconds": tb, "eval2d_seconds": te, "eval2d_points": points},
-        }),
+        summary,
         figures,
     })
 }

@@ -43,6 +43,17 @@ impl Profile {
     pub fn name(&self) -> &'static str {
         if self.quick { "quick" } else { "full" }
     }
+
+    /// `quick` in the quick profile, `full` otherwise: the one place a
+    /// section's parameters depend on the profile.
+    pub fn pick<'a, T: ?Sized>(&self, quick: &'a T, full: &'a T) -> &'a T {
+        if self.quick { quick } else { full }
+    }
+
+    /// The parameters `quick()` or `full()` of a study, by profile.
+    pub fn params<P>(&self, quick: impl FnOnce() -> P, full: impl FnOnce() -> P) -> P {
+        if self.quick { quick() } else { full() }
+    }
 }
 
 /// What a study contributes to the report.
@@ -282,15 +293,12 @@ pub fn write_report(
     }
     bar.finish_and_clear();
     let total = start.elapsed().as_secs_f64();
-    summary.insert(
-        "profile".into(),
-        json!(if profile.quick { "quick" } else { "full" }),
-    );
+    summary.insert("profile".into(), json!(profile.name()));
     let prov = provenance::provenance(profile.quick);
     summary.insert("provenance".into(), prov.clone());
     summary.insert(
         "report".into(),
-        json!({"profile": if profile.quick { "quick" } else { "full" }, "seconds": total, "section_seconds": timings}),
+        json!({"profile": profile.name(), "seconds": total, "section_seconds": timings}),
     );
     let page = format!(
         "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\
@@ -298,7 +306,7 @@ pub fn write_report(
          <style>{STYLE}</style></head><body>\n<h1>splinelab report</h1>\n<p class=\"meta\">Profile: {}; \
          computed in {total:.1} s. Machine-readable figures: <a href=\"summary.json\">summary.json</a>.</p>\n\
          {}{}<nav><ul>{toc}<li><a href=\"#references\">References</a></li></ul></nav>\n{body}{}</body></html>\n",
-        if profile.quick { "quick" } else { "full" },
+        profile.name(),
         summary_box(&figures, &headlines, profile),
         provenance::provenance_html(&prov),
         provenance::references_html()

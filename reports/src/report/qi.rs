@@ -375,11 +375,7 @@ fn figures(study: &QiStudy) -> Vec<Figure> {
 /// Runs the QI study (quick: 50 random sets, 13 sizes, no `Mp<1024>`;
 /// full: 1,000 sets, n = 3..50, `Mp<1024>`) and presents it.
 pub fn section(profile: &Profile) -> Result<Section, ReportError> {
-    let params = if profile.quick {
-        QiParams::quick()
-    } else {
-        QiParams::full()
-    };
+    let params = profile.params(QiParams::quick, QiParams::full);
     let study = run_qi(&params);
     let (note, note_json) = helix_note(&study.convergence);
     let mut html = paragraph(

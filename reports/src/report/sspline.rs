@@ -297,11 +297,7 @@ fn figures(s: &SsplineStudy) -> Vec<Figure> {
 
 /// Runs the S-spline study and presents it.
 pub fn section(profile: &Profile) -> Result<Section, ReportError> {
-    let params = if profile.quick {
-        SsplineParams::quick()
-    } else {
-        SsplineParams::full()
-    };
+    let params = profile.params(SsplineParams::quick, SsplineParams::full);
     let s = run_sspline(&params).map_err(CliError::numerical)?;
     let mut html = paragraph(
         "Seed 000 builds the cardinal interpolating spline S(x) = Σ c_i β(x − i), S(j) = δ_0j, on the \

@@ -297,11 +297,7 @@ fn text(d: &UpdateCostData) -> String {
 
 /// Runs the update-cost study and presents it.
 pub fn section(profile: &Profile) -> Result<Section, ReportError> {
-    let params = if profile.quick {
-        UpdateCostParams::quick()
-    } else {
-        UpdateCostParams::full()
-    };
+    let params = profile.params(UpdateCostParams::quick, UpdateCostParams::full);
     let d = run_update_cost(&params).map_err(CliError::numerical)?;
     let mut charts = vec![cost_chart(&d.edits), build_chart(&d.builds)];
     charts.extend(picture_charts(&d));
