@@ -26,7 +26,7 @@ use splinelab_verify::check::knot_insertion::check_knot_insertion;
 use splinelab_verify::check::outcome;
 use splinelab_verify::check::prefilter::{PrefilterInput, check_prefilter, family_of_degree};
 use splinelab_verify::check::rational_bspline::RationalBSpline;
-use splinelab_verify::check::{CheckSummary, Mode, UserFormat};
+use splinelab_verify::check::{CheckSummary, UserFormat};
 use splinelab_verify::conditioning::Basis;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -107,7 +107,7 @@ pub struct SplineArgs {
     /// Spline order m = d + 1 (the papers' convention).
     #[arg(long)]
     pub order: Option<usize>,
-    /// End mode: mirror, reflect (grid-mirror), grid-wrap, nearest, grid-constant (prefilter: as scipy's spline_filter1d filters them, with the reflect and mirror rules; interp: as map_coordinates, which pads 12 samples first); interp also takes scipy's constant (the mirror spline inside [0, n − 1], cval outside) and wrap (period n − 1, mirror spline). prefilter refuses wrap (not grid-wrap).
+    /// End mode: mirror, reflect (grid-mirror), grid-wrap, nearest, grid-constant (prefilter: as scipy's spline_filter1d filters them, with the reflect and mirror rules; interp: as map_coordinates, which pads 12 samples first); interp also takes scipy's constant (the mirror spline inside [0, n − 1], cval outside) and wrap (period n − 1, mirror spline). prefilter filters those two with the mirror rule, as scipy's spline_filter1d does.
     #[arg(long, default_value = "mirror")]
     pub mode: String,
 }
@@ -332,11 +332,6 @@ fn degree_of(a: &SplineArgs) -> Result<usize, CliError> {
     }
 }
 
-fn mode_of(mode: &str) -> Result<Mode, CliError> {
-    mode.parse::<Mode>()
-        .map_err(|e| CliError::invalid("--mode", e.to_string()))
-}
-
 fn scipy_mode_of(mode: &str) -> Result<ScipyMode, CliError> {
     mode.parse::<ScipyMode>()
         .map_err(|e| CliError::invalid("--mode", e))
@@ -350,7 +345,8 @@ fn degree_mode_extra(a: &SplineArgs) -> Result<Map<String, Value>, CliError> {
 }
 
 fn prefilter(a: &PrefilterArgs) -> Result<Outcome, CliError> {
-    let mode = mode_of(&a.spline.mode)?;
+    // scipy's spline_filter1d filters constant and wrap with the mirror rule.
+    let mode = scipy_mode_of(&a.spline.mode)?.spline_mode();
     let family = family_of_degree(degree_of(&a.spline)?)
         .map_err(|e| CliError::invalid("--degree", e.to_string()))?;
     let max_ulps = max_ulps(&a.common)?;

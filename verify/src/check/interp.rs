@@ -151,7 +151,7 @@ pub fn scipy_point(mode: ScipyMode, x: &Rational, n: usize) -> Option<Rational> 
             }
             let sz = Rational::from(n as u64 - 1);
             Some(if *x < 0 {
-                let k = Rational::from(-x.clone() / &sz).trunc();
+                let k = (-x.clone() / &sz).trunc();
                 x.clone() + sz * (k + 1u32)
             } else {
                 let k = Rational::from(x / &sz).trunc();
@@ -235,7 +235,7 @@ fn derivative_weight(d: usize, t: &Rational) -> f64 {
     let half = Rational::from((1, 2));
     let plus = centred_bspline(d - 1, &Rational::from(t + &half));
     let minus = centred_bspline(d - 1, &Rational::from(t - &half));
-    Rational::from(plus - minus).abs().to_f64()
+    (plus - minus).abs().to_f64()
 }
 
 /// The samples padded by `pad` on each side of every axis, as scipy's
@@ -366,7 +366,8 @@ impl InterpReference {
     }
 
     /// The stable bound of every point (module [`stable_bound`]):
-    /// `γ_eval Σ|c||W| + Σ|W| E + Σ_a δx_a Σ|c||∂_a W| + u|f|`, with the
+    /// `γ_eval (Σ|c||W| + Σ_a Σ|c||W^(a)|) + Σ|W| E + Σ_a δx_a Σ|c||∂_a W| + u|f|`
+    /// (`W^(a)`: the weights with axis `a`'s set to 1), with the
     /// coefficients and their bounds `E` from [`solve_bound`].
     fn bounds(
         &self,
@@ -401,9 +402,15 @@ impl InterpReference {
                 };
                 let moved: f64 = (0..axes.len())
                     .filter(|&a| p.shift_error[a] > 0.0)
-                    .map(|a| p.shift_error[a] * abs_tensor(axes, &self.shape, Some(a), &abs_c))
+                    .map(|a| {
+                        let special = Some((a, Factor::Derivative));
+                        p.shift_error[a] * abs_tensor(axes, &self.shape, special, &abs_c)
+                    })
                     .sum();
-                g * abs_tensor(axes, &self.shape, None, &abs_c)
+                let absolute_weights: f64 = (0..axes.len())
+                    .map(|a| abs_tensor(axes, &self.shape, Some((a, Factor::One)), &abs_c))
+                    .sum();
+                g * (abs_tensor(axes, &self.shape, None, &abs_c) + absolute_weights)
                     + abs_tensor(axes, &self.shape, None, &err)
                     + moved
                     + rounding
@@ -412,17 +419,27 @@ impl InterpReference {
     }
 }
 
-/// `Σ_j v(j) Π_a |W_a|` over the taps (`|∂W|` on axis `deriv`), in f64.
+/// What axis `a`'s factor is in [`abs_tensor`]: `|β|` on every axis but one,
+/// where it is `|β'|` (the coordinate term) or 1 (a weight known only to an
+/// absolute `γ`, as scipy's last weight `1 − Σ others`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Factor {
+    Derivative,
+    One,
+}
+
+/// `Σ_j v(j) Π_a |W_a|` over the taps, axis `special.0` replaced by
+/// `special.1`, in f64.
 fn abs_tensor(
     axes: &[Vec<Tap>],
     shape: &[usize],
-    deriv: Option<usize>,
+    special: Option<(usize, Factor)>,
     v: &impl Fn(Option<usize>) -> f64,
 ) -> f64 {
     fn walk(
         axes: &[Vec<Tap>],
         shape: &[usize],
-        deriv: Option<usize>,
+        special: Option<(usize, Factor)>,
         v: &impl Fn(Option<usize>) -> f64,
         a: usize,
         offset: Option<usize>,
@@ -433,17 +450,17 @@ fn abs_tensor(
         axes[a]
             .iter()
             .map(|t| {
-                let w = if deriv == Some(a) {
-                    t.dw
-                } else {
-                    t.w.to_f64().abs()
+                let w = match special {
+                    Some((b, Factor::Derivative)) if b == a => t.dw,
+                    Some((b, Factor::One)) if b == a => 1.0,
+                    _ => t.w.to_f64().abs(),
                 };
                 let next = offset.zip(t.index).map(|(o, i)| o * shape[a] + i);
-                w * walk(axes, shape, deriv, v, a + 1, next)
+                w * walk(axes, shape, special, v, a + 1, next)
             })
             .sum()
     }
-    walk(axes, shape, deriv, v, 0, Some(0))
+    walk(axes, shape, special, v, 0, Some(0))
 }
 
 /// `Σ_j c_j Π_a W_a` over the taps in `T` (axis by axis, as 1-D sums nest).
@@ -593,9 +610,10 @@ pub fn check_interp_with_cval(input: &InterpInput, cval: f64) -> Result<CheckSum
 /// The account of the interpolated values' stable bound.
 fn interp_bound_text(d: usize, dims: usize, format: UserFormat) -> String {
     format!(
-        "γ_{m}·Σ_j |c_j||W_j(x)| + Σ_j |W_j(x)|·E_j + Σ_a δx_a·Σ_j |c_j||∂_a W_j(x)| + u|f(x)| in {}: \
-         a stable tensor-product evaluation (Cox–de Boor weights, m = D(6d + 2) = {m}; Higham, \
-         Accuracy and Stability, 2nd ed., §3.1) of coefficients with the banded solve's \
+        "γ_{m}·Σ_j |c_j|(|W_j(x)| + Σ_a |W_j^(a)(x)|) + Σ_j |W_j(x)|·E_j + Σ_a δx_a·Σ_j |c_j||∂_a W_j(x)| + u|f(x)| in {}: \
+         a stable tensor-product evaluation (each weight within γ of itself, or of 1 where it is \
+         formed as 1 − Σ others as scipy does: W^(a) has axis a's weights set to 1; m = D(6d + 2) = {m}; \
+         Higham, Accuracy and Stability, 2nd ed., §3.1) of coefficients with the banded solve's \
          componentwise bound E per axis (Thm 7.4, 9.4), δx_a = u(|x_a| + |x'_a|) where the point \
          is shifted (scipy's +12 padding) or folded",
         format.name(),

@@ -144,9 +144,9 @@ pub fn solve_bound_text(q: usize, format: UserFormat) -> String {
         "componentwise (Skeel) bound of a backward-stable banded solve in {}: \
          γ_{}/(1 − γ_{})·(|B⁻¹||B||c|)_k + u|c_k| = {:.3e}·(|B⁻¹||B||c|)_k + u|c_k| \
          (Higham, Accuracy and Stability of Numerical Algorithms, 2nd ed., Thm 7.4 and Thm 9.4 \
-         with bandwidth w = q + 1 = {})",
+         with bandwidth w = q + 1 = {}, one more u for the rounded matrix entries)",
         format.name(),
-        3 * (q + 1),
+        3 * (q + 1) + 1,
         q + 1,
         solve_constant(q, format),
         q + 1

@@ -21,9 +21,10 @@
 //! `|ΔB| ≤ γ_{3w} |L̂||Û|`. The folded interpolation matrix of a B-spline is
 //! totally nonnegative (a collocation matrix; Karlin 1968, de Boor–Pinkus
 //! 1977), so its factors are nonnegative, `|L̂||Û| = |L̂Û| ≤ |B|/(1 − γ_w)`
-//! (Higham §9.6, the proof of Theorem 9.12), and
+//! (Higham §9.6, the proof of Theorem 9.12). The entries `β(j)` are
+//! rational and enter rounded, one more `u|B|`; so
 //!
-//! `bound_k = γ_{3w}/(1 − γ_w) · (|B⁻¹| |B| |c|)_k + u |c_k|`,
+//! `bound_k = γ_{3w+1}/(1 − γ_w) · (|B⁻¹| |B| |c|)_k + u |c_k|`,
 //!
 //! the last term being the rounding of the exact answer to the user's
 //! format. The factors' nonnegativity is checked by the unit test
@@ -51,7 +52,12 @@
 //! level, `d` levels, relative error `γ_{5d}`), multiplies `D` of them and
 //! sums `(d + 1)^D` terms axis by axis (`γ_{D(d+1)}`); the whole is within
 //! `γ_{m}`, `m = D(6d + 2)`, of `Σ_j |c_j| |W_j(x)|` (Higham §3.1, eq. 3.5,
-//! for a sum of products). The coefficients' own errors (the bound above,
+//! for a sum of products). scipy forms the last weight of each axis as
+//! `1 − Σ others`, exact to an absolute `γ` only (the weights sum to 1), so
+//! `γ_m Σ_a Σ_j |c_j| |W_j^(a)(x)|` is added, `W^(a)` the product with axis
+//! `a`'s weights replaced by 1 (without it a point in the tail of a
+//! B-spline, a value `10⁻¹²` of the data, failed at 10× its bound on
+//! scipy's own output, `interp/f2_d3_grid-constant.npy` index 39). The coefficients' own errors (the bound above,
 //! per axis, carried through the later axes by `|B_a⁻¹|`) enter through the
 //! weights: `Σ_j |W_j(x)| bound_j`. Where the evaluation must first
 //! shift or fold the coordinate (scipy's `x + 12` of `nearest` and
@@ -90,9 +96,9 @@ pub fn gamma(k: usize, format: UserFormat) -> f64 {
 }
 
 /// The constant of the banded solve with half-bandwidth `q`:
-/// `γ_{3w} / (1 − γ_w)`, `w = q + 1` (module documentation).
+/// `γ_{3w+1} / (1 − γ_w)`, `w = q + 1` (module documentation).
 pub fn solve_constant(q: usize, format: UserFormat) -> f64 {
-    gamma(3 * (q + 1), format) / (1.0 - gamma(q + 1, format))
+    gamma(3 * (q + 1) + 1, format) / (1.0 - gamma(q + 1, format))
 }
 
 /// The constant of a `D`-dimensional evaluation of degree `d`: `γ_{D(6d+2)}`.
@@ -217,7 +223,7 @@ pub fn solve_bound(
     let mut e = vec![0.0; grid.len()];
     for (a, &n) in shape.iter().enumerate() {
         let s: usize = shape[a + 1..].iter().product();
-        let starts = (0..x.len()).filter(|k| (k / s) % n == 0);
+        let starts = (0..x.len()).filter(|k| (k / s).is_multiple_of(n));
         for start in starts {
             let idx: Vec<usize> = (0..n).map(|j| start + j * s).collect();
             let line: Vec<f64> = idx.iter().map(|&k| x[k]).collect();
@@ -308,9 +314,9 @@ mod tests {
         let u = unit_roundoff(UserFormat::F64);
         assert_eq!(u, f64::EPSILON / 2.0);
         assert!((gamma(6, UserFormat::F64) / (6.0 * u) - 1.0).abs() < 1e-14);
-        // Cubic: q = 1, w = 2: γ_6 / (1 − γ_2) ≈ 6u.
+        // Cubic: q = 1, w = 2: γ_7 / (1 − γ_2) ≈ 7u.
         let c = solve_constant(1, UserFormat::F64);
-        assert!((c / (6.0 * u) - 1.0).abs() < 1e-14);
+        assert!((c / (7.0 * u) - 1.0).abs() < 1e-14);
         assert_eq!(gamma(1 << 24, UserFormat::F32), f64::INFINITY);
     }
 }

@@ -389,11 +389,11 @@ fn judge_bounds(ctx: &Context<'_>, elements: &[ElementError]) -> Judged {
                 .filter_map(|e| Some((e, e.excess?, e.bound?)));
             let over_bound = judged
                 .clone()
-                .filter(|(_, x, _)| !(*x <= BOUND_FACTOR))
+                .filter(|(_, x, _)| x.is_nan() || *x > BOUND_FACTOR)
                 .count();
             let worst = judged
                 .fold(None::<(&ElementError, f64, f64)>, |w, c| match w {
-                    Some(w) if !(c.1 > w.1) => Some(w),
+                    Some(w) if c.1 <= w.1 || c.1.is_nan() => Some(w),
                     _ => Some(c),
                 })
                 .map(|(e, x, b)| WorstExcess {
