@@ -100,7 +100,7 @@ pub fn check_bspline_eval(input: &BSplineEvalInput) -> Result<CheckSummary, Chec
         horizon: None,
         max_ulps: input.max_ulps,
         bound: BoundBasis::PerElement(format!(
-            "γ_{}·Σ_j |c_j||B_j(x)| + u|f(x)|: de Boor / Cox–de Boor evaluation, each basis value a product of k levels of non-negative terms with ≤ 5 roundings each and a sum of k + 1 products (Higham, Accuracy and Stability, 2nd ed., §3.1 and Lemma 3.1; Mørken 1991 for the B-spline case); outside the base interval the same form is used",
+            "γ_{}·Σ_j |c_j||B_j(x)| + u|f(x)|: de Boor / Cox–de Boor evaluation, each basis value a product of k levels of non-negative terms with ≤ 5 roundings each and a sum of k + 1 products (Higham, Accuracy and Stability, 2nd ed., §3.1 and Lemma 3.1; Cox 1972 on the stability of the recurrence); outside the base interval the same form is used",
             6 * input.k + 2
         )),
     };

@@ -22,13 +22,13 @@ use splinelab::surface_deformation::vandermonde::{bernstein_vandermonde, monomia
 
 /// Why `cond` has no stable-bound verdict: a backward-stable SVD perturbs
 /// every singular value by at most `p(n)·u·σ_max` (Higham, *Accuracy and
-/// Stability*, 2nd ed., §1.6 and the SVD perturbation bound, Weyl), so a
+/// Stability*, 2nd ed., backward stability; Weyl's bound for singular values), so a
 /// computed `cond₂` is only known to within a relative `p(n)·u·cond₂`, and
 /// `p(n)` is a modest but algorithm-dependent, first-order constant
 /// (LAPACK quotes none); the inverse behind `cond_∞` likewise. A bound
 /// with an unspecified constant cannot give a pass or fail, so `cond` is
 /// judged by `--max-ulps` only.
-pub const NO_STABLE_BOUND: &str = "no stable bound for condition numbers: a backward-stable SVD or inverse determines cond only to a relative p(n)·u·cond with an algorithm-dependent first-order constant p(n) (Higham §1.6, Weyl's bound), so no pass/fail follows from the problem alone; judged by --max-ulps only";
+pub const NO_STABLE_BOUND: &str = "no stable bound for condition numbers: a backward-stable SVD or inverse determines cond only to a relative p(n)·u·cond with an algorithm-dependent first-order constant p(n) (Weyl's bound for singular values), so no pass/fail follows from the problem alone; judged by --max-ulps only";
 
 /// Largest number of nodes in one set (a 501 × 501 matrix, as `splinelab cond`).
 pub const MAX_NODES: usize = 501;

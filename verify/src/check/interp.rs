@@ -614,7 +614,7 @@ fn interp_bound_text(d: usize, dims: usize, format: UserFormat) -> String {
          a stable tensor-product evaluation (each weight within γ of itself, or of 1 where it is \
          formed as 1 − Σ others as scipy does: W^(a) has axis a's weights set to 1; m = D(6d + 2) = {m}; \
          Higham, Accuracy and Stability, 2nd ed., §3.1) of coefficients with the banded solve's \
-         componentwise bound E per axis (Thm 7.4, 9.4), δx_a = u(|x_a| + |x'_a|) where the point \
+         componentwise bound E per axis (§7.2, Thm 9.4), δx_a = u(|x_a| + |x'_a|) where the point \
          is shifted (scipy's +12 padding) or folded",
         format.name(),
         m = dims * (6 * d + 2)

@@ -143,7 +143,7 @@ pub fn solve_bound_text(q: usize, format: UserFormat) -> String {
     format!(
         "componentwise (Skeel) bound of a backward-stable banded solve in {}: \
          γ_{}/(1 − γ_{})·(|B⁻¹||B||c|)_k + u|c_k| = {:.3e}·(|B⁻¹||B||c|)_k + u|c_k| \
-         (Higham, Accuracy and Stability of Numerical Algorithms, 2nd ed., Thm 7.4 and Thm 9.4 \
+         (Higham, Accuracy and Stability of Numerical Algorithms, 2nd ed., §7.2 and Thm 9.4 \
          with bandwidth w = q + 1 = {}, one more u for the rounded matrix entries)",
         format.name(),
         3 * (q + 1) + 1,
