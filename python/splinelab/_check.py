@@ -43,8 +43,8 @@ def _check_interp(
     samples, coordinates, values, degree=None, order=None, mode="mirror", cval=0.0, max_ulps=None, format=None
 ):
     s = _real_array(samples, "samples")
-    if s.ndim not in (1, 2):
-        raise ValueError(f"samples must be 1-D or 2-D, got {s.ndim}-D")
+    if s.ndim < 1:
+        raise ValueError("samples must have at least one axis, got a 0-D array")
     c = np.asarray(_real_array(coordinates, "coordinates"), dtype=np.float64)
     if c.ndim == 1 and s.ndim == 1:
         c = c[None, :]
@@ -117,18 +117,29 @@ def check(kind, **kwargs):
 
     Returns the same dict as the command line's ``--json`` (``kind``, ``n``,
     ``reference_bits``, ``worst``, ``regions``, ``digits_min``, ``failed``,
-    ``verdict``, ...). Keywords per kind (as the command's options):
+    ``verdict``, ...). The default verdict is 'fail' when any element's
+    error exceeds ``bound_factor`` (8) times the error a backward-stable
+    computation would make there from the problem's own conditioning:
+    ``verdict_basis`` ('stable-bound', or 'max-ulps'/'finite-only' for a kind
+    without a bound, with ``no_verdict_reason``), ``stable_bound`` (the
+    bound and its source), ``over_bound``, ``worst_excess`` (``index``,
+    ``excess`` = error / bound, ``error``, ``bound``) and ``digits_lost``
+    (log10 of the worst excess: the digits lost beyond what the conditioning
+    explains). Keywords per kind (as the command's options):
 
     - 'prefilter': ``samples, coeffs, degree=3`` (or ``order=degree+1``),
-      ``mode='mirror'`` ('mirror', 'reflect', 'grid-wrap'); degree 1..15;
+      ``mode='mirror'`` (scipy's names; 'constant' and 'wrap' filter with
+      the mirror rule, as spline_filter1d does); degree 1..15;
     - 'coeffs': ``values, order=/degree=/tension=``;
     - 'bspline-eval': ``knots, coeffs, degree, x, values, extrapolate=True``;
     - 'bezier-eval': ``coeffs, t, values``;
     - 'knot-insertion': ``before=(t, c, k), after=(t, c, k)``;
-    - 'interp': ``samples`` (1-D or 2-D), ``coordinates`` (shape (ndim, count),
-      as map_coordinates), ``values``, ``degree=3``, ``mode='mirror'``,
-      ``cval=0.0`` (for 'grid-constant'; scipy's 'constant' and 'wrap' are
-      not checked);
+    - 'interp': ``samples`` (any number of dimensions), ``coordinates``
+      (shape (ndim, count), as map_coordinates), ``values``, ``degree=3``,
+      ``mode='mirror'`` (every map_coordinates mode: 'constant' — the mirror
+      spline inside [0, n - 1], ``cval`` outside —, 'nearest', 'reflect',
+      'mirror', 'grid-wrap', 'wrap' — period n - 1 —, 'grid-constant'),
+      ``cval=0.0``;
     - 'cond': ``nodes`` (one node set, or a list of sets), ``values`` (one
       condition number per set), ``basis='bernstein'`` or 'monomial',
       ``norm='2'`` or 'inf'.
@@ -139,8 +150,8 @@ def check(kind, **kwargs):
     >>> import numpy as np, splinelab
     >>> s = np.array([1.0, 2.0, 0.5, 3.0, 1.0, 0.0, 2.0, 1.0])
     >>> r = splinelab.check("prefilter", samples=s, coeffs=splinelab.spline_filter1d(s), max_ulps=16)
-    >>> r["kind"], r["verdict"], r["degree"]
-    ('prefilter', 'pass', 3)
+    >>> r["kind"], r["verdict"], r["degree"], r["verdict_basis"]
+    ('prefilter', 'pass', 3, 'stable-bound')
     """
     if kind not in _KINDS:
         raise ValueError(f"unknown check kind {kind!r} (expected one of {', '.join(_KINDS)})")

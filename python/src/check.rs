@@ -10,12 +10,12 @@ use splinelab_verify::check::bezier_eval::check_bezier_eval as bezier;
 use splinelab_verify::check::bspline_eval::{BSplineEvalInput, check_bspline_eval as bspline};
 use splinelab_verify::check::coeffs::check_coeffs as coeffs;
 use splinelab_verify::check::cond::{CondInput, Norm, check_cond as cond};
-use splinelab_verify::check::interp::{InterpInput, check_interp_with_cval as interp};
+use splinelab_verify::check::interp::{InterpInput, ScipyMode, check_interp_with_cval as interp};
 use splinelab_verify::check::knot_insertion::check_knot_insertion as insertion;
 use splinelab_verify::check::outcome::prefilter_extra;
 use splinelab_verify::check::prefilter::{PrefilterInput, check_prefilter as prefilter};
 use splinelab_verify::check::rational_bspline::RationalBSpline;
-use splinelab_verify::check::{CheckError, Mode, Outcome, UserFormat};
+use splinelab_verify::check::{CheckError, Outcome, UserFormat};
 use splinelab_verify::conditioning::Basis;
 
 fn format(name: &str) -> PyResult<UserFormat> {
@@ -43,7 +43,7 @@ fn elements(
 /// What the grid kinds (`prefilter`, `interp`) share: the mode, the user's
 /// format and threshold, and the JSON fields naming degree and mode.
 struct GridArgs {
-    mode: Mode,
+    mode: ScipyMode,
     format: UserFormat,
     max_ulps: Option<f64>,
     extra: Map<String, serde_json::Value>,
@@ -51,12 +51,12 @@ struct GridArgs {
 
 impl GridArgs {
     fn new(mode: &str, fmt: &str, degree: usize, k: Option<f64>) -> PyResult<GridArgs> {
-        let mode = mode.parse::<Mode>().map_err(value_error)?;
+        let mode = mode.parse::<ScipyMode>().map_err(value_error)?;
         Ok(GridArgs {
             mode,
             format: format(fmt)?,
             max_ulps: max_ulps(k)?,
-            extra: prefilter_extra(mode, degree),
+            extra: prefilter_extra(mode.name(), degree),
         })
     }
 }
@@ -81,7 +81,7 @@ pub fn check_prefilter(
         user,
         format: g.format,
         family,
-        mode: g.mode,
+        mode: g.mode.spline_mode(),
         max_ulps: g.max_ulps,
     };
     elements(py, || prefilter(&input), g.extra)

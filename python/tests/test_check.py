@@ -145,3 +145,48 @@ def test_interp_takes_cval_for_grid_constant():
     # scipy's own error (its f64 x + 12): 4.6e-14 at worst.
     assert right["verdict"] == "pass" and right["worst"]["abs"] < 1e-12
     assert splinelab.check("interp", **args)["worst"]["abs"] > 1e-3
+
+
+@pytest.mark.parametrize("n,d", [(5, 5), (8, 3), (12, 4)])
+def test_default_verdict_fails_scipys_short_reflect_lines(n, d):
+    # scipy 1.17.1's half-sample initialisation on short lines (gh-24550),
+    # computed live: fail without max_ulps, at index 0; the mirror rule on
+    # the same line passes.
+    from scipy.ndimage import spline_filter1d
+
+    s = np.random.default_rng(n).uniform(-1, 1, n)
+    r = splinelab.check("prefilter", samples=s, coeffs=spline_filter1d(s, order=d, mode="reflect"), degree=d,
+                        mode="reflect")
+    assert r["verdict"] == "fail" and r["verdict_basis"] == "stable-bound"
+    assert r["worst_excess"]["index"] == 0 and r["digits_lost"] > 1.5
+    assert r["over_bound"] >= 1 and r["bound_factor"] == 8.0
+    ok = splinelab.check("prefilter", samples=s, coeffs=spline_filter1d(s, order=d, mode="mirror"), degree=d)
+    assert ok["verdict"] == "pass" and ok["worst_excess"]["excess"] < 1.0
+
+
+def test_new_fields_equal_the_cli():
+    r = splinelab.check("prefilter", samples=np.load(FIX / "stable" / "s_n8.npy"),
+                        coeffs=np.load(FIX / "stable" / "d5_reflect_n8.npy"), degree=5, mode="reflect")
+    c = run_cli("prefilter", "--samples", "stable/s_n8.npy", "--coeffs", "stable/d5_reflect_n8.npy", "--degree", "5",
+                "--mode", "reflect")
+    for key in ["verdict", "verdict_basis", "over_bound", "worst_excess", "digits_lost", "stable_bound",
+                "no_verdict_reason", "bound_factor"]:
+        assert r[key] == c[key], key
+    cond = splinelab.check("cond", nodes=[[0, 1], [0, 0.5, 1]], values=[1.0, 3.0], norm="inf")
+    assert cond["verdict_basis"] == "finite-only" and "no stable bound" in cond["no_verdict_reason"]
+
+
+@pytest.mark.parametrize("mode", ["constant", "wrap", "nearest", "mirror", "grid-wrap", "grid-constant"])
+def test_interp_3d_every_mode_against_live_scipy(mode):
+    from scipy.ndimage import map_coordinates
+
+    rng = np.random.default_rng(5)
+    g = rng.uniform(-1, 1, (5, 40, 33))
+    shape = np.array(g.shape, dtype=np.float64)[:, None]
+    c = -1.5 + rng.uniform(0, 1, (3, 30)) * (shape + 2.0)
+    v = map_coordinates(g, c, order=3, mode=mode)
+    r = splinelab.check("interp", samples=g, coordinates=c, values=v, degree=3, mode=mode)
+    # Axis 0 has 5 samples: scipy's mirror/wrap/constant filters are exact
+    # there (the mirror rule), so the verdict is pass and scipy right to 12 digits.
+    assert r["verdict"] == "pass", r["worst_excess"]
+    assert r["digits_min"] > 12.0 and r["mode"] == mode

@@ -359,3 +359,106 @@ fn a_nan_value_keeps_every_figure_and_is_counted() {
     assert_eq!(get(&bad, "check.bezier-eval.max_ulps"), 1.0);
     let _ = std::fs::remove_dir_all(&d);
 }
+
+#[test]
+fn short_reflect_line_fails_by_default_and_out_holds_the_per_element_arrays() {
+    // scipy 1.17.1's quintic reflect filter of 8 samples (gh-24550): exit 1
+    // without --max-ulps, naming index 0 and the digits lost; --out writes
+    // reference/error/bound .npy beside the page, read back here.
+    let dir = scratch("short_reflect");
+    let out_dir = dir.join("out");
+    let (s, c) = (
+        fixture("stable/s_n8.npy"),
+        fixture("stable/d5_reflect_n8.npy"),
+    );
+    let out = splinelab(&[
+        "check",
+        "prefilter",
+        "--samples",
+        &s,
+        "--coeffs",
+        &c,
+        "--degree",
+        "5",
+        "--mode",
+        "reflect",
+        "--out",
+        out_dir.to_str().unwrap(),
+    ]);
+    assert_eq!(out.status.code(), Some(1));
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(text.contains("check prefilter: fail"), "{text}");
+    assert!(text.contains("at index 0"), "{text}");
+    assert!(
+        text.contains("digits lost beyond the conditioning 7.9"),
+        "{text}"
+    );
+    let read = |name: &str| {
+        let f = std::fs::File::open(out_dir.join(name)).unwrap();
+        <ndarray::Array1<f64> as ndarray_npy::ReadNpyExt>::read_npy(f).unwrap()
+    };
+    let (r, e, b) = (read("reference.npy"), read("error.npy"), read("bound.npy"));
+    assert_eq!((r.len(), e.len(), b.len()), (8, 8, 8));
+    // error.npy is |value − reference|: the user's value minus the reference.
+    let user = {
+        let f = std::fs::File::open(&c).unwrap();
+        <ndarray::Array1<f64> as ndarray_npy::ReadNpyExt>::read_npy(f).unwrap()
+    };
+    // (reference.npy is the reference rounded to f64: one rounding apart.)
+    assert!(
+        ((user[0] - r[0]).abs() - e[0]).abs() <= f64::EPSILON * r[0].abs(),
+        "{} {}",
+        e[0],
+        user[0] - r[0]
+    );
+    assert!(e[0] > 8.0 * b[0] && b.iter().all(|x| *x > 0.0));
+    assert!(out_dir.join("check_error_vs_bound.svg").is_file());
+    // The same check on the whole-sample rule passes, and says on what basis.
+    let c = fixture("stable/d5_mirror_n8.npy");
+    let out = splinelab(&[
+        "check",
+        "prefilter",
+        "--samples",
+        &s,
+        "--coeffs",
+        &c,
+        "--degree",
+        "5",
+        "--json",
+    ]);
+    assert_eq!(out.status.code(), Some(0));
+    let v: Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(v["verdict_basis"], "stable-bound");
+    assert_eq!(v["over_bound"], 0);
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn cond_says_why_it_has_no_stable_bound_verdict() {
+    let dir = scratch("cond_basis");
+    let (nodes, values) = (dir.join("nodes.json"), dir.join("cond.txt"));
+    std::fs::write(&nodes, "[[0, 1], [0, 0.5, 1]]").unwrap();
+    std::fs::write(&values, "1 3").unwrap();
+    let out = splinelab(&[
+        "check",
+        "cond",
+        "--nodes",
+        nodes.to_str().unwrap(),
+        "--basis",
+        "bernstein",
+        "--norm",
+        "inf",
+        "--values",
+        values.to_str().unwrap(),
+        "--json",
+    ]);
+    let v: Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(v["verdict_basis"], "finite-only");
+    assert!(
+        v["no_verdict_reason"]
+            .as_str()
+            .unwrap()
+            .contains("no stable bound")
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -47,7 +47,7 @@ fn input(dims: usize, degree: usize, mode: Mode, user: Vec<f64>, max: Option<f64
         user,
         format: UserFormat::F64,
         degree,
-        mode,
+        mode: mode.into(),
         max_ulps: max,
     }
 }
@@ -255,9 +255,16 @@ fn bad_input_is_a_typed_error() {
         check_interp(&short),
         Err(CheckError::LengthMismatch { .. })
     ));
+    // Any number of axes is accepted; the shape must hold the samples.
     let mut three = input(1, 3, Mode::Mirror, v.clone(), None);
     three.shape = vec![2, 4, 5];
-    assert!(matches!(check_interp(&three), Err(CheckError::Invalid(_))));
+    assert!(matches!(
+        check_interp(&three),
+        Err(CheckError::LengthMismatch { .. })
+    ));
+    let mut scalar = input(1, 3, Mode::Mirror, v.clone(), None);
+    scalar.shape = vec![];
+    assert!(matches!(check_interp(&scalar), Err(CheckError::Invalid(_))));
     let mut nan = input(1, 3, Mode::Mirror, v.clone(), None);
     nan.points[3] = f64::NAN;
     assert!(matches!(

@@ -1,7 +1,8 @@
 //! `splinelab check KIND`: verifies a user's own results against references
 //! computed from the user's exact inputs (the library API is
 //! `splinelab_verify::check`). Exit status: 0 pass, 1 fail (an element over
-//! `--max-ulps`, a non-finite value, a changed curve), 2 bad input.
+//! `K` × its stable bound, over `--max-ulps`, a non-finite value, a changed
+//! curve), 2 bad input.
 
 use super::check_out::write_check_dir;
 use super::coeffs::family_from_args;
@@ -20,12 +21,12 @@ use splinelab_verify::check::bezier_eval::check_bezier_eval;
 use splinelab_verify::check::bspline_eval::{BSplineEvalInput, check_bspline_eval};
 use splinelab_verify::check::coeffs::check_coeffs;
 use splinelab_verify::check::cond::{CondInput, Norm, check_cond};
-use splinelab_verify::check::interp::{InterpInput, check_interp_with_cval};
+use splinelab_verify::check::interp::{InterpInput, ScipyMode, check_interp_with_cval};
 use splinelab_verify::check::knot_insertion::check_knot_insertion;
 use splinelab_verify::check::outcome;
 use splinelab_verify::check::prefilter::{PrefilterInput, check_prefilter, family_of_degree};
 use splinelab_verify::check::rational_bspline::RationalBSpline;
-use splinelab_verify::check::{Mode, UserFormat};
+use splinelab_verify::check::{CheckSummary, UserFormat};
 use splinelab_verify::conditioning::Basis;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -43,7 +44,7 @@ pub struct CheckArgs {
 pub enum Kind {
     /// Interpolation coefficients of samples (scipy.ndimage.spline_filter1d convention).
     Prefilter(PrefilterArgs),
-    /// Interpolated values of 1-D or 2-D samples (scipy.ndimage.map_coordinates convention, prefilter on).
+    /// Interpolated values of N-D samples (scipy.ndimage.map_coordinates convention, prefilter on, every mode).
     Interp(InterpArgs),
     /// S-spline coefficients c_0..c_{K−1} of an order or a Beta2 tension.
     Coeffs(CoeffsArgs),
@@ -106,7 +107,7 @@ pub struct SplineArgs {
     /// Spline order m = d + 1 (the papers' convention).
     #[arg(long)]
     pub order: Option<usize>,
-    /// End mode: mirror, reflect (grid-mirror), grid-wrap, nearest, grid-constant (scipy's wrap is refused: it is not grid-wrap; prefilter: as scipy's spline_filter1d filters them, with the reflect and mirror rules; interp: as map_coordinates, which pads 12 samples first).
+    /// End mode: mirror, reflect (grid-mirror), grid-wrap, nearest, grid-constant (prefilter: as scipy's spline_filter1d filters them, with the reflect and mirror rules; interp: as map_coordinates, which pads 12 samples first); interp also takes scipy's constant (the mirror spline inside [0, n − 1], cval outside) and wrap (period n − 1, mirror spline). prefilter filters those two with the mirror rule, as scipy's spline_filter1d does.
     #[arg(long, default_value = "mirror")]
     pub mode: String,
 }
@@ -131,7 +132,7 @@ pub struct PrefilterArgs {
 /// `check interp`.
 #[derive(Debug, Args)]
 pub struct InterpArgs {
-    /// The samples, 1-D or 2-D (.npy or .json; text for 1-D).
+    /// The samples, any number of dimensions (.npy; .json or text for 1-D and 2-D).
     #[arg(long)]
     pub samples: PathBuf,
     /// Query points in sample indices, shape (ndim, count) as map_coordinates takes them (1-D for 1-D samples).
@@ -143,7 +144,7 @@ pub struct InterpArgs {
     /// Degree (or order) and end mode.
     #[command(flatten)]
     pub spline: SplineArgs,
-    /// scipy's `cval` for grid-constant (its padding and the value beyond it).
+    /// scipy's `cval` for grid-constant (its padding and the value beyond it) and constant (the value outside the grid).
     #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
     pub cval: f64,
     /// Common options.
@@ -331,17 +332,21 @@ fn degree_of(a: &SplineArgs) -> Result<usize, CliError> {
     }
 }
 
-fn mode_of(mode: &str) -> Result<Mode, CliError> {
-    mode.parse::<Mode>()
-        .map_err(|e| CliError::invalid("--mode", e.to_string()))
+fn scipy_mode_of(mode: &str) -> Result<ScipyMode, CliError> {
+    mode.parse::<ScipyMode>()
+        .map_err(|e| CliError::invalid("--mode", e))
 }
 
 fn degree_mode_extra(a: &SplineArgs) -> Result<Map<String, Value>, CliError> {
-    Ok(outcome::prefilter_extra(mode_of(&a.mode)?, degree_of(a)?))
+    Ok(outcome::prefilter_extra(
+        scipy_mode_of(&a.mode)?.name(),
+        degree_of(a)?,
+    ))
 }
 
 fn prefilter(a: &PrefilterArgs) -> Result<Outcome, CliError> {
-    let mode = mode_of(&a.spline.mode)?;
+    // scipy's spline_filter1d filters constant and wrap with the mirror rule.
+    let mode = scipy_mode_of(&a.spline.mode)?.spline_mode();
     let family = family_of_degree(degree_of(&a.spline)?)
         .map_err(|e| CliError::invalid("--degree", e.to_string()))?;
     let max_ulps = max_ulps(&a.common)?;
@@ -374,7 +379,7 @@ pub fn interp_input(
     coords: &Path,
     (user, format): (Vec<f64>, UserFormat),
     degree: usize,
-    mode: Mode,
+    mode: impl Into<ScipyMode>,
     max_ulps: Option<f64>,
 ) -> Result<InterpInput, CliError> {
     let samples_arr = read_array(samples)?;
@@ -403,13 +408,13 @@ pub fn interp_input(
         user,
         format,
         degree,
-        mode,
+        mode: mode.into(),
         max_ulps,
     })
 }
 
 fn interp(a: &InterpArgs) -> Result<Outcome, CliError> {
-    let mode = mode_of(&a.spline.mode)?;
+    let mode = scipy_mode_of(&a.spline.mode)?;
     let degree = degree_of(&a.spline)?;
     family_of_degree(degree).map_err(|e| CliError::invalid("--degree", e.to_string()))?;
     let max_ulps = max_ulps(&a.common)?;
@@ -610,6 +615,32 @@ fn knot_insertion(a: &KnotInsertionArgs) -> Result<Outcome, CliError> {
     Ok(Outcome::Insertion(s))
 }
 
+/// The stable-bound part of the table: the worst excess, where it is, the
+/// digits lost beyond the conditioning and the count over `K` × bound; or
+/// why there is no such verdict.
+fn bound_lines(text: &mut String, s: &CheckSummary) {
+    match (&s.worst_excess, &s.no_verdict_reason) {
+        (Some(w), _) => {
+            outln!(
+                text,
+                "stable bound: worst excess {:.3} at index {} (error {:e}, bound {:e}{}); digits lost beyond the conditioning {:.2}; over {} × bound: {}",
+                w.excess,
+                w.index,
+                w.error,
+                w.bound,
+                w.region
+                    .map(|r| format!(", {}", r.name()))
+                    .unwrap_or_default(),
+                s.digits_lost.unwrap_or(0.0),
+                fmt_opt(s.bound_factor),
+                s.over_bound
+            );
+        }
+        (None, Some(why)) => outln!(text, "verdict basis {}: {why}", s.verdict_basis),
+        (None, None) => {}
+    }
+}
+
 fn fmt_opt<T: std::fmt::Display>(x: Option<T>) -> String {
     x.map_or_else(|| "-".into(), |v| v.to_string())
 }
@@ -685,6 +716,7 @@ fn table(o: &Outcome) -> String {
                 fmt_opt(s.max_ulps),
                 s.failed
             );
+            bound_lines(&mut text, s);
         }
     }
     text

@@ -1,15 +1,18 @@
-//! `check --out DIR`: an HTML page with SVG charts and a `summary.json`
+//! `check --out DIR`: an HTML page with SVG charts (the error against
+//! index, against the stable bound), the per-element `reference.npy`,
+//! `error.npy` and `bound.npy`, and a `summary.json`
 //! whose `figures` `splinelab compare` accepts. The directory is built
 //! beside its destination and renamed into place, so a reader never sees a
 //! half-written one.
 
 use super::check::Outcome;
+use crate::array_io::write_npy_f64;
 use crate::chart::{Chart, Series, Style, line_chart};
 use crate::error::CliError;
 use crate::html::{escape, num, paragraph, table};
 use crate::report::Figure;
 use serde_json::{Value, json};
-use splinelab_verify::check::{CheckSummary, Region};
+use splinelab_verify::check::{CheckSummary, ElementError, Region};
 use std::path::{Path, PathBuf};
 
 /// Points drawn at most per chart: longer arrays are binned (max per bin).
@@ -82,6 +85,18 @@ fn element_figures(s: &CheckSummary) -> Vec<Figure> {
             format!("check.{k}.failed"),
             s.failed as f64,
             "elements",
+            0.5,
+        ),
+        Figure::error(
+            format!("check.{k}.over_bound"),
+            s.over_bound as f64,
+            "elements",
+            0.5,
+        ),
+        Figure::error(
+            format!("check.{k}.worst_excess"),
+            finite_or(s.worst_excess.as_ref().map_or(0.0, |w| w.excess), f64::MAX),
+            "error / stable bound",
             0.5,
         ),
     ];
@@ -175,6 +190,80 @@ pub fn error_chart(s: &CheckSummary) -> Chart {
     )
 }
 
+/// Each element's absolute error beside `K` × its stable bound (log
+/// scale, binned like [`error_chart`]): points above the line are the
+/// elements the default verdict fails.
+pub fn bound_chart(s: &CheckSummary) -> Chart {
+    let k = s.bound_factor.unwrap_or(1.0);
+    let floor = s
+        .elements
+        .iter()
+        .filter_map(|e| e.bound)
+        .filter(|b| *b > 0.0)
+        .fold(f64::INFINITY, f64::min);
+    let floor = if floor.is_finite() {
+        floor * 1e-3
+    } else {
+        1e-300
+    };
+    let pick = |f: &dyn Fn(&ElementError) -> Option<f64>| -> Vec<(f64, f64)> {
+        let pts: Vec<(f64, f64)> = s
+            .elements
+            .iter()
+            .filter_map(|e| Some((e.index as f64, f(e)?)))
+            .filter(|(_, v)| v.is_finite())
+            .map(|(i, v)| (i, v.max(floor)))
+            .collect();
+        let bin = pts.len().div_ceil(MAX_CHART_POINTS).max(1);
+        pts.chunks(bin)
+            .map(|c| {
+                c.iter()
+                    .copied()
+                    .fold((c[0].0, 0.0), |a, p| if p.1 > a.1 { p } else { a })
+            })
+            .collect()
+    };
+    let series = vec![
+        Series::line(format!("{k} × stable bound"), pick(&|e| Some(k * e.bound?))),
+        Series::points("|error|", pick(&|e| Some(e.abs))),
+    ];
+    line_chart(
+        "check_error_vs_bound",
+        &format!("check {}: error against the stable bound", s.kind),
+        "index",
+        "absolute error",
+        true,
+        series,
+        &format!(
+            "Absolute error of each element and {k} × the error a backward-stable computation would make there (log scale; below {floor:.1e} drawn at it; {} elements over, worst excess {}).",
+            s.over_bound,
+            s.worst_excess
+                .as_ref()
+                .map_or("-".into(), |w| num(w.excess))
+        ),
+    )
+}
+
+/// The per-element arrays of `--out`: `reference.npy` (the reference
+/// rounded to f64), `error.npy` (`|value − reference|`, infinite for a
+/// non-finite value) and `bound.npy` (the stable bound, NaN where the kind
+/// has none), each of shape `(n,)` in the user's element order.
+fn element_arrays(s: &CheckSummary) -> Result<Vec<(String, Vec<u8>)>, CliError> {
+    let n = s.elements.len();
+    let column = |f: &dyn Fn(&ElementError) -> f64| s.elements.iter().map(f).collect::<Vec<f64>>();
+    Ok(vec![
+        (
+            "reference.npy".into(),
+            write_npy_f64(&[n], column(&|e| e.reference))?,
+        ),
+        ("error.npy".into(), write_npy_f64(&[n], column(&|e| e.abs))?),
+        (
+            "bound.npy".into(),
+            write_npy_f64(&[n], column(&|e| e.bound.unwrap_or(f64::NAN)))?,
+        ),
+    ])
+}
+
 /// For `cond`: each element's error against its (reference) condition
 /// number, both on log axes — the picture of how a user's digits fall as
 /// the matrix gets worse.
@@ -244,8 +333,21 @@ fn body(o: &Outcome) -> String {
                         .unwrap_or_default()
                 )
             });
+            let basis = match (&s.worst_excess, &s.no_verdict_reason) {
+                (Some(w), _) => format!(
+                    " Stable bound ({}): worst excess {} at index {}, {} digits lost beyond the conditioning, {} elements over {} × the bound.",
+                    s.stable_bound.clone().unwrap_or_default(),
+                    num(w.excess),
+                    w.index,
+                    num(s.digits_lost.unwrap_or(0.0)),
+                    s.over_bound,
+                    num(s.bound_factor.unwrap_or(1.0))
+                ),
+                (None, Some(why)) => format!(" No stable-bound verdict: {why}."),
+                (None, None) => String::new(),
+            };
             paragraph(&format!(
-                "Verdict: {}. Reference: {}. {worst}Correct digits ≥ {:.2}; {} non-finite values; {} elements over --max-ulps.",
+                "Verdict: {}. Reference: {}. {worst}Correct digits ≥ {:.2}; {} non-finite values; {} elements over --max-ulps.{basis} Per element: reference.npy, error.npy, bound.npy.",
                 s.verdict, s.reference, s.digits_min, s.non_finite, s.failed
             )) + &table(
                 &format!("Errors in ulps of {}", s.format.name()),
@@ -257,14 +359,18 @@ fn body(o: &Outcome) -> String {
 }
 
 /// Renders the page and the files of the directory, in memory.
-fn files(o: &Outcome, json: &Value) -> Result<Vec<(String, String)>, CliError> {
-    let mut out = vec![];
+fn files(o: &Outcome, json: &Value) -> Result<Vec<(String, Vec<u8>)>, CliError> {
+    let mut out: Vec<(String, Vec<u8>)> = vec![];
     let mut html = body(o);
     if let Outcome::Elements(s) = o {
         let mut charts = vec![error_chart(s)];
+        if s.worst_excess.is_some() {
+            charts.push(bound_chart(s));
+        }
         if s.kind == "cond" {
             charts.push(cond_chart(s));
         }
+        out.extend(element_arrays(s)?);
         for chart in charts
             .into_iter()
             .filter(|c| c.series.iter().any(|x| !x.points.is_empty()))
@@ -277,7 +383,7 @@ fn files(o: &Outcome, json: &Value) -> Result<Vec<(String, String)>, CliError> {
                 escape(&chart.caption),
                 chart.id
             ));
-            out.push((format!("{}.svg", chart.id), svg));
+            out.push((format!("{}.svg", chart.id), svg.into_bytes()));
         }
     }
     let kind = json.get("kind").and_then(Value::as_str).unwrap_or("check");
@@ -286,11 +392,13 @@ fn files(o: &Outcome, json: &Value) -> Result<Vec<(String, String)>, CliError> {
          <body>\n<h1>splinelab check {k}</h1>\n{html}<p>Machine-readable: <a href=\"summary.json\">summary.json</a>.</p></body></html>\n",
         k = escape(kind)
     );
-    out.push(("index.html".into(), page));
+    out.push(("index.html".into(), page.into_bytes()));
     let summary = json!({"check": json, "figures": figures(o)});
     out.push((
         "summary.json".into(),
-        serde_json::to_string_pretty(&summary).map_err(CliError::numerical)?,
+        serde_json::to_string_pretty(&summary)
+            .map_err(CliError::numerical)?
+            .into_bytes(),
     ));
     Ok(out)
 }

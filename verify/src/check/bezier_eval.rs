@@ -4,7 +4,8 @@
 
 use super::bspline_eval::EXACT_FLOAT_BITS;
 use super::format::UserFormat;
-use super::summary::{CheckSummary, Context, element_error, from_elements};
+use super::stable_bound::{gamma, unit_roundoff};
+use super::summary::{BoundBasis, CheckSummary, Context, element_error, from_elements};
 use super::{CheckError, require_finite, require_len};
 use rayon::prelude::*;
 use rug::{Float, Rational};
@@ -23,6 +24,24 @@ pub fn de_casteljau_exact(b: &[Rational], t: &Rational) -> Rational {
         }
     }
     d.swap_remove(0)
+}
+
+/// `Σ_i |b_i| |C(n,i) tⁱ (1−t)^{n−i}|` exactly: the scale of de
+/// Casteljau's rounding errors (de Casteljau on `|b|` inside `[0, 1]`).
+pub fn abs_bernstein_sum(b: &[Rational], t: &Rational) -> Rational {
+    let n = b.len() - 1;
+    let (t, s) = (t.clone().abs(), Rational::from(1 - t).abs());
+    let mut binom = rug::Integer::from(1);
+    let mut sum = Rational::new();
+    for (i, bi) in b.iter().enumerate() {
+        let term = Rational::from(bi.abs_ref())
+            * Rational::from(&binom)
+            * rug::ops::Pow::pow(t.clone(), i as u32)
+            * rug::ops::Pow::pow(s.clone(), (n - i) as u32);
+        sum += term;
+        binom = binom * (n - i) as u64 / (i as u64 + 1);
+    }
+    sum
 }
 
 /// Checks `user[j] ≈ B(t_j)` for the Bernstein coefficients `b` (parallel over t).
@@ -50,13 +69,17 @@ pub fn check_bezier_eval(
     }
     let q = |x: &f64| Rational::from_f64(*x).expect("finite");
     let bq: Vec<Rational> = b.iter().map(q).collect();
+    let g = gamma(2 * (b.len() - 1), format);
+    let u0 = unit_roundoff(format);
     let elements = t
         .par_iter()
         .zip(user.par_iter())
         .enumerate()
         .map(|(i, (t, u))| {
-            let r = Float::with_val(EXACT_FLOAT_BITS, &de_casteljau_exact(&bq, &q(t)));
-            element_error(i, *u, &r, format, None)
+            let t = q(t);
+            let r = Float::with_val(EXACT_FLOAT_BITS, &de_casteljau_exact(&bq, &t));
+            let scale = abs_bernstein_sum(&bq, &t).to_f64();
+            element_error(i, *u, &r, format, None).with_bound(g * scale + u0 * r.to_f64().abs())
         })
         .collect();
     let ctx = Context {
@@ -66,6 +89,10 @@ pub fn check_bezier_eval(
         reference: "exact rational de Casteljau".into(),
         horizon: None,
         max_ulps,
+        bound: BoundBasis::PerElement(format!(
+            "γ_{}·Σ_i |b_i||B_i^n(t)| + u|p(t)|: the forward error of de Casteljau's algorithm (Farouki–Rajan 1987; Mainar–Peña 1999; Higham, Accuracy and Stability, 2nd ed., §5.1 for the analogous Horner bound)",
+            2 * (b.len() - 1)
+        )),
     };
     Ok(from_elements(&ctx, elements))
 }

@@ -4,7 +4,10 @@
 
 use super::format::UserFormat;
 use super::rational_bspline::RationalBSpline;
-use super::summary::{CheckSummary, Context, ElementError, element_error, from_elements};
+use super::stable_bound::{gamma, unit_roundoff};
+use super::summary::{
+    BoundBasis, CheckSummary, Context, ElementError, element_error, from_elements,
+};
 use super::{CheckError, require_finite, require_len};
 use rayon::prelude::*;
 use rug::{Float, Rational};
@@ -51,6 +54,9 @@ pub fn undefined_reference(index: usize, x: f64) -> ElementError {
         abs: e,
         digits: 0.0,
         region: None,
+        // Nothing but NaN is right here: any other value is infinitely over.
+        bound: Some(0.0),
+        excess: Some(e),
     }
 }
 
@@ -68,6 +74,8 @@ pub fn check_bspline_eval(input: &BSplineEvalInput) -> Result<CheckSummary, Chec
             "len(x)·(k+1)² = {work} exceeds {MAX_WORK}"
         )));
     }
+    let gk = gamma(6 * input.k + 2, input.format);
+    let u0 = unit_roundoff(input.format);
     let elements: Vec<ElementError> = input
         .x
         .par_iter()
@@ -79,7 +87,9 @@ pub fn check_bspline_eval(input: &BSplineEvalInput) -> Result<CheckSummary, Chec
                 return undefined_reference(i, *u);
             }
             let r = Float::with_val(EXACT_FLOAT_BITS, &s.eval(&x));
+            let scale = s.abs_eval(&x).to_f64();
             element_error(i, *u, &r, input.format, None)
+                .with_bound(gk * scale + u0 * r.to_f64().abs())
         })
         .collect();
     let ctx = Context {
@@ -89,6 +99,10 @@ pub fn check_bspline_eval(input: &BSplineEvalInput) -> Result<CheckSummary, Chec
         reference: "exact rational Cox–de Boor recursion (scipy convention)".into(),
         horizon: None,
         max_ulps: input.max_ulps,
+        bound: BoundBasis::PerElement(format!(
+            "γ_{}·Σ_j |c_j||B_j(x)| + u|f(x)|: de Boor / Cox–de Boor evaluation, each basis value a product of k levels of non-negative terms with ≤ 5 roundings each and a sum of k + 1 products (Higham, Accuracy and Stability, 2nd ed., §3.1 and Lemma 3.1; Cox 1972 on the stability of the recurrence); outside the base interval the same form is used",
+            6 * input.k + 2
+        )),
     };
     Ok(from_elements(&ctx, elements))
 }

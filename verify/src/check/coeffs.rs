@@ -5,7 +5,8 @@
 use super::CheckError;
 use super::agreement::{Reference, certify};
 use super::format::UserFormat;
-use super::summary::{CheckSummary, Context, summarize};
+use super::stable_bound::unit_roundoff;
+use super::summary::{BoundBasis, CheckSummary, Context, summarize_bounded};
 use splinelab::scalar::Real;
 use splinelab::sspline::{CoefficientMethod, SplineFamily, coefficients};
 
@@ -62,6 +63,12 @@ pub fn check_coeffs(
         ),
         horizon: None,
         max_ulps,
+        bound: BoundBasis::PerElement(format!(
+            "u|c_k|, u = 2^-{}: the coefficients are constants, so a stable computation returns them correctly rounded, or within one rounding (Higham, Accuracy and Stability, 2nd ed., §2.2)",
+            format.bits()
+        )),
     };
-    Ok(summarize(&ctx, user, &cert.values))
+    let u = unit_roundoff(format);
+    let bounds: Vec<f64> = cert.values.iter().map(|c| u * c.to_f64().abs()).collect();
+    Ok(summarize_bounded(&ctx, user, &cert.values, &bounds))
 }

@@ -13,12 +13,22 @@
 
 use super::agreement::{Reference, certify};
 use super::format::UserFormat;
-use super::summary::{CheckSummary, Context, summarize};
+use super::summary::{BoundBasis, CheckSummary, Context, summarize};
 use super::{CheckError, require_finite, require_len};
 use crate::conditioning::Basis;
 use splinelab::matrix_condition::{cond_inf, cond2};
 use splinelab::scalar::Real;
 use splinelab::surface_deformation::vandermonde::{bernstein_vandermonde, monomial_vandermonde};
+
+/// Why `cond` has no stable-bound verdict: a backward-stable SVD perturbs
+/// every singular value by at most `p(n)·u·σ_max` (Higham, *Accuracy and
+/// Stability*, 2nd ed., backward stability; Weyl's bound for singular values), so a
+/// computed `cond₂` is only known to within a relative `p(n)·u·cond₂`, and
+/// `p(n)` is a modest but algorithm-dependent, first-order constant
+/// (LAPACK quotes none); the inverse behind `cond_∞` likewise. A bound
+/// with an unspecified constant cannot give a pass or fail, so `cond` is
+/// judged by `--max-ulps` only.
+pub const NO_STABLE_BOUND: &str = "no stable bound for condition numbers: a backward-stable SVD or inverse determines cond only to a relative p(n)·u·cond with an algorithm-dependent first-order constant p(n) (Weyl's bound for singular values), so no pass/fail follows from the problem alone; judged by --max-ulps only";
 
 /// Largest number of nodes in one set (a 501 × 501 matrix, as `splinelab cond`).
 pub const MAX_NODES: usize = 501;
@@ -130,6 +140,7 @@ pub fn check_cond(input: &CondInput) -> Result<CheckSummary, CheckError> {
         ),
         horizon: None,
         max_ulps: input.max_ulps,
+        bound: BoundBasis::Unavailable(NO_STABLE_BOUND.into()),
     };
     Ok(summarize(&ctx, &input.user, &cert.values))
 }

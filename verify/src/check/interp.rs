@@ -1,4 +1,4 @@
-//! `interp`: a user's interpolated values of 1-D or 2-D samples at query
+//! `interp`: a user's interpolated values of N-D samples at query
 //! points, in the convention of `scipy.ndimage.map_coordinates` (prefilter
 //! on, `order` = degree), against a reference built from the exact inputs.
 //!
@@ -46,10 +46,13 @@
 use super::agreement::{Reference, certify};
 use super::format::UserFormat;
 use super::prefilter::{Mode, family_of_degree, horizon, interpolation_coefficients};
-use super::summary::{CheckSummary, Context, ElementError, Region, element_error, from_elements};
+use super::stable_bound::{eval_constant, solve_bound, unit_roundoff};
+use super::summary::{
+    BoundBasis, CheckSummary, Context, ElementError, Region, element_error, from_elements,
+};
 use super::{CheckError, require_finite, require_len};
 use rayon::prelude::*;
-use rug::{Integer, Rational};
+use rug::{Float, Integer, Rational};
 use splinelab::scalar::Real;
 use splinelab::sspline::SplineFamily;
 
@@ -67,10 +70,95 @@ pub const SCIPY_PAD: usize = 12;
 
 /// The padding `P` scipy applies for `mode` at `degree`: [`SCIPY_PAD`] for
 /// `nearest` and `grid-constant` when it prefilters (degree ≥ 2), else 0.
-pub fn scipy_padding(mode: Mode, degree: usize) -> usize {
+pub fn scipy_padding(mode: ScipyMode, degree: usize) -> usize {
     match mode {
-        Mode::Nearest | Mode::GridConstant if degree > 1 => SCIPY_PAD,
+        ScipyMode::Shared(Mode::Nearest | Mode::GridConstant) if degree > 1 => SCIPY_PAD,
         _ => 0,
+    }
+}
+
+/// A mode of scipy 1.17's `map_coordinates`: the five of the shared
+/// [`Mode`] and the two that fold points differently from how they extend
+/// the coefficients — `constant` (the `mirror` spline inside `[0, n − 1]` on
+/// every axis, `cval` at any point outside it) and `wrap` (the point wrapped
+/// with period `n − 1` into `[0, n − 1]`, then the `mirror` spline).
+/// scipy's `_get_spline_boundary_mode` in `ni_interpolation.c` gives both the
+/// mirror extension of the coefficients and `spline_filter`'s mirror rule.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ScipyMode {
+    /// One of the five shared modes.
+    Shared(Mode),
+    /// scipy's `constant` (its default).
+    Constant,
+    /// scipy's `wrap` (period `n − 1`).
+    Wrap,
+}
+
+impl From<Mode> for ScipyMode {
+    fn from(m: Mode) -> Self {
+        ScipyMode::Shared(m)
+    }
+}
+
+impl ScipyMode {
+    /// scipy's name.
+    pub fn name(self) -> &'static str {
+        match self {
+            ScipyMode::Shared(m) => m.name(),
+            ScipyMode::Constant => "constant",
+            ScipyMode::Wrap => "wrap",
+        }
+    }
+
+    /// The mode the coefficients are filtered and extended with.
+    pub fn spline_mode(self) -> Mode {
+        match self {
+            ScipyMode::Shared(m) => m,
+            ScipyMode::Constant | ScipyMode::Wrap => Mode::Mirror,
+        }
+    }
+}
+
+impl std::str::FromStr for ScipyMode {
+    type Err = String;
+
+    /// Every name scipy's `map_coordinates` takes.
+    fn from_str(s: &str) -> Result<Self, String> {
+        match s {
+            "constant" => Ok(ScipyMode::Constant),
+            "wrap" => Ok(ScipyMode::Wrap),
+            _ => s.parse::<Mode>().map(ScipyMode::Shared).map_err(|_| {
+                format!(
+                    "unknown mode {s:?}: expected constant, nearest, reflect (grid-mirror), mirror, grid-wrap, wrap or grid-constant"
+                )
+            }),
+        }
+    }
+}
+
+/// Where scipy evaluates coordinate `x` of an axis of `n` samples, exactly:
+/// `None` when a `constant` point is outside `[0, n − 1]` (the value is
+/// `cval`), the point wrapped with period `n − 1` for `wrap`
+/// (`map_coordinate` in `ni_interpolation.c`: `(0, n − 1]` from below,
+/// `[0, n − 1)` from above), else `x` itself.
+pub fn scipy_point(mode: ScipyMode, x: &Rational, n: usize) -> Option<Rational> {
+    let last = Rational::from(n as u64 - 1);
+    match mode {
+        ScipyMode::Constant if *x < 0 || *x > last => None,
+        ScipyMode::Wrap if *x < 0 || *x > last => {
+            if n <= 1 {
+                return Some(Rational::new());
+            }
+            let sz = Rational::from(n as u64 - 1);
+            Some(if *x < 0 {
+                let k = (-x.clone() / &sz).trunc();
+                x.clone() + sz * (k + 1u32)
+            } else {
+                let k = Rational::from(x / &sz).trunc();
+                x.clone() - sz * k
+            })
+        }
+        _ => Some(x.clone()),
     }
 }
 
@@ -90,9 +178,10 @@ pub struct InterpInput {
     pub format: UserFormat,
     /// Spline degree `d` (scipy's `order`), in [`DEGREES`](super::prefilter::DEGREES).
     pub degree: usize,
-    /// The end mode (any of scipy's five; see the module documentation for
-    /// `nearest` and `grid-constant`).
-    pub mode: Mode,
+    /// The end mode: any of scipy's `map_coordinates` modes (see the
+    /// module documentation for `nearest`, `grid-constant`, `constant` and
+    /// `wrap`).
+    pub mode: ScipyMode,
     /// `--max-ulps`.
     pub max_ulps: Option<f64>,
 }
@@ -137,6 +226,18 @@ fn weights(d: usize, x: &Rational) -> Vec<(i64, Rational)> {
         .collect()
 }
 
+/// `|β'(x − i)|` for the taps of [`weights`]: `β'_d(t) = β_{d−1}(t + ½) −
+/// β_{d−1}(t − ½)`, exact then rounded to f64 (0 for degree 0).
+fn derivative_weight(d: usize, t: &Rational) -> f64 {
+    if d == 0 {
+        return 0.0;
+    }
+    let half = Rational::from((1, 2));
+    let plus = centred_bspline(d - 1, &Rational::from(t + &half));
+    let minus = centred_bspline(d - 1, &Rational::from(t - &half));
+    (plus - minus).abs().to_f64()
+}
+
 /// The samples padded by `pad` on each side of every axis, as scipy's
 /// `np.pad` does: `mode.fold` of the index (`edge` for `nearest`), `cval`
 /// where it has none (`grid-constant`). Returns the values and the shape.
@@ -165,39 +266,73 @@ fn padded(
     (values, big)
 }
 
-/// A tap of the sum: the coefficient's index per axis (`None`: beyond a
-/// `grid-constant` grid, worth `cval`) and its exact weight.
-type Taps = Vec<(Option<usize>, Rational)>;
+/// One tap of one axis: the coefficient's index on that axis (`None`:
+/// beyond a `grid-constant` grid, worth `cval`), its exact weight, and
+/// `|β'|` there (for the bound's coordinate term).
+#[derive(Debug, Clone)]
+struct Tap {
+    index: Option<usize>,
+    w: Rational,
+    dw: f64,
+}
+
+/// The taps of one point (one list per axis), or `None` where scipy returns
+/// `cval` without interpolating (`constant` outside the grid); and per axis
+/// the coordinate rounding `δx_a` a stable evaluation makes first.
+#[derive(Debug, Clone)]
+struct PointTaps {
+    axes: Option<Vec<Vec<Tap>>>,
+    shift_error: Vec<f64>,
+}
 
 struct InterpReference {
     /// The (padded) samples and their shape.
     grid: Vec<f64>,
     shape: Vec<usize>,
     family: SplineFamily,
-    mode: Mode,
+    mode: ScipyMode,
     cval: f64,
-    /// Per point, per axis: the taps.
-    taps: Vec<Vec<Taps>>,
+    /// Per point: the taps.
+    taps: Vec<PointTaps>,
 }
 
 impl InterpReference {
     fn new(input: &InterpInput, family: SplineFamily, cval: f64, pad: usize) -> Self {
-        let (grid, shape) = padded(&input.samples, &input.shape, pad, input.mode, cval);
+        let spline = input.mode.spline_mode();
+        let (grid, shape) = padded(&input.samples, &input.shape, pad, spline, cval);
         let dims = shape.len();
+        let u = unit_roundoff(input.format);
         let taps = input
             .points
             .par_chunks(dims)
             .map(|p| {
-                p.iter()
+                let mut shift_error = vec![0.0; dims];
+                let axes = p
+                    .iter()
+                    .zip(&input.shape)
                     .zip(&shape)
-                    .map(|(x, n)| {
-                        let x = Rational::from_f64(*x).expect("finite coordinate") + pad as u32;
-                        weights(input.degree, &x)
-                            .into_iter()
-                            .map(|(i, w)| (input.mode.fold(i, *n), w))
-                            .collect()
+                    .enumerate()
+                    .map(|(a, ((x, n0), n))| {
+                        let given = Rational::from_f64(*x).expect("finite coordinate");
+                        let at = scipy_point(input.mode, &given, *n0)? + pad as u32;
+                        let inside = *x >= 0.0 && *x <= (*n0 as f64 - 1.0);
+                        if pad > 0 || !inside {
+                            // x + P, or a fold: one rounding of the result.
+                            shift_error[a] = u * (x.abs() + at.to_f64().abs());
+                        }
+                        Some(
+                            weights(input.degree, &at)
+                                .into_iter()
+                                .map(|(i, w)| Tap {
+                                    index: spline.fold(i, *n),
+                                    dw: derivative_weight(input.degree, &Rational::from(&at - i)),
+                                    w,
+                                })
+                                .collect(),
+                        )
                     })
-                    .collect()
+                    .collect();
+                PointTaps { axes, shift_error }
             })
             .collect();
         InterpReference {
@@ -220,7 +355,8 @@ impl InterpReference {
             let lines: Vec<usize> = (0..c.len()).filter(|k| (k / s) % n == 0).collect();
             for start in lines {
                 let line: Vec<T> = (0..n).map(|j| c[start + j * s].clone()).collect();
-                let solved = interpolation_coefficients(&line, &self.family, self.mode)?;
+                let solved =
+                    interpolation_coefficients(&line, &self.family, self.mode.spline_mode())?;
                 for (j, v) in solved.into_iter().enumerate() {
                     c[start + j * s] = v;
                 }
@@ -228,6 +364,122 @@ impl InterpReference {
         }
         Ok(c)
     }
+
+    /// The stable bound of every point (module [`stable_bound`]):
+    /// `γ_eval (Σ|c||W| + Σ_a Σ|c||W^(a)|) + Σ|W| E + Σ_a δx_a Σ|c||∂_a W| + u|f|`
+    /// (`W^(a)`: the weights with axis `a`'s set to 1), with the
+    /// coefficients and their bounds `E` from [`solve_bound`].
+    fn bounds(
+        &self,
+        degree: usize,
+        format: UserFormat,
+        refs: &[Float],
+    ) -> Result<Vec<f64>, CheckError> {
+        let (c, e) = if degree > 1 {
+            solve_bound(
+                &self.grid,
+                &self.shape,
+                &self.family,
+                self.mode.spline_mode(),
+                format,
+            )?
+        } else {
+            // No prefilter: the coefficients are the samples, exactly.
+            (self.grid.clone(), vec![0.0; self.grid.len()])
+        };
+        let g = eval_constant(degree, self.shape.len(), format);
+        let u = unit_roundoff(format);
+        let abs_c = |k: Option<usize>| k.map_or(self.cval.abs(), |k| c[k].abs());
+        let err = |k: Option<usize>| k.map_or(0.0, |k| e[k]);
+        Ok(self
+            .taps
+            .par_iter()
+            .zip(refs.par_iter())
+            .map(|(p, r)| {
+                let rounding = u * r.to_f64().abs();
+                let Some(axes) = &p.axes else {
+                    return rounding;
+                };
+                let moved: f64 = (0..axes.len())
+                    .filter(|&a| p.shift_error[a] > 0.0)
+                    .map(|a| {
+                        let special = Some((a, Factor::Derivative));
+                        p.shift_error[a] * abs_tensor(axes, &self.shape, special, &abs_c)
+                    })
+                    .sum();
+                let absolute_weights: f64 = (0..axes.len())
+                    .map(|a| abs_tensor(axes, &self.shape, Some((a, Factor::One)), &abs_c))
+                    .sum();
+                g * (abs_tensor(axes, &self.shape, None, &abs_c) + absolute_weights)
+                    + abs_tensor(axes, &self.shape, None, &err)
+                    + moved
+                    + rounding
+            })
+            .collect())
+    }
+}
+
+/// What axis `a`'s factor is in [`abs_tensor`]: `|β|` on every axis but one,
+/// where it is `|β'|` (the coordinate term) or 1 (a weight known only to an
+/// absolute `γ`, as scipy's last weight `1 − Σ others`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Factor {
+    Derivative,
+    One,
+}
+
+/// `Σ_j v(j) Π_a |W_a|` over the taps, axis `special.0` replaced by
+/// `special.1`, in f64.
+fn abs_tensor(
+    axes: &[Vec<Tap>],
+    shape: &[usize],
+    special: Option<(usize, Factor)>,
+    v: &impl Fn(Option<usize>) -> f64,
+) -> f64 {
+    fn walk(
+        axes: &[Vec<Tap>],
+        shape: &[usize],
+        special: Option<(usize, Factor)>,
+        v: &impl Fn(Option<usize>) -> f64,
+        a: usize,
+        offset: Option<usize>,
+    ) -> f64 {
+        if a == axes.len() {
+            return v(offset);
+        }
+        axes[a]
+            .iter()
+            .map(|t| {
+                let w = match special {
+                    Some((b, Factor::Derivative)) if b == a => t.dw,
+                    Some((b, Factor::One)) if b == a => 1.0,
+                    _ => t.w.to_f64().abs(),
+                };
+                let next = offset.zip(t.index).map(|(o, i)| o * shape[a] + i);
+                w * walk(axes, shape, special, v, a + 1, next)
+            })
+            .sum()
+    }
+    walk(axes, shape, special, v, 0, Some(0))
+}
+
+/// `Σ_j c_j Π_a W_a` over the taps in `T` (axis by axis, as 1-D sums nest).
+fn tensor_value<T: Real>(
+    axes: &[Vec<Tap>],
+    shape: &[usize],
+    at: &impl Fn(Option<usize>) -> T,
+    a: usize,
+    offset: Option<usize>,
+) -> T {
+    if a == axes.len() {
+        return at(offset);
+    }
+    let mut sum = T::zero();
+    for t in &axes[a] {
+        let next = offset.zip(t.index).map(|(o, i)| o * shape[a] + i);
+        sum += T::from_rational(&t.w) * tensor_value(axes, shape, at, a + 1, next);
+    }
+    sum
 }
 
 impl Reference for InterpReference {
@@ -235,30 +487,14 @@ impl Reference for InterpReference {
         let c = self.coefficients::<T>()?;
         let cval = T::from_f64_exact(self.cval);
         let at = |index: Option<usize>| index.map_or_else(|| cval.clone(), |k| c[k].clone());
-        let cols = self.shape.get(1).copied().unwrap_or(1);
-        let value = |w: &[Taps]| -> T {
-            let mut sum = T::zero();
-            match w {
-                [x] => {
-                    for (i, wi) in x {
-                        sum += T::from_rational(wi) * at(*i);
-                    }
-                }
-                [x, y] => {
-                    for (i, wi) in x {
-                        let mut row = T::zero();
-                        for (j, wj) in y {
-                            let k = i.zip(*j).map(|(i, j)| i * cols + j);
-                            row += T::from_rational(wj) * at(k);
-                        }
-                        sum += T::from_rational(wi) * row;
-                    }
-                }
-                _ => unreachable!("validated: 1-D or 2-D"),
-            }
-            sum
-        };
-        Ok(self.taps.iter().map(|w| value(w)).collect())
+        Ok(self
+            .taps
+            .iter()
+            .map(|p| match &p.axes {
+                Some(axes) => tensor_value(axes, &self.shape, &at, 0, Some(0)),
+                None => cval.clone(),
+            })
+            .collect())
     }
 }
 
@@ -278,10 +514,10 @@ fn region(point: &[f64], shape: &[usize], h: usize) -> Region {
 fn validate(inp: &InterpInput, cval: f64) -> Result<(usize, SplineFamily), CheckError> {
     let family = family_of_degree(inp.degree)?;
     let dims = inp.shape.len();
-    if !(1..=2).contains(&dims) {
-        return Err(CheckError::Invalid(format!(
-            "samples must be 1-D or 2-D, got {dims} axes"
-        )));
+    if dims == 0 {
+        return Err(CheckError::Invalid(
+            "samples must have at least one axis, got a 0-D array".into(),
+        ));
     }
     if inp.shape.contains(&0) {
         return Err(CheckError::Empty("samples".into()));
@@ -318,7 +554,7 @@ fn validate(inp: &InterpInput, cval: f64) -> Result<(usize, SplineFamily), Check
     });
     let work = padded_len
         .saturating_mul(family.pole_count().max(1))
-        .saturating_add(count.saturating_mul((d + 2).pow(dims as u32)));
+        .saturating_add(count.saturating_mul((d + 2).saturating_pow(dims.min(64) as u32)));
     if work > MAX_WORK {
         return Err(CheckError::TooLarge(format!(
             "samples·q + points·(d+2)^D = {work} exceeds {MAX_WORK}"
@@ -344,11 +580,13 @@ pub fn check_interp_with_cval(input: &InterpInput, cval: f64) -> Result<CheckSum
     let pad = scipy_padding(input.mode, input.degree);
     let r = InterpReference::new(input, family, cval, pad);
     let cert = certify(&r, input.format, 0)?;
+    let bounds = r.bounds(input.degree, input.format, &cert.values)?;
     let elements: Vec<ElementError> = (0..count)
         .into_par_iter()
         .map(|k| {
             let reg = region(&input.points[k * dims..(k + 1) * dims], &input.shape, h);
             element_error(k, input.user[k], &cert.values[k], input.format, Some(reg))
+                .with_bound(bounds[k])
         })
         .collect();
     let ctx = Context {
@@ -364,15 +602,37 @@ pub fn check_interp_with_cval(input: &InterpInput, cval: f64) -> Result<CheckSum
         ),
         horizon: Some(h),
         max_ulps: input.max_ulps,
+        bound: BoundBasis::PerElement(interp_bound_text(input.degree, dims, input.format)),
     };
     Ok(from_elements(&ctx, elements))
 }
 
+/// The account of the interpolated values' stable bound.
+fn interp_bound_text(d: usize, dims: usize, format: UserFormat) -> String {
+    format!(
+        "γ_{m}·Σ_j |c_j|(|W_j(x)| + Σ_a |W_j^(a)(x)|) + Σ_j |W_j(x)|·E_j + Σ_a δx_a·Σ_j |c_j||∂_a W_j(x)| + u|f(x)| in {}: \
+         a stable tensor-product evaluation (each weight within γ of itself, or of 1 where it is \
+         formed as 1 − Σ others as scipy does: W^(a) has axis a's weights set to 1; m = D(6d + 2) = {m}; \
+         Higham, Accuracy and Stability, 2nd ed., §3.1) of coefficients with the banded solve's \
+         componentwise bound E per axis (§7.2, Thm 9.4), δx_a = u(|x_a| + |x'_a|) where the point \
+         is shifted (scipy's +12 padding) or folded",
+        format.name(),
+        m = dims * (6 * d + 2)
+    )
+}
+
 /// The reference text's account of scipy's padding (empty without one).
-fn padding_text(mode: Mode, pad: usize, cval: f64) -> String {
+fn padding_text(mode: ScipyMode, pad: usize, cval: f64) -> String {
     match (pad, mode) {
+        (0, ScipyMode::Constant) => format!(
+            "scipy's constant mode: the mirror spline inside [0, n − 1], cval {cval} outside; "
+        ),
+        (0, ScipyMode::Wrap) => {
+            "scipy's wrap mode: the point wrapped with period n − 1, then the mirror spline; "
+                .into()
+        }
         (0, _) => String::new(),
-        (_, Mode::GridConstant) => format!(
+        (_, ScipyMode::Shared(Mode::GridConstant)) => format!(
             "scipy's map_coordinates convention: samples padded by {pad} with cval {cval}, evaluated at x + {pad}; "
         ),
         _ => format!(
@@ -415,7 +675,7 @@ mod tests {
             user: vec![0.0; 2],
             format: UserFormat::F64,
             degree,
-            mode,
+            mode: mode.into(),
             max_ulps: None,
         };
         let family = family_of_degree(degree).unwrap();

@@ -51,11 +51,22 @@ pub struct InsertionSummary {
     pub failed: usize,
     /// `"pass"` or `"fail"`.
     pub verdict: String,
+    /// `"stable-bound"` without `--max-ulps` (the threshold is
+    /// [`default_max_ulps`], the bound below), `"max-ulps"` with it.
+    pub verdict_basis: String,
+    /// The stable bound the default threshold stands for, and its source.
+    pub stable_bound: String,
 }
 
 /// Default tolerance in ulps of the curve's scale: a correct insertion in
 /// floating point forms each new coefficient by one convex combination
-/// (≤ 2 roundings), and evaluation mixes `k + 1` of them.
+/// (≤ 2 roundings), and evaluation mixes `k + 1` of them. As a stable
+/// bound ([`super::stable_bound`]): Boehm's new coefficient
+/// `(1 − α) c_{i−1} + α c_i`, `α = (x − t_i)/(t_{i+k} − t_i)`, carries at
+/// most `γ_7 max(|c_{i−1}|, |c_i|)` (3 roundings in `α`, 1 in `1 − α`, 2
+/// products, 1 sum; Higham, *Accuracy and Stability*, 2nd ed., Lemma 3.1),
+/// and the B-splines sum to 1, so the curve moves by at most `γ_7 max |c|`,
+/// under 8 ulps of the scale; `4(k + 1) ≥ 8` for `k ≥ 1`.
 pub fn default_max_ulps(k: usize) -> f64 {
     4.0 * (k as f64 + 1.0)
 }
@@ -136,5 +147,15 @@ pub fn check_knot_insertion(
         max_ulps: limit,
         failed,
         verdict: verdict(failed),
+        verdict_basis: if max_ulps.is_some() {
+            "max-ulps"
+        } else {
+            "stable-bound"
+        }
+        .into(),
+        stable_bound: format!(
+            "a stable Boehm insertion moves the curve by at most γ_7·max|c| (convex combinations, partition of unity; Higham, Accuracy and Stability, 2nd ed., Lemma 3.1): default threshold 4(k + 1) = {} ulps of max|c|",
+            default_max_ulps(k)
+        ),
     })
 }

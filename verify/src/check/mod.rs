@@ -7,7 +7,9 @@
 //! [`bezier_eval`], [`knot_insertion`]) and the shared
 //! pieces: the user's number format ([`format`]), the per-element errors and
 //! their summary ([`summary`]), and the `p / p + 64` agreement driver that
-//! certifies an MPFR reference ([`agreement`]). Exact kinds (Bézier, B-spline
+//! certifies an MPFR reference ([`agreement`]), and the error a
+//! backward-stable computation would make ([`stable_bound`]), from which the
+//! default verdict comes. Exact kinds (Bézier, B-spline
 //! values, knot insertion) use rational arithmetic and need no ladder.
 
 pub mod agreement;
@@ -22,13 +24,17 @@ pub mod knot_insertion;
 pub mod outcome;
 pub mod prefilter;
 pub mod rational_bspline;
+pub mod stable_bound;
 pub mod summary;
 
 pub use agreement::{Certified, LADDER};
 pub use format::UserFormat;
 pub use outcome::Outcome;
 pub use prefilter::{EXACT_MODES, Mode, ParseMode};
-pub use summary::{CheckSummary, ElementError, Region, RegionSummary, Worst};
+pub use stable_bound::BOUND_FACTOR;
+pub use summary::{
+    BoundBasis, CheckSummary, ElementError, Region, RegionSummary, Worst, WorstExcess,
+};
 
 use splinelab::sspline::SsplineError;
 

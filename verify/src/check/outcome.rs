@@ -3,7 +3,6 @@
 //! print the same object.
 
 use super::knot_insertion::InsertionSummary;
-use super::prefilter::Mode;
 use super::summary::CheckSummary;
 use serde_json::{Map, Value, json};
 
@@ -40,10 +39,10 @@ impl Outcome {
 }
 
 /// The fields `check prefilter` and `check interp` add to the contract:
-/// `mode` and `degree`.
-pub fn prefilter_extra(mode: Mode, degree: usize) -> Map<String, Value> {
+/// `mode` (scipy's name) and `degree`.
+pub fn prefilter_extra(mode: &str, degree: usize) -> Map<String, Value> {
     let mut m = Map::new();
-    m.insert("mode".into(), json!(mode.name()));
+    m.insert("mode".into(), json!(mode));
     m.insert("degree".into(), json!(degree));
     m
 }

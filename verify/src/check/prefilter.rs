@@ -17,7 +17,8 @@
 use super::agreement::{Reference, certify};
 use super::banded::{Banded, solve_dense, solve_with_corners};
 use super::format::UserFormat;
-use super::summary::{CheckSummary, Context, summarize};
+use super::stable_bound::{solve_bound, solve_constant};
+use super::summary::{BoundBasis, CheckSummary, Context, summarize_bounded};
 use super::{CheckError, require_finite, require_len};
 pub use splinelab::ndimage::mode::Mode;
 use splinelab::scalar::Real;
@@ -137,6 +138,21 @@ pub fn horizon(family: &SplineFamily, format: UserFormat) -> Result<usize, Check
     })
 }
 
+/// The account of the prefilter's stable bound (half-bandwidth `q`).
+pub fn solve_bound_text(q: usize, format: UserFormat) -> String {
+    format!(
+        "componentwise (Skeel) bound of a backward-stable banded solve in {}: \
+         γ_{}/(1 − γ_{})·(|B⁻¹||B||c|)_k + u|c_k| = {:.3e}·(|B⁻¹||B||c|)_k + u|c_k| \
+         (Higham, Accuracy and Stability of Numerical Algorithms, 2nd ed., §7.2 and Thm 9.4 \
+         with bandwidth w = q + 1 = {}, one more u for the rounded matrix entries)",
+        format.name(),
+        3 * (q + 1) + 1,
+        q + 1,
+        solve_constant(q, format),
+        q + 1
+    )
+}
+
 /// What `check prefilter` is given.
 #[derive(Debug, Clone)]
 pub struct PrefilterInput {
@@ -201,8 +217,16 @@ pub fn check_prefilter(input: &PrefilterInput) -> Result<CheckSummary, CheckErro
         ),
         horizon: Some(horizon(&input.family, input.format)?),
         max_ulps: input.max_ulps,
+        bound: BoundBasis::PerElement(solve_bound_text(input.family.pole_count(), input.format)),
     };
-    Ok(summarize(&ctx, &input.user, &cert.values))
+    let (_, bounds) = solve_bound(
+        &input.samples,
+        &[n],
+        &input.family,
+        input.mode,
+        input.format,
+    )?;
+    Ok(summarize_bounded(&ctx, &input.user, &cert.values, &bounds))
 }
 
 #[cfg(test)]

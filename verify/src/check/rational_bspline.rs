@@ -102,6 +102,24 @@ impl RationalBSpline {
     /// value is scipy's own definition, including at an empty interval).
     /// `O(k²)` rational operations; extrapolates from the end pieces.
     pub fn eval(&self, x: &Rational) -> Rational {
+        let (l, h) = self.basis(x);
+        h.iter()
+            .zip(&self.c[l - self.k..=l])
+            .fold(Rational::new(), |s, (b, c)| s + Rational::from(b * c))
+    }
+
+    /// `Σ_j |c_j| |B_j(x)|` exactly (the scale of a stable evaluation's
+    /// error, [`stable_bound`](super::stable_bound)); `O(k²)`.
+    pub fn abs_eval(&self, x: &Rational) -> Rational {
+        let (l, h) = self.basis(x);
+        h.iter()
+            .zip(&self.c[l - self.k..=l])
+            .fold(Rational::new(), |s, (b, c)| s + Rational::from(b * c).abs())
+    }
+
+    /// scipy's interval `l` at `x` and the `k + 1` basis values
+    /// `B_{l−k..=l}(x)` there (the recursion of [`Self::eval`]).
+    fn basis(&self, x: &Rational) -> (usize, Vec<Rational>) {
         let (k, l) = (self.k, self.interval(x));
         let mut h = vec![Rational::from(1)];
         for j in 1..=k {
@@ -116,9 +134,7 @@ impl RationalBSpline {
                 h[n] = w * Rational::from(x - xa);
             }
         }
-        h.iter()
-            .zip(&self.c[l - k..=l])
-            .fold(Rational::new(), |s, (b, c)| s + Rational::from(b * c))
+        (l, h)
     }
 }
 

@@ -3,6 +3,7 @@
 //! element and, where a boundary is defined, the boundary/interior split.
 
 use super::format::UserFormat;
+use super::stable_bound::BOUND_FACTOR;
 use crate::metrics::{correct_digits, relative_error};
 use rayon::prelude::*;
 use rug::Float;
@@ -57,6 +58,57 @@ pub struct ElementError {
     /// `−log10(rel)`, capped at the digits of the format.
     pub digits: f64,
     /// Boundary or interior, where defined.
+    pub region: Option<Region>,
+    /// The error a backward-stable computation would make here
+    /// ([`stable_bound`](super::stable_bound)), where the kind has one.
+    pub bound: Option<f64>,
+    /// `abs / bound` (0 when both are 0, infinite for a non-finite value).
+    pub excess: Option<f64>,
+}
+
+impl ElementError {
+    /// The element with its stable bound and excess set.
+    pub fn with_bound(mut self, bound: f64) -> Self {
+        self.excess = Some(excess(self.abs, bound));
+        self.bound = Some(bound);
+        self
+    }
+}
+
+/// `error / bound`: 0 for an exact value, infinite for an error where the
+/// bound is 0 or for a non-finite value.
+pub fn excess(error: f64, bound: f64) -> f64 {
+    if error == 0.0 {
+        0.0
+    } else if error.is_finite() && bound > 0.0 {
+        error / bound
+    } else {
+        f64::INFINITY
+    }
+}
+
+/// How the default verdict is reached.
+#[derive(Debug, Clone, PartialEq)]
+pub enum BoundBasis {
+    /// Every element carries a stable bound; the text states the bound and
+    /// its source.
+    PerElement(String),
+    /// The kind has no stable bound; the text says why.
+    Unavailable(String),
+}
+
+/// The element furthest over its stable bound.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct WorstExcess {
+    /// Its index.
+    pub index: usize,
+    /// `error / bound`.
+    pub excess: f64,
+    /// Its absolute error.
+    pub error: f64,
+    /// Its stable bound.
+    pub bound: f64,
+    /// Its region, where defined.
     pub region: Option<Region>,
 }
 
@@ -121,6 +173,24 @@ pub struct CheckSummary {
     pub failed: usize,
     /// `"pass"` or `"fail"`.
     pub verdict: String,
+    /// What the verdict rests on: `"stable-bound"` (every error within
+    /// `bound_factor` × its stable bound, and `--max-ulps` if given),
+    /// `"max-ulps"` (the kind has no bound; the explicit threshold only) or
+    /// `"finite-only"` (neither: only NaN/inf values fail).
+    pub verdict_basis: String,
+    /// Why there is no stable-bound verdict (`None` when there is one).
+    pub no_verdict_reason: Option<String>,
+    /// The stable bound used and its source (`None` without one).
+    pub stable_bound: Option<String>,
+    /// `K`: the error allowed is `K` × the stable bound.
+    pub bound_factor: Option<f64>,
+    /// Elements whose error exceeds `K` × their bound (non-finite values count).
+    pub over_bound: usize,
+    /// The element with the largest `error / bound`.
+    pub worst_excess: Option<WorstExcess>,
+    /// `log10` of the worst excess, at least 0: the digits lost beyond what
+    /// the problem's conditioning explains.
+    pub digits_lost: Option<f64>,
     /// Every element's error (not part of the JSON summary: it can be 10⁶ long).
     #[serde(skip)]
     pub elements: Vec<ElementError>,
@@ -141,6 +211,8 @@ pub struct Context<'a> {
     pub horizon: Option<usize>,
     /// Threshold in ulps.
     pub max_ulps: Option<f64>,
+    /// The stable bound the elements carry, or why there is none.
+    pub bound: BoundBasis,
 }
 
 /// The error of `x` against `r`, in the user's format.
@@ -167,6 +239,8 @@ pub fn element_error(
         abs,
         digits: correct_digits(rel, format.digits()),
         region,
+        bound: None,
+        excess: None,
     }
 }
 
@@ -182,6 +256,28 @@ pub fn summarize(ctx: &Context<'_>, user: &[f64], refs: &[Float]) -> CheckSummar
         .map(|(i, (x, r))| {
             let region = ctx.horizon.map(|h| Region::of(i, n, h));
             element_error(i, *x, r, ctx.format, region)
+        })
+        .collect();
+    from_elements(ctx, elements)
+}
+
+/// [`summarize`] with every element's stable bound (`bounds[i]` for
+/// element `i`).
+pub fn summarize_bounded(
+    ctx: &Context<'_>,
+    user: &[f64],
+    refs: &[Float],
+    bounds: &[f64],
+) -> CheckSummary {
+    let n = user.len();
+    let elements: Vec<ElementError> = user
+        .par_iter()
+        .zip(refs.par_iter())
+        .zip(bounds.par_iter())
+        .enumerate()
+        .map(|(i, ((x, r), b))| {
+            let region = ctx.horizon.map(|h| Region::of(i, n, h));
+            element_error(i, *x, r, ctx.format, region).with_bound(*b)
         })
         .collect();
     from_elements(ctx, elements)
@@ -228,6 +324,7 @@ pub fn from_elements(ctx: &Context<'_>, elements: Vec<ElementError>) -> CheckSum
             .count(),
         None => 0,
     };
+    let judged = judge_bounds(ctx, &elements);
     let all = region_summary(elements.iter().map(|e| e.ulps).collect());
     let max_ulps_scaled = scaled_ulps(&elements, ctx.format);
     CheckSummary {
@@ -248,8 +345,73 @@ pub fn from_elements(ctx: &Context<'_>, elements: Vec<ElementError>) -> CheckSum
         non_finite,
         max_ulps: ctx.max_ulps,
         failed,
-        verdict: verdict(failed + non_finite),
+        verdict: verdict(failed + non_finite + judged.over_bound),
+        verdict_basis: judged.basis.into(),
+        no_verdict_reason: judged.reason,
+        stable_bound: judged.stable_bound,
+        bound_factor: judged.factor,
+        over_bound: judged.over_bound,
+        digits_lost: judged.worst.as_ref().map(|w| w.excess.log10().max(0.0)),
+        worst_excess: judged.worst,
         elements,
+    }
+}
+
+/// The stable-bound part of a summary.
+struct Judged {
+    basis: &'static str,
+    reason: Option<String>,
+    stable_bound: Option<String>,
+    factor: Option<f64>,
+    over_bound: usize,
+    worst: Option<WorstExcess>,
+}
+
+/// Counts the elements over `K` × bound and finds the worst excess.
+fn judge_bounds(ctx: &Context<'_>, elements: &[ElementError]) -> Judged {
+    match &ctx.bound {
+        BoundBasis::Unavailable(why) => Judged {
+            basis: if ctx.max_ulps.is_some() {
+                "max-ulps"
+            } else {
+                "finite-only"
+            },
+            reason: Some(why.clone()),
+            stable_bound: None,
+            factor: None,
+            over_bound: 0,
+            worst: None,
+        },
+        BoundBasis::PerElement(text) => {
+            // NaN-for-NaN (undefined reference) elements carry no excess.
+            let judged = elements
+                .iter()
+                .filter_map(|e| Some((e, e.excess?, e.bound?)));
+            let over_bound = judged
+                .clone()
+                .filter(|(_, x, _)| x.is_nan() || *x > BOUND_FACTOR)
+                .count();
+            let worst = judged
+                .fold(None::<(&ElementError, f64, f64)>, |w, c| match w {
+                    Some(w) if c.1 <= w.1 || c.1.is_nan() => Some(w),
+                    _ => Some(c),
+                })
+                .map(|(e, x, b)| WorstExcess {
+                    index: e.index,
+                    excess: x,
+                    error: e.abs,
+                    bound: b,
+                    region: e.region,
+                });
+            Judged {
+                basis: "stable-bound",
+                reason: None,
+                stable_bound: Some(text.clone()),
+                factor: Some(BOUND_FACTOR),
+                over_bound,
+                worst,
+            }
+        }
     }
 }
 
@@ -309,6 +471,7 @@ mod tests {
             reference: "test".into(),
             horizon: Some(1),
             max_ulps: Some(1.0),
+            bound: BoundBasis::Unavailable("test".into()),
         };
         let s = summarize(&ctx, &user, &refs);
         let w = s.worst.clone().unwrap();
