@@ -37,6 +37,7 @@ from __future__ import annotations
 from . import _splinelab as _ext
 from ._check import check
 from ._ndimage import map_coordinates, spline_filter, spline_filter1d
+from ._resample import affine_transform, geometric_transform, rotate, shift, zoom
 from ._sspline import coefficients, filter_bound, truncation_width
 from ._validate import MAX_DEGREE
 
@@ -46,6 +47,11 @@ __all__ = [
     "spline_filter1d",
     "spline_filter",
     "map_coordinates",
+    "zoom",
+    "shift",
+    "rotate",
+    "affine_transform",
+    "geometric_transform",
     "truncation_width",
     "coefficients",
     "check",
