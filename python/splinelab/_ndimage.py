@@ -310,43 +310,92 @@ def _interpolate(input, output, shape, cval, evaluate, *others):
     return _dt.deliver(result, target, shape)
 
 
+def _wrap_axis(x, n):
+    """scipy's 'wrap' point rule (``map_coordinate`` in ni_interpolation.c)
+    on one axis of ``n`` samples: a coordinate outside ``[0, n - 1]`` moves
+    by whole periods ``n - 1`` (the first and last samples overlap) into
+    it, with scipy's operations (a C truncating division), so the same
+    bits; ``n = 1``: 0."""
+    x = np.array(x, dtype=np.float64)
+    if n <= 1:
+        return np.zeros_like(x)
+    sz = float(n - 1)
+    low, high = x < 0, x > n - 1
+    x[low] += sz * (np.trunc(-x[low] / sz) + 1)
+    x[high] -= sz * np.trunc(x[high] / sz)
+    return x
+
+
 def _wrap_coordinates(flat, shape):
-    """scipy's 'wrap' point rule (``map_coordinate`` in ni_interpolation.c):
-    a coordinate outside ``[0, n - 1]`` moves by whole periods ``n - 1``
-    (the first and last samples overlap) into it, with scipy's operations
-    (a C truncating division), so the same bits; ``n = 1``: 0."""
-    out = flat.copy()
-    for axis, n in enumerate(shape):
-        x = out[axis]
-        if n <= 1:
-            x[...] = 0.0
-            continue
-        sz = float(n - 1)
-        low, high = x < 0, x > n - 1
-        x[low] += sz * (np.trunc(-x[low] / sz) + 1)
-        x[high] -= sz * np.trunc(x[high] / sz)
-    return out
+    """:func:`_wrap_axis` on every row of ``flat`` (``(ndim, k)``)."""
+    return np.stack([_wrap_axis(x, n) for x, n in zip(flat, shape)]) if len(shape) else flat
 
 
-def _map_real(a, flat, d, mode, cv, prefilter, tol, threads, exact_edges):
+class _Points:
+    """Points at which to evaluate: scattered, ``(ndim, k)`` (scipy's
+    coordinate array), evaluated point by point; the engine's
+    ``map_coordinates``."""
+
+    def __init__(self, flat):
+        self.flat = flat
+
+    def moved(self, change):
+        """The points with ``change(x, axis)`` applied to each axis."""
+        return type(self)([change(x, axis) for axis, x in enumerate(self.flat)])
+
+    def outside(self, shape):
+        """Whether each point lies outside ``[0, n - 1]`` on some axis."""
+        limit = np.array(shape, dtype=np.float64)[:, None] - 1.0
+        flat = np.asarray(self.flat)
+        return ((flat < 0) | (flat > limit)).any(axis=0)
+
+    def run(self, a, d, mode, cv, tol, prefilter, threads, deriv):
+        run = _ext.map_coordinates_f64 if a.dtype == np.float64 else _ext.map_coordinates_f32
+        return run(a, np.ascontiguousarray(np.asarray(self.flat, dtype=np.float64)), d, mode, cv, tol, prefilter,
+                   threads, deriv)
+
+
+class _Grid(_Points):
+    """The tensor grid of one coordinate vector per axis (zoom, shift),
+    evaluated separably by the engine (``degree + 1`` multiply-adds per
+    output sample and axis); values flat in C order."""
+
+    def outside(self, shape):
+        mask = np.zeros([len(x) for x in self.flat], dtype=bool)
+        for axis, (x, n) in enumerate(zip(self.flat, shape)):
+            view = [1] * len(shape)
+            view[axis] = -1
+            mask |= ((x < 0) | (x > n - 1)).reshape(view)
+        return mask.reshape(-1)
+
+    def run(self, a, d, mode, cv, tol, prefilter, threads, deriv):
+        run = _ext.resample_f64 if a.dtype == np.float64 else _ext.resample_f32
+        axes = [np.ascontiguousarray(x, dtype=np.float64) for x in self.flat]
+        return run(a, axes, d, mode, cv, tol, prefilter, list(deriv or [0] * a.ndim), threads).reshape(-1)
+
+
+def _map_real(a, flat, d, mode, cv, prefilter, tol, threads, exact_edges, deriv=None):
     """map_coordinates of a real float64/float32 array at ``flat`` (``(ndim,
-    k)``): the values, in ``a``'s dtype."""
-    run = _ext.map_coordinates_f64 if a.dtype == np.float64 else _ext.map_coordinates_f32
+    k)``, or a :class:`_Points`): the values (or the partial derivative
+    ``deriv``), flat, in ``a``'s dtype."""
+    points = flat if isinstance(flat, _Points) else _Points(flat)
     if prefilter and 1 < d <= 5 and mode in _EXACT_EDGES and not exact_edges:
         # scipy's route (_prepad_for_spline_filter): pad 12, filter with
         # its rule, evaluate the coefficients at x + 12 (rounded as scipy).
         pad = 12
         kind = {"mode": "edge"} if mode == "nearest" else {"mode": "constant", "constant_values": cv}
         coeffs = _filter(np.pad(a, pad, **kind), list(range(a.ndim)), d, a.dtype, mode, tol, threads)
-        return run(coeffs, flat + pad, d, mode, cv, None, False, threads)
+        return points.moved(lambda x, _: x + pad).run(coeffs, d, mode, cv, None, False, threads, deriv)
     if mode == "wrap":
         # The mirror spline (scipy filters 'wrap' with the mirror rule and
         # reads the window with it) at the point folded with period n - 1.
-        return run(a, _wrap_coordinates(flat, a.shape), d, "mirror", cv, tol, prefilter, threads)
+        wrapped = points.moved(lambda x, axis: _wrap_axis(x, a.shape[axis]))
+        return wrapped.run(a, d, "mirror", cv, tol, prefilter, threads, deriv)
     engine_mode = "mirror" if mode == "constant" else mode
-    values = run(a, flat, d, engine_mode, cv, tol, prefilter, threads)
+    values = points.run(a, d, engine_mode, cv, tol, prefilter, threads, deriv)
     if mode == "constant":
-        # scipy: no interpolation beyond the edges.
-        limit = np.array(a.shape, dtype=np.float64)[:, None] - 1.0
-        values = np.where(((flat < 0) | (flat > limit)).any(axis=0), np.asarray(cv, values.dtype), values)
+        # scipy: no interpolation beyond the edges (cval there; its
+        # derivative 0).
+        fill = cv if not deriv or not any(deriv) else 0.0
+        values = np.where(points.outside(a.shape), np.asarray(fill, values.dtype), values)
     return values

@@ -21,9 +21,8 @@ import warnings
 
 import numpy as np
 
-from . import _splinelab as _ext
 from . import _dtypes as _dt
-from ._ndimage import _flag, _interp_mode, _interpolate, _map_real
+from ._ndimage import _flag, _Grid, _interp_mode, _interpolate, _map_real
 from ._validate import _degree, _int, _opt_float, _threads
 
 
@@ -65,26 +64,13 @@ class _Spec:
     def on_grid(self, input, output, shape, axis_coordinates):
         """The values on the tensor grid of per-axis coordinate vectors."""
 
+        grid = _Grid(axis_coordinates)
+
         def evaluate(a, cv):
-            separable = getattr(_ext, f"resample_{a.dtype.name}", None)
-            if separable is not None and self.mode in _SEPARABLE_MODES and not self.exact_edges:
-                return separable(a, axis_coordinates, self.d, self.mode, cv, self.tol, self.prefilter,
-                                 self.threads).reshape(-1)
-            return _map_real(a, _grid(axis_coordinates), self.d, self.mode, cv, self.prefilter, self.tol,
-                             self.threads, self.exact_edges)
+            return _map_real(a, grid, self.d, self.mode, cv, self.prefilter, self.tol, self.threads,
+                             self.exact_edges)
 
         return _interpolate(input, output, shape, self.cval, evaluate)
-
-
-# The modes the engine's separable resampling takes (the others go through
-# map_coordinates on the grid of points).
-_SEPARABLE_MODES = ("mirror", "reflect", "grid-mirror", "grid-wrap", "constant", "wrap")
-
-
-def _grid(axis_coordinates):
-    """Every point of the tensor grid, ``(ndim, count)``, C order."""
-    mesh = np.meshgrid(*axis_coordinates, indexing="ij")
-    return np.stack([m.reshape(-1) for m in mesh]) if mesh else np.zeros((0, 1))
 
 
 def _zoom_shift_coordinates(out_shape, zooms=None, shifts=None, grid_mode=False):

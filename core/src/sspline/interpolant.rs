@@ -26,6 +26,7 @@ use crate::scalar::Real;
 use ndarray::{ArrayBase, ArrayD, ArrayView2, ArrayViewD, Data, Dimension, Slice};
 
 mod batch;
+mod separable;
 
 /// How to build an [`Interpolant`].
 #[derive(Debug, Clone, Copy, PartialEq)]
