@@ -36,7 +36,7 @@ from __future__ import annotations
 
 from . import _splinelab as _ext
 from ._check import check
-from ._ndimage import map_coordinates, spline_filter, spline_filter1d
+from ._ndimage import map_coordinates, spline_filter, spline_filter1d, spline_gradient
 from ._resample import affine_transform, geometric_transform, rotate, shift, zoom
 from ._sspline import coefficients, filter_bound, truncation_width
 from ._validate import MAX_DEGREE
@@ -47,6 +47,7 @@ __all__ = [
     "spline_filter1d",
     "spline_filter",
     "map_coordinates",
+    "spline_gradient",
     "zoom",
     "shift",
     "rotate",

@@ -190,6 +190,7 @@ def map_coordinates(
     tol=None,
     threads=None,
     exact_edges=False,
+    derivative=None,
 ):
     """Values of the spline interpolant at coordinates (``scipy.ndimage.map_coordinates``).
 
@@ -229,6 +230,16 @@ def map_coordinates(
     Cost: the prefilter (O(poles) per sample and axis) once, then
     ``(order + 1)**ndim`` multiply-adds per point.
 
+    ``derivative=(k_0, k_1, ...)`` (ours; scipy has none): the partial
+    derivative ``d^(k_0 + k_1 + ...) f / dx_0^k_0 dx_1^k_1 ...`` of the same
+    spline at the points instead of its values, each ``k_a <= order``, from
+    the B-spline derivative weights (exact rational recurrences, the
+    engine's ``Interpolant::eval_derivative``); outside the grid it is the
+    derivative of the extended spline (the folding's reflections change
+    the sign of odd orders; 0 where 'constant' gives ``cval``). Tested
+    against 5-point central differences of scipy's values
+    (python/tests/test_gradient.py). See also :func:`spline_gradient`.
+
     >>> import numpy as np, splinelab
     >>> v = splinelab.map_coordinates(np.array([0.0, 1, 8, 27, 64]), [[1.0, 2.5]], order=3)
     >>> bool(abs(v[0] - 1.0) < 1e-14)
@@ -244,11 +255,72 @@ def map_coordinates(
     flat = np.ascontiguousarray(at.reshape(at.shape[0], -1))
     d, mode = _degree(order), _interp_mode(mode)
     tol, threads = _opt_float(tol, "tol"), _threads(threads)
+    deriv = _derivative(derivative, at.shape[0])
+    sign = _reflection_sign(flat, np.shape(input), mode, deriv) if deriv else None
 
     def evaluate(a, cv):
-        return _map_real(a, flat, d, mode, cv, prefilter, tol, threads, exact_edges)
+        values = _map_real(a, flat, d, mode, cv, prefilter, tol, threads, exact_edges, deriv)
+        return values if sign is None else values * sign.astype(values.dtype)
 
     return _interpolate(input, output, shape, cval, evaluate, coordinates)
+
+
+def _derivative(derivative, ndim):
+    """``derivative``: None or one non-negative order per axis."""
+    if derivative is None:
+        return None
+    orders = [_int(k, "derivative order") for k in np.atleast_1d(np.asarray(derivative, dtype=object))]
+    if len(orders) != ndim or any(k < 0 for k in orders):
+        raise ValueError(f"derivative must give one non-negative order per axis ({ndim}), got {derivative!r}")
+    return orders if any(orders) else None
+
+
+def _reflection_sign(flat, shape, mode, deriv):
+    """+1 or -1 per point: the engine differentiates the spline at the
+    folded point; where the fold reflects ('mirror', 'reflect' /
+    'grid-mirror'), an odd derivative order changes sign."""
+    sign = np.ones(flat.shape[1])
+    for axis, (x, n, k) in enumerate(zip(flat, shape, deriv)):
+        if k % 2 == 0 or n < 2:
+            continue
+        if mode == "mirror":
+            reflected = np.mod(x, 2.0 * (n - 1)) > n - 1
+        elif mode in ("reflect", "grid-mirror"):
+            reflected = np.mod(x + 0.5, 2.0 * n) > n
+        else:
+            continue
+        sign[reflected] = -sign[reflected]
+    return sign
+
+
+def spline_gradient(
+    input, coordinates, order=3, mode="constant", cval=0.0, prefilter=True, *, tol=None, threads=None,
+    exact_edges=False,
+):
+    """All first partial derivatives of the interpolant of
+    :func:`map_coordinates` at the points: an array of shape ``(ndim,
+    *coordinates.shape[1:])``, row ``a`` the derivative along axis ``a``
+    (``map_coordinates(..., derivative=e_a)``; float64, or float32 for
+    float32 input). Cost: ``ndim`` evaluations (and prefilters).
+
+    >>> import numpy as np, splinelab
+    >>> x = np.add.outer(0.5 * np.arange(40.0), 3 * np.arange(40.0))  # i / 2 + 3 j
+    >>> g = splinelab.spline_gradient(x, [[19.5], [20.25]], order=3, mode="mirror")
+    >>> bool(np.allclose(g[:, 0], [0.5, 3.0], rtol=0, atol=1e-8))  # far from the ends
+    True
+    """
+    a = np.asarray(input)
+    out = np.float32 if a.dtype in (np.float32, np.complex64) else np.float64
+    if a.dtype.kind == "c":
+        out = np.complex64 if out == np.float32 else np.complex128
+    rows = []
+    for axis in range(a.ndim):
+        unit = [0] * a.ndim
+        unit[axis] = 1
+        rows.append(map_coordinates(a, coordinates, output=out, order=order, mode=mode, cval=cval,
+                                    prefilter=prefilter, tol=tol, threads=threads, exact_edges=exact_edges,
+                                    derivative=unit))
+    return np.stack(rows)
 
 
 def _flag(value, what):
