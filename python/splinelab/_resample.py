@@ -22,7 +22,7 @@ import warnings
 import numpy as np
 
 from . import _dtypes as _dt
-from ._ndimage import _flag, _Grid, _interp_mode, _interpolate, _map_real
+from ._ndimage import _Affine, _flag, _Grid, _interp_mode, _interpolate, _map_real
 from ._validate import _degree, _int, _opt_float, _threads
 
 
@@ -190,19 +190,6 @@ def _affine_parts(matrix, offset, ndim, out_ndim):
     return np.ascontiguousarray(m), offsets
 
 
-def _affine_points(m, offsets, out_shape):
-    """``NI_GeometricTransform``'s point of each output index ``o``:
-    ``offset[h] + o_0 m[h, 0] + o_1 m[h, 1] + ...``, added in that order."""
-    grid = np.indices(out_shape, dtype=np.float64).reshape(len(out_shape), -1)
-    points = np.empty((m.shape[0], grid.shape[1]))
-    for h in range(m.shape[0]):
-        t = np.full(grid.shape[1], offsets[h])
-        for ll in range(len(out_shape)):
-            t += grid[ll] * m[h, ll]
-        points[h] = t
-    return points
-
-
 def _output_shape(output_shape, output, default):
     if output_shape is None:
         return tuple(output.shape) if isinstance(output, np.ndarray) else tuple(default)
@@ -245,7 +232,7 @@ def affine_transform(input, matrix, offset=0.0, output_shape=None, output=None, 
             shifts = offsets / m
         coords = _zoom_shift_coordinates(out_shape, zooms=m, shifts=shifts)
         return spec.on_grid(a, output, out_shape, coords)
-    return spec.at_points(a, output, out_shape, lambda _: _affine_points(m, offsets, out_shape))
+    return spec.at_points(a, output, out_shape, lambda _: _Affine(m, offsets, out_shape))
 
 
 def _sincos_degrees(angle):

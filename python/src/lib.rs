@@ -28,6 +28,8 @@ fn _splinelab(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(interp::map_coordinates_f32, m)?)?;
     m.add_function(wrap_pyfunction!(resample::resample_f64, m)?)?;
     m.add_function(wrap_pyfunction!(resample::resample_f32, m)?)?;
+    m.add_function(wrap_pyfunction!(resample::affine_f64, m)?)?;
+    m.add_function(wrap_pyfunction!(resample::affine_f32, m)?)?;
     m.add_function(wrap_pyfunction!(width::truncation_width, m)?)?;
     m.add_function(wrap_pyfunction!(width::coefficients_f64, m)?)?;
     m.add_function(wrap_pyfunction!(width::coefficients_decimal, m)?)?;

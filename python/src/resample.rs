@@ -6,9 +6,12 @@
 
 use crate::error::value_error;
 use crate::pool::run_with;
-use numpy::{Element, PyArrayDyn, PyArrayMethods, PyReadonlyArray1, PyReadonlyArrayDyn};
+use numpy::{
+    Element, PyArrayDyn, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2, PyReadonlyArrayDyn,
+};
 use pyo3::prelude::*;
 use splinelab::prelude::*;
+use splinelab::sspline::interpolant::PointRule;
 
 /// The interpolant (from samples, or from coefficients when `prefilter` is
 /// false) evaluated on the grid; the result has one axis per vector.
@@ -81,4 +84,91 @@ resample_fn!(
     resample_f32,
     f32,
     "Values of the float32 interpolant (computed in float32) on the grid of per-axis coordinate vectors."
+);
+
+/// The interpolant at the points `matrix · o + offset (+ shift)` of every
+/// index `o` of an output of `out_shape` ([`Interpolant::resample_affine`]:
+/// generated block by block, no coordinate array).
+#[allow(clippy::too_many_arguments)]
+fn affine_generic<'py, T>(
+    py: Python<'py>,
+    input: PyReadonlyArrayDyn<'py, T>,
+    matrix: PyReadonlyArray2<'py, f64>,
+    offset: PyReadonlyArray1<'py, f64>,
+    out_shape: Vec<usize>,
+    opts: Options,
+    prefilter: bool,
+    shift: f64,
+    rule: &str,
+    threads: Option<usize>,
+) -> PyResult<Bound<'py, PyArrayDyn<T>>>
+where
+    T: Real + Copy + Element + Send + Sync,
+{
+    let rule = match rule {
+        "fold" => PointRule::Fold,
+        "cval-outside" => PointRule::CvalOutside,
+        "wrap" => PointRule::WrapPeriodNMinus1,
+        other => return Err(value_error(format!("unknown point rule {other:?}"))),
+    };
+    let data = input.as_array();
+    let m = matrix.as_array();
+    let m = m.as_standard_layout();
+    let m = m.as_slice().expect("standard layout");
+    let offset = offset.as_slice()?;
+    let result = PyArrayDyn::<T>::zeros(py, out_shape.clone(), false);
+    let mut view = result.readwrite();
+    let out = view.as_slice_mut()?;
+    let run = || {
+        let f = if prefilter {
+            Interpolant::new(&data, opts)?
+        } else {
+            Interpolant::from_coefficients(&data, opts.degree, opts.mode, opts.cval)?
+        };
+        f.resample_affine(m, offset, &out_shape, shift, rule, out)
+    };
+    py.detach(|| run_with(threads, run))?.map_err(value_error)?;
+    drop(view);
+    Ok(result)
+}
+
+/// The float64 and float32 affine entry points, one generic body.
+macro_rules! affine_fn {
+    ($name:ident, $t:ty, $doc:literal) => {
+        #[doc = $doc]
+        #[pyfunction]
+        #[pyo3(signature = (input, matrix, offset, out_shape, degree, mode, cval, tol, prefilter, shift, rule, threads))]
+        #[allow(clippy::too_many_arguments)]
+        pub fn $name<'py>(
+            py: Python<'py>,
+            input: PyReadonlyArrayDyn<'py, $t>,
+            matrix: PyReadonlyArray2<'py, f64>,
+            offset: PyReadonlyArray1<'py, f64>,
+            out_shape: Vec<usize>,
+            degree: u32,
+            mode: &str,
+            cval: f64,
+            tol: Option<f64>,
+            prefilter: bool,
+            shift: f64,
+            rule: &str,
+            threads: Option<usize>,
+        ) -> PyResult<Bound<'py, PyArrayDyn<$t>>> {
+            let opts = crate::interp::options(degree, mode, cval, tol)?;
+            affine_generic(
+                py, input, matrix, offset, out_shape, opts, prefilter, shift, rule, threads,
+            )
+        }
+    };
+}
+
+affine_fn!(
+    affine_f64,
+    f64,
+    "Values of the float64 interpolant at the points of an affine map of an output grid."
+);
+affine_fn!(
+    affine_f32,
+    f32,
+    "Values of the float32 interpolant (computed in float32) at the points of an affine map of an output grid."
 );

@@ -25,8 +25,10 @@ use super::{MAX_ORDER, SplineFamily};
 use crate::scalar::Real;
 use ndarray::{ArrayBase, ArrayD, ArrayView2, ArrayViewD, Data, Dimension, Slice};
 
+mod affine;
 mod batch;
 mod separable;
+pub use affine::PointRule;
 
 /// How to build an [`Interpolant`].
 #[derive(Debug, Clone, Copy, PartialEq)]
