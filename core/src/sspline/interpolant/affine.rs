@@ -3,7 +3,8 @@
 //! and `rotate` (`NI_GeometricTransform` with a matrix). The point of each
 //! output index `o` is generated where it is evaluated, in blocks of 2048
 //! outputs in parallel, and evaluated by [`Interpolant::eval_many`] (batched,
-//! prefetched): no `ndim × count` array of coordinates in memory.
+//! prefetched): no `ndim × count` array of coordinates in memory; under
+//! [`PointRule::CvalOutside`] only the points inside the grid are evaluated.
 //!
 //! **Points** as scipy forms them, to the bit: `x_h = offset_h + o_0 M_{h0}
 //! + o_1 M_{h1} + …` added in that order from `offset_h`, then `+ shift`
@@ -79,17 +80,29 @@ impl<T: Real + Copy + Send + Sync> Interpolant<T> {
         out.par_chunks_mut(BLOCK)
             .enumerate()
             .try_for_each(|(b, block)| {
+                // Only the points that are evaluated (CvalOutside: the
+                // inside ones), packed; the others take cval.
                 let mut points = Array2::<f64>::zeros((block.len(), n));
-                let mut outside = vec![false; block.len()];
+                let mut slot = Vec::with_capacity(block.len());
                 let mut index = unflatten(b * BLOCK, out_shape);
-                for (p, row) in points.rows_mut().into_iter().enumerate() {
-                    let row = row.into_slice().expect("C order");
-                    outside[p] = self.point(matrix, offset, &index, shift, rule, row);
+                let mut x = vec![0.0; n];
+                for (p, y) in block.iter_mut().enumerate() {
+                    if self.point(matrix, offset, &index, shift, rule, &mut x) {
+                        *y = self.cval;
+                    } else {
+                        points
+                            .row_mut(slot.len())
+                            .as_slice_mut()
+                            .expect("C order")
+                            .copy_from_slice(&x);
+                        slot.push(p);
+                    }
                     step(&mut index, out_shape);
                 }
-                self.eval_many(points.view(), block)?;
-                for (y, _) in block.iter_mut().zip(&outside).filter(|(_, o)| **o) {
-                    *y = self.cval;
+                let mut values = vec![T::zero(); slot.len()];
+                self.eval_many(points.slice(ndarray::s![..slot.len(), ..]), &mut values)?;
+                for (&p, v) in slot.iter().zip(values) {
+                    block[p] = v;
                 }
                 Ok(())
             })
