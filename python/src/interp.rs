@@ -21,6 +21,20 @@ pub(crate) fn options(degree: u32, mode: &str, cval: f64, tol: Option<f64>) -> P
     Ok(opts)
 }
 
+/// The interpolant of samples (`prefilter`: the engine solves for the
+/// coefficients) or of given coefficients (scipy's `prefilter=False`).
+pub(crate) fn interpolant<T: Real + Send + Sync>(
+    data: &ndarray::ArrayViewD<'_, T>,
+    opts: Options,
+    prefilter: bool,
+) -> Result<Interpolant<T>, PrefilterError> {
+    if prefilter {
+        Interpolant::new(data, opts)
+    } else {
+        Interpolant::from_coefficients(data, opts.degree, opts.mode, opts.cval)
+    }
+}
+
 /// `∂^deriv f` at each point (columns of `at`), in parallel: the engine's
 /// [`Interpolant::eval_derivative`] per point.
 fn derivatives<T: Real + Send + Sync>(
@@ -54,11 +68,7 @@ where
         if prefilter && deriv.is_none() {
             return map_coordinates(&data, at, opts);
         }
-        let f = if prefilter {
-            Interpolant::new(&data, opts)?
-        } else {
-            Interpolant::from_coefficients(&data, opts.degree, opts.mode, opts.cval)?
-        };
+        let f = interpolant(&data, opts, prefilter)?;
         if let Some(d) = deriv {
             return derivatives(&f, at, &d);
         }

@@ -38,11 +38,7 @@ where
     let mut view = result.readwrite();
     let out = view.as_slice_mut()?;
     let run = || {
-        let f = if prefilter {
-            Interpolant::new(&data, opts)?
-        } else {
-            Interpolant::from_coefficients(&data, opts.degree, opts.mode, opts.cval)?
-        };
+        let f = crate::interp::interpolant(&data, opts, prefilter)?;
         f.resample_grid(&axes, &deriv, out)
     };
     py.detach(|| run_with(threads, run))?.map_err(value_error)?;
@@ -120,11 +116,7 @@ where
     let mut view = result.readwrite();
     let out = view.as_slice_mut()?;
     let run = || {
-        let f = if prefilter {
-            Interpolant::new(&data, opts)?
-        } else {
-            Interpolant::from_coefficients(&data, opts.degree, opts.mode, opts.cval)?
-        };
+        let f = crate::interp::interpolant(&data, opts, prefilter)?;
         f.resample_affine(m, offset, &out_shape, shift, rule, out)
     };
     py.detach(|| run_with(threads, run))?.map_err(value_error)?;

@@ -11,8 +11,8 @@
 //! package's). Works in f64, or f32 for a float32 input.
 
 use super::engine_io::{
-    EngineArgs, Plan, Working, check_conditioning, engine_error, estimate, plan, to_working,
-    write_result,
+    EngineArgs, Plan, Working, check_conditioning, engine_error, estimate, options, plan,
+    to_working, write_result,
 };
 use super::prec::Prec;
 use crate::array_io::read_array;
@@ -22,7 +22,7 @@ use crate::outln;
 use crate::output::{emit, path_text};
 use clap::{ArgGroup, Args};
 use serde_json::json;
-use splinelab::prelude::{Interpolant, Options, Real};
+use splinelab::prelude::{Interpolant, Real};
 use splinelab::sspline::interpolant::PointRule;
 use std::path::PathBuf;
 
@@ -124,13 +124,7 @@ fn compute<T: Real + Copy + Send + Sync>(
     if plan.degree >= 1 {
         check_conditioning::<T>(plan)?;
     }
-    let opts = Options {
-        degree: plan.degree,
-        mode: e.mode,
-        cval: e.cval,
-        route: plan.route,
-    };
-    let f = Interpolant::new(&to_working::<T>(&plan.data), opts)
+    let f = Interpolant::new(&to_working::<T>(&plan.data), options(plan, e))
         .map_err(|err| engine_error(&e.input, err))?;
     let mut out = vec![T::zero(); shape.iter().product()];
     let done = match points {
