@@ -28,7 +28,7 @@ fn tensor(c: &mut Criterion) {
     for n in [3usize, 5, 10, 15, 20] {
         let t: Vec<f64> = NodeFamily::Equispaced.nodes(n).unwrap();
         let r = rhs((n + 1) * (n + 1), 3);
-        for s in TensorSolver::ALL {
+        for s in TensorSolver::all() {
             if s == TensorSolver::FullLu && n > 15 {
                 continue; // O(n⁶): seconds per sample beyond this.
             }

@@ -38,6 +38,33 @@
 //! | (tail bound) | `Σ_{|i|>n} |c_i| ≤ 2 Σ_r |κ_r| |ξ_r|^{n+1}/(1 − |ξ_r|)` | [`PoleExpansion::tail_bound`](crate::sspline::euler_frobenius::PoleExpansion::tail_bound), [`truncation_width`](crate::sspline::truncation_width) |
 //! | (full build) | coefficients of sampled data, exact or truncated | [`RecursivePrefilter`](crate::sspline::prefilter::RecursivePrefilter), [`ConvolutionPrefilter`](crate::sspline::prefilter::ConvolutionPrefilter) |
 //!
+//! ## The N-D engine (scipy.ndimage's prefilter and interpolation)
+//!
+//! Not from the five papers: the engine that applies seed 000's cardinal
+//! spline to arrays, in scipy.ndimage's conventions. Sources: M. Unser,
+//! A. Aldroubi and M. Eden, *B-spline signal processing I/II*, IEEE Trans.
+//! Signal Process. 41 (1993) (the recursive filter, its poles and the mirror
+//! initial values); P. Thévenaz, T. Blu and M. Unser, *Interpolation
+//! revisited*, IEEE Trans. Med. Imaging 19 (2000) (the gain and the causal
+//! initialisation to a horizon); scipy's `ni_splines.c` (the half-sample
+//! and periodic initial values, the `mode` names) and `ni_interpolation.c`
+//! (the point folding and the 12-sample padding of `nearest` and
+//! `grid-constant`).
+//!
+//! | formula | what | item |
+//! |---|---|---|
+//! | `D = Λ Π_r (1 − ξ_r z⁻¹)⁻¹ (1 − ξ_r z)⁻¹ s`, `Λ = Π_r (1 − ξ_r)(1 − 1/ξ_r)/V(1)` | the exact inverse filter, a causal and an anti-causal pass per pole (UAE 1993 eq 2.5; TBU 2000 §IV) | [`RecursivePrefilter`](crate::sspline::prefilter::RecursivePrefilter), [`LineFilter`](crate::ndimage::line_filter::LineFilter) |
+//! | `c⁺_0 = Σ_{k<K} ξ^k s̃_k`, `|ξ|^K < 2^{−BITS−8}` | causal initial value over the mode's extension, summed to the pole's horizon (TBU 2000 eq 4) | [`LineFilter::apply`](crate::ndimage::line_filter::LineFilter::apply) |
+//! | `c⁻_{ν−1} = ξ/(ξ² − 1)(c⁺_{ν−1} + ξ c⁺_{ν−2})` | anti-causal initial value, whole-sample mirror (UAE 1993 II eq 2.8; scipy `mirror`) | [`LineFilter::apply`](crate::ndimage::line_filter::LineFilter::apply) |
+//! | `c⁻_{ν−1} = ξ/(ξ − 1) c⁺_{ν−1}` | anti-causal initial value, half-sample reflect (scipy `reflect`, `grid-mirror`) | [`LineFilter::apply`](crate::ndimage::line_filter::LineFilter::apply) |
+//! | `c⁻_{ν−1} = −ξ Σ_j ξ^j c⁺_{(ν−1+j) mod ν}` | anti-causal initial value, periodic (scipy `grid-wrap`) | [`LineFilter::apply`](crate::ndimage::line_filter::LineFilter::apply) |
+//! | pad `P = max K + 2`, then mirror | `nearest` and `grid-constant`: the exact spline of the extended signal to `2^{−2·BITS}` (scipy pads 12: `ρ^{24}`) | [`LineFilter::apply_padded`](crate::ndimage::line_filter::LineFilter::apply_padded), [`padded_coefficients`](crate::ndimage::nd_prefilter::padded_coefficients) |
+//! | `max|D| ≤ gain · Π_r (2/(1 − |ξ_r|))² · max|s|` per axis | growth bound that refuses data the passes could overflow | [`LineFilter::growth`](crate::ndimage::line_filter::LineFilter::growth), [`LineFilter::check_magnitude`](crate::ndimage::line_filter::LineFilter::check_magnitude) |
+//! | `|D_W − D| ≤ Σ_{|j|>W} |c_j| · max|s|` | truncated route and parallel blocks of overlap `W` (seed 000 eq 10 with the tail bound) | [`BlockPrefilter`](crate::ndimage::block_filter::BlockPrefilter), [`certified_width`](crate::sspline::width::certified_width) |
+//! | `((A + b)^D − A^D) · max|s|`, `A = 1/|V(−1)|` | the truncated route's bound over `D` axes | [`spline_filter`](crate::ndimage::nd_prefilter::spline_filter) |
+//! | `x ↦ x mod 2(ν − 1)` mirrored, `mod 2ν` reflected, `mod ν` | the modes' point folding (scipy `ni_interpolation.c`) | [`Mode::fold_coordinate`](crate::ndimage::mode::Mode::fold_coordinate), [`Mode::fold`](crate::ndimage::mode::Mode::fold) |
+//! | `f(x) = Σ_i D_i Π_a β(x_a − i_a)` | tensor-product evaluation, derivatives up to the degree | [`Interpolant`](crate::ndimage::interpolant::Interpolant), [`map_coordinates`](crate::ndimage::interpolant::map_coordinates) |
+//!
 //! ## 001 — Bernstein inverse mapping
 //!
 //! | eq | what | item |

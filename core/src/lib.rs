@@ -119,6 +119,8 @@ pub mod bspline;
 pub mod curves;
 pub mod equations;
 pub mod matrix_condition;
+pub mod named;
+pub mod ndimage;
 pub mod param_curve;
 pub mod prelude;
 pub mod qi;

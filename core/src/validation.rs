@@ -22,6 +22,16 @@ pub enum InputError {
         /// Points given.
         got: usize,
     },
+    /// A degree below what the construction needs.
+    #[error("{what} needs degree ≥ {min}, got {got}")]
+    DegreeTooSmall {
+        /// The construction (e.g. "a Bézier patch").
+        what: &'static str,
+        /// The smallest degree it takes.
+        min: usize,
+        /// The degree given.
+        got: usize,
+    },
     /// An element of a list (point, knot, sample, …) has a NaN or infinite
     /// coordinate.
     #[error("{what} {index} is not finite")]
@@ -68,6 +78,23 @@ pub fn at_least(what: &'static str, needed: usize, got: usize) -> Result<(), Inp
         Ok(())
     } else {
         Err(InputError::TooFewPoints { what, needed, got })
+    }
+}
+
+/// `Ok` when `got ≥ min`, else [`InputError::DegreeTooSmall`].
+///
+/// ```
+/// use splinelab::validation::{InputError, degree_at_least};
+/// assert!(degree_at_least("a patch", 1, 1).is_ok());
+/// let e = degree_at_least("a patch", 1, 0).unwrap_err();
+/// assert_eq!(e, InputError::DegreeTooSmall { what: "a patch", min: 1, got: 0 });
+/// assert_eq!(e.to_string(), "a patch needs degree ≥ 1, got 0");
+/// ```
+pub fn degree_at_least(what: &'static str, min: usize, got: usize) -> Result<(), InputError> {
+    if got >= min {
+        Ok(())
+    } else {
+        Err(InputError::DegreeTooSmall { what, min, got })
     }
 }
 

@@ -18,8 +18,8 @@ use crate::pool::run_with;
 use ndarray::{ArrayViewD, ArrayViewMutD};
 use numpy::{Element, PyReadonlyArrayDyn, PyReadwriteArrayDyn};
 use pyo3::prelude::*;
+use splinelab::ndimage::NdimageError;
 use splinelab::prelude::*;
-use splinelab::sspline::prefilter::PrefilterError;
 use std::sync::Arc;
 
 /// How to filter: degree, mode, `cval` and route (`tol` → truncated).
@@ -49,7 +49,7 @@ impl Spec {
     /// their samples as they are (scipy returns the input), so they have none.
     fn line_filter<T: Real + Send + Sync + 'static>(
         &self,
-    ) -> Result<Option<Arc<LineFilter<T>>>, PrefilterError> {
+    ) -> Result<Option<Arc<LineFilter<T>>>, NdimageError> {
         if self.degree < 2 {
             return Ok(None);
         }
@@ -68,9 +68,9 @@ const BLOCK: usize = 4096;
 /// engine's `NonFinite` error, index in logical order) and returns
 /// `max|src|` (for the overflow check) — one pass: each block is checked
 /// while it is still in L1.
-fn copy_checked<T: Real + Copy>(src: &[T], dst: &mut [T]) -> Result<f64, PrefilterError> {
+fn copy_checked<T: Real + Copy>(src: &[T], dst: &mut [T]) -> Result<f64, NdimageError> {
     if src.is_empty() {
-        return Err(PrefilterError::Empty);
+        return Err(NdimageError::Empty);
     }
     let mut finite = true;
     let mut max = 0.0f64;
@@ -83,7 +83,7 @@ fn copy_checked<T: Real + Copy>(src: &[T], dst: &mut [T]) -> Result<f64, Prefilt
         return Ok(max);
     }
     let i = src.iter().position(|x| !x.is_finite()).unwrap_or(0);
-    Err(PrefilterError::NonFinite(i))
+    Err(NdimageError::NonFinite(i))
 }
 
 /// Whether filtering `axes` of an array of `shape` (`len` elements) is one
@@ -100,7 +100,7 @@ fn filter_into<T: Real + Copy + Send + Sync + 'static>(
     out: &mut ArrayViewMutD<'_, T>,
     axes: &[usize],
     spec: &Spec,
-) -> Result<(), PrefilterError> {
+) -> Result<(), NdimageError> {
     let filter = spec.line_filter::<T>()?;
     let line = match (&src, &filter) {
         (Some(s), Some(_)) if one_line(out.shape(), out.len(), axes) => s.as_slice(),
@@ -117,7 +117,7 @@ fn filter_into<T: Real + Copy + Send + Sync + 'static>(
         return Ok(());
     }
     if s.is_empty() {
-        return Err(PrefilterError::Empty);
+        return Err(NdimageError::Empty);
     }
     // The exact recursions carry a NaN or infinity (input or overflow) from
     // wherever it appears to the end and back to `d[0]` (every pole's
@@ -129,12 +129,12 @@ fn filter_into<T: Real + Copy + Send + Sync + 'static>(
         return Ok(());
     }
     if let Some(i) = s.iter().position(|x| !x.is_finite()) {
-        return Err(PrefilterError::NonFinite(i));
+        return Err(NdimageError::NonFinite(i));
     }
     let max = s.iter().fold(0.0f64, |m, x| m.max(x.to_f64().abs()));
     f.check_magnitude(max, 1)?;
     // Finite data within the growth bound cannot overflow (LineFilter::growth).
-    Err(PrefilterError::Overflow {
+    Err(NdimageError::Overflow {
         max,
         growth: f.growth(),
         limit: max,
@@ -147,7 +147,7 @@ fn filter_nd<T: Real + Send + Sync>(
     out: &mut ArrayViewMutD<'_, T>,
     axes: &[usize],
     filter: Option<&LineFilter<T>>,
-) -> Result<(), PrefilterError> {
+) -> Result<(), NdimageError> {
     if let Some(s) = src {
         out.assign(&s);
     }

@@ -27,7 +27,7 @@ pub(crate) fn interpolant<T: Real + Send + Sync>(
     data: &ndarray::ArrayViewD<'_, T>,
     opts: Options,
     prefilter: bool,
-) -> Result<Interpolant<T>, PrefilterError> {
+) -> Result<Interpolant<T>, NdimageError> {
     if prefilter {
         Interpolant::new(data, opts)
     } else {
@@ -41,7 +41,7 @@ fn derivatives<T: Real + Send + Sync>(
     f: &Interpolant<T>,
     at: ndarray::ArrayView2<'_, f64>,
     deriv: &[u32],
-) -> Result<Vec<T>, PrefilterError> {
+) -> Result<Vec<T>, NdimageError> {
     (0..at.ncols())
         .into_par_iter()
         .with_min_len(256)

@@ -11,7 +11,7 @@ use numpy::{
 };
 use pyo3::prelude::*;
 use splinelab::prelude::*;
-use splinelab::sspline::interpolant::PointRule;
+use splinelab::ndimage::interpolant::PointRule;
 
 /// The interpolant (from samples, or from coefficients when `prefilter` is
 /// false) evaluated on the grid; the result has one axis per vector.

@@ -69,7 +69,7 @@ fn fuzz_bezier_eval(text: &str) -> Result<(), TestCaseError> {
     if input.coeffs.len() > 64 || input.t.len() > 64 {
         return Ok(());
     }
-    for method in Method::ALL {
+    for method in Method::all() {
         if let Ok(rows) = bezier_eval::evaluate::<f64>(&input, method, Prec::F64) {
             for r in rows {
                 finite(&r.value)?;

@@ -6,8 +6,8 @@
 //! `cargo bench -p splinelab-verify --bench check_prefilter -- --warm-up-time 1 --measurement-time 3`.
 
 use criterion::{Criterion, criterion_group, criterion_main};
+use splinelab::ndimage::line_filter::{LineFilter, Route};
 use splinelab::sspline::SplineFamily;
-use splinelab::sspline::line_filter::{LineFilter, Route};
 use splinelab_verify::check::prefilter::{PrefilterInput, check_prefilter};
 use splinelab_verify::check::{Mode, UserFormat};
 use splinelab_verify::rng::SplitMix64;

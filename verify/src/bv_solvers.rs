@@ -10,7 +10,7 @@
 //! next to anything f64 can resolve. The measured errors are set against
 //! `cond₂ · u`, the error a backward-stable solver may make.
 
-use crate::conditioning::{Basis, CondCase, StudyError as CondError, condition_numbers};
+use crate::conditioning::{Basis, CondCase, condition_numbers};
 use crate::metrics::relative_error;
 use crate::timing::try_median_ns;
 use nalgebra::DMatrix;
@@ -21,7 +21,7 @@ use splinelab::scalar::{Mp, Real};
 use splinelab::surface_deformation::bv_solve::{
     BvError, Method1d, TensorSolver, solve_1d, solve_tensor,
 };
-use splinelab::surface_deformation::vandermonde::{NodeFamily, VandermondeError};
+use splinelab::surface_deformation::vandermonde::NodeFamily;
 
 /// Bits of the MPFR reference.
 pub const REF_BITS: u32 = 256;
@@ -30,24 +30,7 @@ type Reference = Mp<REF_BITS>;
 /// Right-hand sides per case (the errors reported are maxima over them).
 pub const RHS_SAMPLES: usize = 4;
 
-/// Errors of the study.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
-pub enum StudyError {
-    /// Nodes could not be built.
-    #[error(transparent)]
-    Nodes(#[from] VandermondeError),
-    /// A solve failed (in f64 or in the reference).
-    #[error("{solver}: {source}")]
-    Solve {
-        /// The solver that failed.
-        solver: &'static str,
-        /// Why.
-        source: BvError,
-    },
-    /// The condition number could not be computed.
-    #[error(transparent)]
-    Condition(#[from] CondError),
-}
+pub use crate::study_error::StudyError;
 
 /// The kind of right-hand side.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
@@ -255,7 +238,7 @@ pub fn time_solvers(degrees: &[usize], reps: usize) -> Result<Vec<TimingRow>, St
         let r1 = right_hand_sides(RhsKind::Random, side, side, 7)
             .columns(0, 3)
             .into_owned();
-        for s in TensorSolver::ALL {
+        for s in TensorSolver::all() {
             let seconds = 1e-9
                 * try_median_ns(reps, || {
                     solve_tensor(&t, &t, &r2, s)

@@ -10,10 +10,10 @@
 use crate::metrics::{F64_DIGITS, correct_digits, relative_error};
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
-use splinelab::matrix_condition::{ConditionError, cond_inf, cond2};
+use splinelab::matrix_condition::{cond_inf, cond2};
 use splinelab::scalar::{Mp, Real};
 use splinelab::surface_deformation::vandermonde::{
-    NodeFamily, VandermondeError, bernstein_vandermonde, monomial_vandermonde,
+    NodeFamily, bernstein_vandermonde, monomial_vandermonde,
 };
 
 /// Bits of the MPFR reference: 256 bits carry 77 digits, more than enough
@@ -24,6 +24,8 @@ type Reference = Mp<REF_BITS>;
 /// Which basis the Vandermonde matrix is built from.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
+#[derive(strum::VariantArray, strum::IntoStaticStr)]
+#[strum(serialize_all = "lowercase")]
 pub enum Basis {
     /// `B_i^n(t_j)`.
     Bernstein,
@@ -31,30 +33,7 @@ pub enum Basis {
     Monomial,
 }
 
-impl Basis {
-    /// Both bases, in the order the command line lists them.
-    pub const ALL: [Basis; 2] = [Basis::Bernstein, Basis::Monomial];
-
-    /// The command-line name.
-    pub fn name(self) -> &'static str {
-        match self {
-            Basis::Bernstein => "bernstein",
-            Basis::Monomial => "monomial",
-        }
-    }
-}
-
-impl std::str::FromStr for Basis {
-    type Err = String;
-
-    /// The command-line name back to the basis (Python's `basis=`).
-    fn from_str(s: &str) -> Result<Self, String> {
-        Basis::ALL
-            .into_iter()
-            .find(|b| b.name() == s)
-            .ok_or_else(|| format!("unknown basis '{s}' (bernstein, monomial)"))
-    }
-}
+splinelab::named_enum!(Basis, "basis");
 
 /// What to measure: a degree, node family, basis, and whether the tensor
 /// (Kronecker) matrix of seed 001 eq 2 is meant.
@@ -78,16 +57,7 @@ impl CondCase {
     }
 }
 
-/// Errors of the study.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
-pub enum StudyError {
-    /// Building the matrix failed.
-    #[error(transparent)]
-    Matrix(#[from] VandermondeError),
-    /// A condition number could not be computed.
-    #[error(transparent)]
-    Condition(#[from] ConditionError),
-}
+pub use crate::study_error::StudyError;
 
 /// Both condition numbers of one case in one precision.
 #[derive(Debug, Clone, PartialEq)]
@@ -181,7 +151,7 @@ pub fn run_conditioning(degrees: &[usize]) -> Result<Vec<CondRow>, StudyError> {
     let cases: Vec<CondCase> = [Basis::Bernstein, Basis::Monomial]
         .into_iter()
         .flat_map(|basis| {
-            NodeFamily::ALL.into_iter().flat_map(move |nodes| {
+            NodeFamily::all().into_iter().flat_map(move |nodes| {
                 degrees.iter().map(move |&degree| CondCase {
                     degree,
                     nodes,

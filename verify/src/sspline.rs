@@ -423,7 +423,7 @@ fn width_rows(family: &SplineFamily, tolerances: &[f64]) -> Result<Vec<WidthRow>
     let chooser = WidthChooser::new(family, min_tol)?;
     let mut rows = Vec::new();
     for &tol in tolerances {
-        for criterion in Criterion::ALL {
+        for criterion in Criterion::all() {
             let w = chooser.choose(tol, criterion)?;
             rows.push(WidthRow {
                 family: family.to_string(),

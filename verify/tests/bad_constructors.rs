@@ -743,7 +743,7 @@ fn families(s: &mut Sweep) {
     }
     let cubic = SplineFamily::Order(4);
     for tol in [f64::NAN, f64::INFINITY, 0.0, -1e-3, 1.0, 2.0] {
-        for c in Criterion::ALL {
+        for c in Criterion::all() {
             refuses!(
                 s,
                 &format!("truncation_width(tol {tol}, {c:?})"),
@@ -933,7 +933,7 @@ fn patches<T: Real>(s: &mut Sweep) {
         s,
         "Patch degree 0",
         Patch::new(0, net(1)),
-        DegreeTooSmall(0)
+        Input(InputError::DegreeTooSmall { min: 1, got: 0, .. })
     );
     refuses!(
         s,
@@ -1069,12 +1069,16 @@ fn samples<T: Real>(s: &mut Sweep) {
             })
         );
     }
-    for family in NodeFamily::ALL {
+    for family in NodeFamily::all() {
         refuses!(
             s,
             &format!("SampleGrid::from_family({family}, 0)"),
             SampleGrid::<T>::from_family(family, 0),
-            I::Family(VandermondeError::DegreeTooSmall(0))
+            I::Family(VandermondeError::Input(InputError::DegreeTooSmall {
+                min: 1,
+                got: 0,
+                ..
+            }))
         );
         refuses!(
             s,

@@ -31,7 +31,7 @@ fn check_case(c: &[f64], t: f64) -> Result<(), TestCaseError> {
     let prep = Prepared::new(c.to_vec()).unwrap();
     let exact = ExactPoly::from_f64(c);
     let n = c.len() - 1;
-    for method in Method::ALL {
+    for method in Method::all() {
         let m = measure(&prep, &exact, method, t).unwrap();
         prop_assert!(
             m.running_holds(),
@@ -266,7 +266,7 @@ fn bad_input_is_a_typed_error() {
         Some(BezierError::Input(at))
     );
     let prep = Prepared::new(vec![1.0, 2.0, 3.0]).unwrap();
-    for method in Method::ALL {
+    for method in Method::all() {
         for t in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
             assert!(
                 prep.evaluate(method, &t).is_err(),

@@ -46,7 +46,7 @@ fn passes_through_moved_samples<T: Real>(p: &PushParams) {
 
 #[test]
 fn deformed_patches_pass_through_the_moved_samples() {
-    for solver in TensorSolver::ALL {
+    for solver in TensorSolver::all() {
         passes_through_moved_samples::<f64>(&params(3, 3, NodeFamily::Equispaced, solver));
     }
     passes_through_moved_samples::<Mp<128>>(&params(

@@ -124,14 +124,14 @@ fn batch_rejects_bad_input_with_typed_errors() {
     let mut out = vec![0.0; 100];
     assert!(matches!(
         f.eval_many(pts.view(), &mut out[..99]),
-        Err(PrefilterError::BufferLength {
+        Err(NdimageError::BufferLength {
             expected: 100,
             got: 99
         })
     ));
     assert!(matches!(
         f.eval_many(pts.t(), &mut out[..2]),
-        Err(PrefilterError::PointDimension {
+        Err(NdimageError::PointDimension {
             expected: 2,
             got: 100
         })
@@ -139,7 +139,7 @@ fn batch_rejects_bad_input_with_typed_errors() {
     pts[[70, 1]] = f64::NAN;
     assert!(matches!(
         f.eval_many(pts.view(), &mut out),
-        Err(PrefilterError::NonFiniteCoordinate(141))
+        Err(NdimageError::NonFiniteCoordinate(141))
     ));
 }
 

@@ -90,10 +90,7 @@ fn parallel_blocks_report_the_first_non_finite_sample() {
     s[45_000] = f64::INFINITY;
     let f = BlockPrefilter::<f64>::new(&SplineFamily::Order(4), Mode::Mirror, 0.0, 1e-9).unwrap();
     let err = f.apply(&s, 4096).unwrap_err();
-    assert_eq!(
-        err.to_string(),
-        PrefilterError::NonFinite(41_234).to_string()
-    );
+    assert_eq!(err.to_string(), NdimageError::NonFinite(41_234).to_string());
 }
 
 #[test]
@@ -329,13 +326,13 @@ fn data_that_could_overflow_is_refused_and_data_below_the_limit_is_exact() {
     let mut big = Array1::from_vec(vec![1e308, -1e308, 1e308, 0.0, 1.0]);
     let e = spline_filter1d(&mut big, 0, &f).unwrap_err();
     assert!(
-        matches!(e, PrefilterError::Overflow { max, .. } if max == 1e308),
+        matches!(e, NdimageError::Overflow { max, .. } if max == 1e308),
         "{e}"
     );
     let mut grid = Array2::from_elem((3, 3), 1e308);
     assert!(matches!(
         spline_filter(&mut grid, &f),
-        Err(PrefilterError::Overflow { .. })
+        Err(NdimageError::Overflow { .. })
     ));
     assert!(Interpolant::<f64>::new(&grid, Options::new(3, Mode::Mirror)).is_err());
     // Just below the limit (a power of two): finite, and exactly 2^k times
@@ -355,7 +352,7 @@ fn data_that_could_overflow_is_refused_and_data_below_the_limit_is_exact() {
     let mut x32 = Array1::from_vec(vec![1e37f32, -1e37, 2.0]);
     assert!(matches!(
         spline_filter1d(&mut x32, 0, &f32f),
-        Err(PrefilterError::Overflow { .. })
+        Err(NdimageError::Overflow { .. })
     ));
     type W = splinelab::scalar::Mp<64>;
     let fw =

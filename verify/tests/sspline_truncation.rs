@@ -122,7 +122,7 @@ fn coeff_width_of_the_cubic_matches_eq18() {
 #[test]
 fn widths_meet_the_tolerance_minimally_and_grow_as_it_shrinks() {
     for f in families() {
-        for c in Criterion::ALL {
+        for c in Criterion::all() {
             let mut last = 0;
             for tol in [1e-2, 1e-4, 1e-8, 1e-12] {
                 let w = truncation_width(&f, tol, c).unwrap();

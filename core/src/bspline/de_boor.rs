@@ -3,7 +3,7 @@
 
 use super::knots::{KnotError, KnotVector};
 use crate::bernstein::affine_step::AffineStep;
-use crate::param_curve::{ParamCurve, ParamCurveDeriv};
+use crate::param_curve::{OutOfDomain, ParamCurve, ParamCurveDeriv};
 use crate::scalar::Real;
 use crate::validation::{InputError, at_least, finite_points};
 use nalgebra::SVector;
@@ -71,15 +71,8 @@ pub enum BSplineError {
     #[error("the parameter domain [t_(k-1), t_(n+1)] is empty")]
     EmptyDomain,
     /// The parameter is outside the domain or not finite.
-    #[error("parameter {t} is outside the domain [{lo}, {hi}]")]
-    OutOfDomain {
-        /// The parameter (as f64).
-        t: f64,
-        /// Domain start.
-        lo: f64,
-        /// Domain end.
-        hi: f64,
-    },
+    #[error(transparent)]
+    OutOfDomain(#[from] OutOfDomain),
     /// A batch evaluation got an output buffer of the wrong length.
     #[error("{params} parameters but an output buffer of {got}")]
     OutputLength {
@@ -135,11 +128,11 @@ pub(crate) fn find_span<T: Real>(
 ) -> Result<usize, BSplineError> {
     knots.span(order - 1, points - 1, t).ok_or_else(|| {
         let k = knots.as_slice();
-        BSplineError::OutOfDomain {
+        BSplineError::OutOfDomain(OutOfDomain {
             t: t.to_f64(),
             lo: k[order - 1].to_f64(),
             hi: k[points].to_f64(),
-        }
+        })
     })
 }
 
@@ -521,13 +514,10 @@ mod tests {
             Err(BSplineError::EmptyDomain)
         );
         let c = BSpline::new(2, vec![v(0.0, 0.0), v(1.0, 0.0)], k).unwrap();
-        assert!(matches!(
-            c.eval(&1.5),
-            Err(BSplineError::OutOfDomain { .. })
-        ));
+        assert!(matches!(c.eval(&1.5), Err(BSplineError::OutOfDomain(_))));
         assert!(matches!(
             c.eval(&f64::NAN),
-            Err(BSplineError::OutOfDomain { .. })
+            Err(BSplineError::OutOfDomain(_))
         ));
     }
 

@@ -3,7 +3,7 @@
 //! uniform, centripetal and chordal knot spacing.
 
 use super::{CurveError, check_points};
-use crate::param_curve::{ParamCurve, ParamCurveDeriv};
+use crate::param_curve::{OutOfDomain, ParamCurve, ParamCurveDeriv};
 use crate::scalar::Real;
 use crate::validation::{at_least, finite};
 use nalgebra::SVector;
@@ -204,11 +204,11 @@ impl<T: Real, const D: usize> CatmullRom<T, D> {
             });
         }
         if !u.is_finite() || *u < T::zero() || *u > T::one() {
-            return Err(CurveError::OutOfDomain {
+            return Err(CurveError::OutOfDomain(OutOfDomain {
                 t: u.to_f64(),
                 lo: 0.0,
                 hi: 1.0,
-            });
+            }));
         }
         let (idx, [d0, d1, d2]) = self.segment_data(s);
         let p = idx.map(|i| &self.points[i]);
@@ -240,11 +240,11 @@ impl<T: Real, const D: usize> CatmullRom<T, D> {
     pub fn eval(&self, t: &T) -> Result<(SVector<T, D>, SVector<T, D>), CurveError> {
         let hi = self.knots[self.knots.len() - 1].clone();
         if !t.is_finite() || *t < T::zero() || *t > hi {
-            return Err(CurveError::OutOfDomain {
+            return Err(CurveError::OutOfDomain(OutOfDomain {
                 t: t.to_f64(),
                 lo: 0.0,
                 hi: hi.to_f64(),
-            });
+            }));
         }
         // Last knot ≤ t, clamped to the last segment.
         let s = self

@@ -29,6 +29,7 @@ pub mod sspline_surface;
 
 use crate::bernstein::bezier::BezierError;
 use crate::bspline::de_boor::BSplineError;
+use crate::param_curve::OutOfDomain;
 use crate::sspline::SsplineError;
 use crate::validation::InputError;
 
@@ -71,15 +72,8 @@ pub enum CurveError {
         next: usize,
     },
     /// A parameter is outside the curve's domain.
-    #[error("parameter {t} is outside the domain [{lo}, {hi}]")]
-    OutOfDomain {
-        /// The parameter (as f64).
-        t: f64,
-        /// Domain start.
-        lo: f64,
-        /// Domain end.
-        hi: f64,
-    },
+    #[error(transparent)]
+    OutOfDomain(#[from] OutOfDomain),
     /// A value is outside its documented range.
     #[error("{name} = {value} is outside {range}")]
     OutOfRange {

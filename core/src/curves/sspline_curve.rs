@@ -16,7 +16,7 @@
 use crate::bernstein::affine_step::AffineStep;
 use crate::bspline::de_boor::BSpline;
 use crate::bspline::knots::KnotVector;
-use crate::param_curve::{ParamCurve, widen};
+use crate::param_curve::{OutOfDomain, ParamCurve, widen};
 use crate::scalar::Real;
 use crate::sspline::end_conditions::{EndCondition, EndRule};
 use crate::sspline::{SplineFamily, TruncatedBasis};
@@ -87,7 +87,7 @@ impl<T: Real> Axis<T> {
         let (lo, hi) = self.domain();
         let uf = u.to_f64();
         if !u.is_finite() || *u < T::zero() || *u > T::from_int(hi as i64) {
-            return Err(CurveError::OutOfDomain { t: uf, lo, hi });
+            return Err(CurveError::OutOfDomain(OutOfDomain { t: uf, lo, hi }));
         }
         Ok(())
     }

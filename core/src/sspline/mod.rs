@@ -21,20 +21,22 @@
 //! - [`truncation`]: the truncated basis `S_n` (eq 10, 28) and the error
 //!   measures of truncation;
 //! - [`width`]: the truncation-width chooser;
+//! - [`end_conditions`]: the free, periodic and end-tangent ends (eq 21–23)
+//!   and the end rules of the 1-D prefilters;
 //! - [`prefilter`]: the full build of interpolation coefficients from samples
-//!   (exact recursive filter and truncated convolution).
+//!   (exact recursive filter and truncated convolution), the two 1-D
+//!   prefilters the N-D engine calls.
+//!
+//! The scipy.ndimage-style engine built on these (modes, N-D prefilter,
+//! blocks, interpolant) is [`crate::ndimage`]; it depends on this module,
+//! never the reverse.
 
 pub mod beta2;
-pub mod block_filter;
 pub mod bspline_uniform;
 pub mod coefficients;
 pub mod end_conditions;
 pub mod euler_frobenius;
 pub mod family;
-pub mod interpolant;
-pub mod line_filter;
-pub mod mode;
-pub mod nd_prefilter;
 pub mod node_values;
 pub mod prefilter;
 pub mod truncation;

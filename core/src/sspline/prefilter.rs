@@ -34,19 +34,6 @@ pub enum PrefilterError {
     /// A sample is NaN or infinite.
     #[error("sample {0} is not finite")]
     NonFinite(usize),
-    /// Samples so large that the coefficients could overflow the scalar.
-    #[error(
-        "samples up to {max:e} could overflow: the filter forms values up to {growth:e} × max|s| per axis; \
-         scale the data below {limit:e} (or use --prec / an MPFR scalar)"
-    )]
-    Overflow {
-        /// The largest |sample| (or |cval|).
-        max: f64,
-        /// The filter's growth bound ([`crate::sspline::line_filter::LineFilter::growth`]).
-        growth: f64,
-        /// The largest safe |sample|.
-        limit: f64,
-    },
     /// The recursive filter has no exact initial values for this end rule.
     #[error("the recursive prefilter supports the mirror and periodic ends, not {0:?}")]
     UnsupportedEnd(EndRule),
@@ -71,44 +58,6 @@ pub enum PrefilterError {
         /// The smallest precision whose estimate meets `tol`.
         suggested_bits: u32,
     },
-    /// A point has the wrong number of coordinates.
-    #[error("a point has {got} coordinates, the array has {expected} dimensions")]
-    PointDimension {
-        /// Dimensions of the interpolant.
-        expected: usize,
-        /// Coordinates given.
-        got: usize,
-    },
-    /// A coordinate is NaN or infinite.
-    #[error("coordinate {0} is not finite")]
-    NonFiniteCoordinate(usize),
-    /// A derivative above the degree was asked for.
-    #[error("derivative order {order} exceeds the degree {degree}")]
-    DerivativeTooHigh {
-        /// The derivative order asked for.
-        order: u32,
-        /// The spline degree.
-        degree: u32,
-    },
-    /// An output buffer of the wrong length.
-    #[error("output buffer holds {got} values, {expected} are needed")]
-    BufferLength {
-        /// Values needed.
-        expected: usize,
-        /// Buffer length.
-        got: usize,
-    },
-    /// An axis outside the array.
-    #[error("axis {axis} is out of range for an array of {ndim} dimensions")]
-    Axis {
-        /// The axis.
-        axis: usize,
-        /// Dimensions of the array.
-        ndim: usize,
-    },
-    /// A degree outside `1..=199`.
-    #[error("degree {0} is outside the supported range 1..=199")]
-    Degree(u32),
     /// Poles or coefficients could not be computed.
     #[error(transparent)]
     Sspline(#[from] SsplineError),

@@ -5,8 +5,6 @@ use super::euler_frobenius::PoleExpansion;
 use super::{SplineFamily, SsplineError, TruncationAnalysis};
 use crate::scalar::{Mp, Real};
 use rug::float::Round;
-use std::fmt;
-use std::str::FromStr;
 
 /// Precision in which widths are chosen: every measure is computed in MPFR
 /// at 320 bits from the tail directly. 128 bits would give every measure far
@@ -17,7 +15,8 @@ use std::str::FromStr;
 type Work = Mp<320>;
 
 /// Which truncation error must fall below the tolerance.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, strum::VariantArray, strum::IntoStaticStr)]
+#[strum(serialize_all = "kebab-case")]
 pub enum Criterion {
     /// `|c_n| < ε` — the paper's rule (absolute).
     Coeff,
@@ -27,35 +26,7 @@ pub enum Criterion {
     Uniform,
 }
 
-impl Criterion {
-    /// All criteria.
-    pub const ALL: [Criterion; 3] = [Criterion::Coeff, Criterion::Knot, Criterion::Uniform];
-
-    /// The command-line / JSON name.
-    pub fn name(&self) -> &'static str {
-        match self {
-            Criterion::Coeff => "coeff",
-            Criterion::Knot => "knot",
-            Criterion::Uniform => "uniform",
-        }
-    }
-}
-
-impl fmt::Display for Criterion {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(self.name())
-    }
-}
-
-impl FromStr for Criterion {
-    type Err = String;
-    fn from_str(s: &str) -> Result<Self, String> {
-        Criterion::ALL
-            .into_iter()
-            .find(|c| c.name() == s)
-            .ok_or_else(|| format!("unknown criterion '{s}' (expected coeff, knot or uniform)"))
-    }
-}
+crate::named_enum!(Criterion, "criterion");
 
 /// The chosen width and what it achieves.
 #[derive(Debug, Clone, PartialEq)]

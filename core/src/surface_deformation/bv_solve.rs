@@ -382,6 +382,8 @@ pub fn solve_1d<T: Real>(
 /// A solver for the tensor system `(B_u ⊗ B_v) x = r` of seed 001 eq 2–3.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
 #[serde(rename_all = "kebab-case")]
+#[derive(strum::VariantArray, strum::IntoStaticStr)]
+#[strum(serialize_all = "kebab-case")]
 pub enum TensorSolver {
     /// (a) LU with partial pivoting of the assembled `(m+1)(n+1)` matrix, `O(n⁶)`.
     FullLu,
@@ -391,35 +393,7 @@ pub enum TensorSolver {
     KroneckerMarcoMartinez,
 }
 
-impl TensorSolver {
-    /// Every solver, in the order the studies list them.
-    pub const ALL: [TensorSolver; 3] = [
-        TensorSolver::FullLu,
-        TensorSolver::KroneckerLu,
-        TensorSolver::KroneckerMarcoMartinez,
-    ];
-
-    /// Short name (`full-lu`, `kronecker-lu`, `kronecker-marco-martinez`).
-    pub fn name(self) -> &'static str {
-        match self {
-            TensorSolver::FullLu => "full-lu",
-            TensorSolver::KroneckerLu => "kronecker-lu",
-            TensorSolver::KroneckerMarcoMartinez => "kronecker-marco-martinez",
-        }
-    }
-}
-
-impl std::str::FromStr for TensorSolver {
-    type Err = String;
-    fn from_str(s: &str) -> Result<Self, String> {
-        TensorSolver::ALL
-            .into_iter()
-            .find(|x| x.name() == s)
-            .ok_or_else(|| {
-                format!("unknown solver '{s}' (full-lu, kronecker-lu, kronecker-marco-martinez)")
-            })
-    }
-}
+crate::named_enum!(TensorSolver, "solver");
 
 /// Solves `(B_u ⊗ B_v) X = R` for every column of `R`.
 ///
@@ -529,7 +503,7 @@ mod tests {
             .into_iter()
             .map(T::from_f64_exact)
             .collect();
-        for family in NodeFamily::ALL {
+        for family in NodeFamily::all() {
             for degree in [1, 5, 17] {
                 let f = BvBidiagonal::new(&family.nodes::<T>(degree).unwrap()).unwrap();
                 let mut a = v[..=degree].to_vec();

@@ -35,13 +35,14 @@
 
 use super::patch::{Patch, PatchGrid, Point3};
 use crate::scalar::Real;
+use crate::validation::{InputError, degree_at_least};
 
 /// Why the correction cannot be applied.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum ContinuityError {
     /// The blocks of neighbouring joints overlap unless `n ≥ 3`.
-    #[error("the continuity correction needs degree ≥ 3 (the joint blocks overlap below), got {0}")]
-    DegreeTooSmall(usize),
+    #[error(transparent)]
+    Input(#[from] InputError),
     /// The number of samples along an edge must be at least 2.
     #[error("at least 2 samples per edge are needed, got {0}")]
     TooFewSamples(usize),
@@ -157,9 +158,8 @@ fn around(c: usize, max: usize) -> Vec<usize> {
 /// Errors for degree `< 3`.
 pub fn correct_continuity<T: Real>(grid: &PatchGrid<T>) -> Result<PatchGrid<T>, ContinuityError> {
     let n = grid.degree();
-    if n < 3 {
-        return Err(ContinuityError::DegreeTooSmall(n));
-    }
+    // Below degree 3 the blocks of neighbouring joints overlap.
+    degree_at_least("the continuity correction", 3, n)?;
     let net = Net { grid, n };
     let (nu, nv) = (grid.nu(), grid.nv());
     let (mu, mv) = (nu * n, nv * n);
@@ -272,7 +272,11 @@ mod tests {
         let g = PatchGrid::planar(2, 2, 2, &1.0f64).unwrap();
         assert_eq!(
             correct_continuity(&g),
-            Err(ContinuityError::DegreeTooSmall(2))
+            Err(ContinuityError::Input(InputError::DegreeTooSmall {
+                what: "the continuity correction",
+                min: 3,
+                got: 2
+            }))
         );
         assert_eq!(join_defects(&g, 1), Err(ContinuityError::TooFewSamples(1)));
     }

@@ -255,7 +255,7 @@ mod tests {
             .iter()
             .map(|s| Point3::new(0.1 * s.y, 0.0, (s.x * 3.0).sin() * s.y))
             .collect();
-        for solver in TensorSolver::ALL {
+        for solver in TensorSolver::all() {
             let q = deform(&p, &grid, &flow, solver).unwrap();
             let after = sample(&q, &grid).unwrap();
             for ((b, f), a) in before.iter().zip(&flow).zip(&after) {

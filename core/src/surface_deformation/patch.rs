@@ -11,7 +11,7 @@
 use crate::bernstein::basis::bernstein_basis;
 use crate::param_curve::{ParamSurface, ParamSurfaceDeriv, unit};
 use crate::scalar::Real;
-use crate::validation::{InputError, finite_points};
+use crate::validation::{InputError, degree_at_least, finite_points};
 use nalgebra::Vector3;
 use rug::Rational;
 
@@ -21,9 +21,6 @@ pub type Point3<T> = Vector3<T>;
 /// Why a patch or grid could not be built or evaluated.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum PatchError {
-    /// The degree must be at least 1.
-    #[error("patch degree must be at least 1, got {0}")]
-    DegreeTooSmall(usize),
     /// The control net does not have `(n+1)²` points.
     #[error("a degree-{degree} patch needs {expected} control points, got {got}")]
     WrongPointCount {
@@ -127,9 +124,7 @@ fn tensor_sum<T: Real>(a: &[T], b: &[T], net: impl Fn(usize, usize) -> Point3<T>
 impl<T: Real> Patch<T> {
     /// A patch from `(n+1)²` control points (row-major `P_ij`), all finite.
     pub fn new(degree: usize, control: Vec<Point3<T>>) -> Result<Self, PatchError> {
-        if degree == 0 {
-            return Err(PatchError::DegreeTooSmall(degree));
-        }
+        degree_at_least("a Bézier patch", 1, degree)?;
         // Saturates for absurd degrees: no vector holds usize::MAX points.
         let expected = degree
             .saturating_add(1)
@@ -154,9 +149,7 @@ impl<T: Real> Patch<T> {
         e_u: &Point3<T>,
         e_v: &Point3<T>,
     ) -> Result<Self, PatchError> {
-        if degree == 0 {
-            return Err(PatchError::DegreeTooSmall(degree));
-        }
+        degree_at_least("a Bézier patch", 1, degree)?;
         let frac = |k: usize| T::from_rational(&Rational::from((k as i64, degree as i64)));
         let control = (0..=degree)
             .flat_map(|i| (0..=degree).map(move |j| (i, j)))
@@ -405,7 +398,11 @@ mod tests {
     fn bad_patches_and_parameters_are_typed_errors() {
         assert_eq!(
             Patch::<f64>::new(0, vec![]),
-            Err(PatchError::DegreeTooSmall(0))
+            Err(PatchError::Input(InputError::DegreeTooSmall {
+                what: "a Bézier patch",
+                min: 1,
+                got: 0
+            }))
         );
         assert!(matches!(
             Patch::new(1, vec![v3(0.0, 0.0, 0.0); 3]),

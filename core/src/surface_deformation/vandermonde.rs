@@ -7,17 +7,16 @@
 
 use crate::bernstein::basis::bernstein_basis;
 use crate::scalar::Real;
+use crate::validation::{InputError, degree_at_least};
 use nalgebra::DMatrix;
 use rug::Rational;
-use std::fmt;
-use std::str::FromStr;
 
 /// Errors from building Vandermonde-type matrices.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum VandermondeError {
-    /// The degree must be at least 1.
-    #[error("degree must be at least 1, got {0}")]
-    DegreeTooSmall(usize),
+    /// The degree is below 1.
+    #[error(transparent)]
+    Input(#[from] InputError),
     /// A node family name that is not one of the known families.
     #[error(
         "unknown node family '{0}' (expected equispaced, chebyshev-lobatto or chebyshev-gauss)"
@@ -31,6 +30,8 @@ pub enum VandermondeError {
 /// Where on `[0, 1]` the `n + 1` interpolation nodes `t_0 < … < t_n` sit.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
 #[serde(rename_all = "kebab-case")]
+#[derive(strum::VariantArray, strum::IntoStaticStr)]
+#[strum(serialize_all = "kebab-case")]
 pub enum NodeFamily {
     /// `t_j = j/n`.
     Equispaced,
@@ -41,22 +42,6 @@ pub enum NodeFamily {
 }
 
 impl NodeFamily {
-    /// Every family, in the order the studies list them.
-    pub const ALL: [NodeFamily; 3] = [
-        NodeFamily::Equispaced,
-        NodeFamily::ChebyshevLobatto,
-        NodeFamily::ChebyshevGauss,
-    ];
-
-    /// The command-line name (`equispaced`, `chebyshev-lobatto`, `chebyshev-gauss`).
-    pub fn name(self) -> &'static str {
-        match self {
-            NodeFamily::Equispaced => "equispaced",
-            NodeFamily::ChebyshevLobatto => "chebyshev-lobatto",
-            NodeFamily::ChebyshevGauss => "chebyshev-gauss",
-        }
-    }
-
     /// The `n + 1` nodes in the working precision, increasing.
     ///
     /// The Chebyshev families use the identity `(1 − cos 2θ)/2 = sin² θ`:
@@ -64,9 +49,7 @@ impl NodeFamily {
     /// right-hand side keeps every node to a few units of roundoff relative.
     /// Equispaced nodes are correctly rounded from the exact `j/n`.
     pub fn nodes<T: Real>(self, n: usize) -> Result<Vec<T>, VandermondeError> {
-        if n == 0 {
-            return Err(VandermondeError::DegreeTooSmall(n));
-        }
+        degree_at_least("a node family", 1, n)?;
         let mut nodes = Vec::new();
         if n.checked_add(1)
             .is_none_or(|k| nodes.try_reserve_exact(k).is_err())
@@ -97,21 +80,9 @@ impl NodeFamily {
     }
 }
 
-impl fmt::Display for NodeFamily {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(self.name())
-    }
-}
-
-impl FromStr for NodeFamily {
-    type Err = VandermondeError;
-    fn from_str(s: &str) -> Result<Self, Self::Err> {
-        NodeFamily::ALL
-            .into_iter()
-            .find(|f| f.name() == s)
-            .ok_or_else(|| VandermondeError::UnknownNodes(s.to_string()))
-    }
-}
+crate::named_enum!(NodeFamily, "node family", VandermondeError, |s: &str| {
+    VandermondeError::UnknownNodes(s.to_string())
+});
 
 /// The Bernstein–Vandermonde matrix `A_{ji} = B_i^n(t_j)` (row `j` = node,
 /// column `i` = basis function), `(n+1) × (n+1)` for `n + 1` nodes.
@@ -188,7 +159,7 @@ mod tests {
 
     #[test]
     fn node_names_round_trip_and_unknown_is_an_error() {
-        for f in NodeFamily::ALL {
+        for f in NodeFamily::all() {
             assert_eq!(f.name().parse::<NodeFamily>().unwrap(), f);
         }
         assert!(matches!(

@@ -17,7 +17,9 @@ use crate::output::{path_text, write_atomic};
 use clap::Args;
 use ndarray::ArrayD;
 use serde_json::json;
-use splinelab::prelude::{Mode, Options, PrefilterError, RecursivePrefilter, Route, SplineFamily};
+use splinelab::prelude::{
+    Mode, NdimageError, Options, PrefilterError, RecursivePrefilter, Route, SplineFamily,
+};
 use splinelab::scalar::Real;
 use splinelab_verify::check::UserFormat;
 use std::path::{Path, PathBuf};
@@ -72,7 +74,7 @@ pub struct EngineArgs {
 
 fn parse_mode(s: &str) -> Result<Mode, String> {
     s.parse()
-        .map_err(|e: splinelab::sspline::mode::UnknownMode| e.to_string())
+        .map_err(|e: splinelab::ndimage::mode::UnknownMode| e.to_string())
 }
 
 /// The working type of a run.
@@ -422,10 +424,10 @@ pub fn to_working<T: Real>(data: &ArrayD<f64>) -> ArrayD<T> {
 }
 
 /// An engine error about the input, with the file named.
-pub fn engine_error(input: &Path, e: PrefilterError) -> CliError {
+pub fn engine_error(input: &Path, e: NdimageError) -> CliError {
     match e {
-        PrefilterError::NonFinite(_) | PrefilterError::Empty => input_error(input, e.to_string()),
-        PrefilterError::IllConditioned { .. } => {
+        NdimageError::NonFinite(_) | NdimageError::Empty => input_error(input, e.to_string()),
+        NdimageError::Prefilter(PrefilterError::IllConditioned { .. }) => {
             CliError::Numerical(format!("{e} (or accept it with --max-error)"))
         }
         e => CliError::numerical(e),

@@ -23,7 +23,7 @@ use crate::output::{emit, path_text};
 use clap::{ArgGroup, Args};
 use serde_json::json;
 use splinelab::prelude::{Interpolant, Real};
-use splinelab::sspline::interpolant::PointRule;
+use splinelab::ndimage::interpolant::PointRule;
 use std::path::PathBuf;
 
 /// Arguments of `splinelab resample`.

@@ -33,7 +33,7 @@ fn chart(
 fn cond_chart(rows: &[CondRow]) -> Chart {
     let mut s = Vec::new();
     for basis in [Basis::Bernstein, Basis::Monomial] {
-        for nodes in NodeFamily::ALL {
+        for nodes in NodeFamily::all() {
             let pts = series(rows, basis, nodes)
                 .map(|r| (r.case.degree as f64, r.cond2_ref_f64))
                 .collect();
@@ -81,7 +81,7 @@ fn f64_vs_mpfr_chart(rows: &[CondRow]) -> Chart {
 fn digits_chart(rows: &[CondRow]) -> Chart {
     let mut s = Vec::new();
     for basis in [Basis::Bernstein, Basis::Monomial] {
-        for nodes in NodeFamily::ALL {
+        for nodes in NodeFamily::all() {
             let pts = series(rows, basis, nodes)
                 .map(|r| (r.case.degree as f64, r.cond2_digits))
                 .collect();
@@ -142,7 +142,7 @@ fn digits_table(rows: &[CondRow], degrees: &[usize]) -> String {
 
 fn headline(rows: &[CondRow]) -> serde_json::Value {
     let mut out = serde_json::Map::new();
-    for nodes in NodeFamily::ALL {
+    for nodes in NodeFamily::all() {
         let picked: Vec<_> = series(rows, Basis::Bernstein, nodes)
             .filter(|r| HEADLINE_DEGREES.contains(&r.case.degree))
             .map(|r| json!({"degree": r.case.degree, "cond2": r.cond2_ref, "f64_digits": r.cond2_digits}))

@@ -32,7 +32,7 @@ fn ulps<'a>(a: impl Iterator<Item = &'a f64>, b: &ArrayD<f64>) -> f64 {
     a.zip(b).fold(0.0f64, |m, (x, y)| m.max((x - y).abs())) / scale
 }
 
-fn num_err(e: PrefilterError) -> CliError {
+fn num_err(e: NdimageError) -> CliError {
     CliError::numerical(e)
 }
 

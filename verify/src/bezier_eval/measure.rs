@@ -184,12 +184,12 @@ pub fn check_bounds(
         .into_par_iter()
         .map(|c| {
             let mut g = SplitMix64::new(seed.wrapping_add(c as u64 * 0x1234_5678_9ABC));
-            let mut tallies = vec![(Tally::default(), Tally::default()); Method::ALL.len()];
+            let mut tallies = vec![(Tally::default(), Tally::default()); Method::all().len()];
             for _ in 0..per.min(cases - (c * per).min(cases)) {
                 let (coeffs, t) = random_case(&mut g, max_degree, true);
                 let (prep, exact) = prepared(&coeffs)?;
                 let n = coeffs.len() - 1;
-                for (k, &method) in Method::ALL.iter().enumerate() {
+                for (k, method) in Method::all().enumerate() {
                     let m = measure(&prep, &exact, method, t)?;
                     tallies[k].0.record(
                         &Rational::from_f64(m.eval.bound).expect("finite"),
@@ -203,10 +203,9 @@ pub fn check_bounds(
             Ok(tallies)
         })
         .collect::<Result<_, EvalError>>()?;
-    Ok(Method::ALL
-        .iter()
+    Ok(Method::all()
         .enumerate()
-        .map(|(k, &method)| {
+        .map(|(k, method)| {
             let mut run = Tally::default();
             let mut pri = Tally::default();
             for p in &partial {

@@ -7,15 +7,16 @@ use splinelab::bernstein::compensated::compensated_de_casteljau_bounded;
 use splinelab::bernstein::power_form::PowerForm;
 use splinelab::bernstein::volk_schumaker::volk_schumaker_bounded;
 use splinelab::scalar::Real;
-use std::fmt;
-use std::str::FromStr;
 
 /// The evaluation methods compared (command-line names in [`Method::name`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
+#[derive(strum::VariantArray, strum::IntoStaticStr)]
+#[strum(serialize_all = "kebab-case")]
 pub enum Method {
     /// de Casteljau's algorithm.
     #[serde(rename = "decasteljau")]
+    #[strum(serialize = "decasteljau")]
     DeCasteljau,
     /// Bernstein → monomial conversion in the working precision, then Horner.
     Power,
@@ -30,51 +31,7 @@ pub enum Method {
     Compensated,
 }
 
-impl Method {
-    /// All methods, in the order tables list them.
-    pub const ALL: [Method; 6] = [
-        Method::DeCasteljau,
-        Method::Power,
-        Method::PowerExact,
-        Method::Bernstein,
-        Method::Vs,
-        Method::Compensated,
-    ];
-
-    /// The command-line name.
-    pub fn name(self) -> &'static str {
-        match self {
-            Method::DeCasteljau => "decasteljau",
-            Method::Power => "power",
-            Method::PowerExact => "power-exact",
-            Method::Bernstein => "bernstein",
-            Method::Vs => "vs",
-            Method::Compensated => "compensated",
-        }
-    }
-}
-
-impl fmt::Display for Method {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(self.name())
-    }
-}
-
-impl FromStr for Method {
-    type Err = String;
-    fn from_str(s: &str) -> Result<Self, String> {
-        Method::ALL
-            .into_iter()
-            .find(|m| m.name() == s)
-            .ok_or_else(|| {
-                let names: Vec<_> = Method::ALL.iter().map(|m| m.name()).collect();
-                format!(
-                    "unknown method '{s}' (expected one of {})",
-                    names.join(", ")
-                )
-            })
-    }
-}
+splinelab::named_enum!(Method, "method");
 
 /// Why an evaluation failed.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]

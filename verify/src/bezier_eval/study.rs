@@ -149,9 +149,8 @@ fn series_over(
     x_of: impl Fn(f64, &Measured) -> f64 + Sync,
 ) -> Result<Vec<MethodSeries>, EvalError> {
     let (prep, exact) = prepared(coeffs)?;
-    Method::ALL
-        .iter()
-        .map(|&method| {
+    Method::all()
+        .map(|method| {
             let points = ts
                 .par_iter()
                 .map(|&t| measure(&prep, &exact, method, t).map(|m| (t, m)))
@@ -203,10 +202,9 @@ fn by_degree(params: &BezierEvalParams) -> Result<Vec<ByDegree>, EvalError> {
                         .collect::<Vec<f64>>())
                 })
                 .collect::<Result<Vec<_>, EvalError>>()?;
-            let series = Method::ALL
-                .iter()
+            let series = Method::all()
                 .enumerate()
-                .map(|(k, &method)| MethodSeries {
+                .map(|(k, method)| MethodSeries {
                     method,
                     points: per_degree
                         .iter()
@@ -232,16 +230,14 @@ fn scatter(params: &BezierEvalParams) -> Result<Vec<MethodSeries>, EvalError> {
         .par_iter()
         .map(|(coeffs, t)| {
             let (prep, exact) = prepared(coeffs)?;
-            Method::ALL
-                .iter()
-                .map(|&m| measure(&prep, &exact, m, *t).map(|x| (x.cond(), x.rel_error())))
+            Method::all()
+                .map(|m| measure(&prep, &exact, m, *t).map(|x| (x.cond(), x.rel_error())))
                 .collect::<Result<Vec<_>, _>>()
         })
         .collect::<Result<_, EvalError>>()?;
-    Ok(Method::ALL
-        .iter()
+    Ok(Method::all()
         .enumerate()
-        .map(|(k, &method)| MethodSeries {
+        .map(|(k, method)| MethodSeries {
             method,
             points: measured
                 .iter()

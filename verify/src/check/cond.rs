@@ -27,40 +27,21 @@ pub const MAX_NODES: usize = 501;
 pub const MAX_WORK: usize = 500_000_000;
 
 /// Which condition number the user computed.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, strum::VariantArray, strum::IntoStaticStr,
+)]
 pub enum Norm {
     /// `cond₂ = σ_max / σ_min`.
     #[serde(rename = "2")]
+    #[strum(serialize = "2")]
     Two,
     /// `cond_∞ = ‖A‖_∞ ‖A⁻¹‖_∞`.
     #[serde(rename = "inf")]
+    #[strum(serialize = "inf")]
     Inf,
 }
 
-impl Norm {
-    /// Both norms.
-    pub const ALL: [Norm; 2] = [Norm::Two, Norm::Inf];
-
-    /// `"2"` or `"inf"`.
-    pub fn name(self) -> &'static str {
-        match self {
-            Norm::Two => "2",
-            Norm::Inf => "inf",
-        }
-    }
-}
-
-impl std::str::FromStr for Norm {
-    type Err = String;
-
-    /// `"2"` or `"inf"` back to the norm (Python's `norm=`).
-    fn from_str(s: &str) -> Result<Self, String> {
-        Norm::ALL
-            .into_iter()
-            .find(|n| n.name() == s)
-            .ok_or_else(|| format!("unknown norm '{s}' (2, inf)"))
-    }
-}
+splinelab::named_enum!(Norm, "norm");
 
 /// What `check cond` is given.
 #[derive(Debug, Clone)]

@@ -19,10 +19,10 @@ use super::banded::{Banded, solve_dense, solve_with_corners};
 use super::format::UserFormat;
 use super::summary::{CheckSummary, Context, summarize};
 use super::{CheckError, require_finite, require_len};
+pub use splinelab::ndimage::mode::Mode;
 use splinelab::scalar::Real;
 use splinelab::sspline::SplineFamily;
 use splinelab::sspline::euler_frobenius::poles;
-pub use splinelab::sspline::mode::Mode;
 use splinelab::sspline::node_values::node_values_exact;
 
 /// Largest number of samples (times the half-bandwidth) a check accepts.

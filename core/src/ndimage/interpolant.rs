@@ -16,13 +16,13 @@
 //! multiply-adds. **Error**: the coefficients' (see [`LineFilter`]) plus the
 //! rounding of `m^D` non-negative-weight terms, `≤ m D u Σ|D_i| w_i`.
 
-use super::bspline_uniform::{cell_derivatives_into, centred_cell};
+use super::NdimageError;
 use super::line_filter::{LineFilter, Route};
 use super::mode::Mode;
 use super::nd_prefilter::{padded_coefficients, padded_extension};
-use super::prefilter::PrefilterError;
-use super::{MAX_ORDER, SplineFamily};
 use crate::scalar::Real;
+use crate::sspline::bspline_uniform::{cell_derivatives_into, centred_cell};
+use crate::sspline::{MAX_ORDER, SplineFamily};
 use ndarray::{ArrayBase, ArrayD, ArrayView2, ArrayViewD, Data, Dimension, Slice};
 
 mod affine;
@@ -100,7 +100,7 @@ impl<T: Real + Send + Sync> Interpolant<T> {
     /// f.eval_many(many.view(), &mut out).unwrap();
     /// assert!((out[1] - 4.0).abs() < 1e-14);
     /// ```
-    pub fn new<S, D>(data: &ArrayBase<S, D>, opts: Options) -> Result<Self, PrefilterError>
+    pub fn new<S, D>(data: &ArrayBase<S, D>, opts: Options) -> Result<Self, NdimageError>
     where
         S: Data<Elem = T>,
         D: Dimension,
@@ -110,7 +110,7 @@ impl<T: Real + Send + Sync> Interpolant<T> {
                 .map(|f| Interpolant { given: false, ..f });
         }
         if opts.degree >= MAX_ORDER {
-            return Err(PrefilterError::Degree(opts.degree));
+            return Err(NdimageError::Degree(opts.degree));
         }
         let order = opts.degree + 1;
         let family = SplineFamily::order(order)?;
@@ -159,16 +159,16 @@ impl<T: Real + Send + Sync> Interpolant<T> {
         degree: u32,
         mode: Mode,
         cval: f64,
-    ) -> Result<Self, PrefilterError>
+    ) -> Result<Self, NdimageError>
     where
         S: Data<Elem = T>,
         D: Dimension,
     {
         if degree >= MAX_ORDER {
-            return Err(PrefilterError::Degree(degree));
+            return Err(NdimageError::Degree(degree));
         }
         if coeffs.is_empty() {
-            return Err(PrefilterError::Empty);
+            return Err(NdimageError::Empty);
         }
         let order = degree + 1;
         // Under nearest the point is not folded: the window of a point
@@ -253,18 +253,18 @@ impl<T: Real + Send + Sync> Interpolant<T> {
         (vec![T::zero(); k], vec![0; k], vec![true; k])
     }
 
-    fn check(&self, x: &[f64], deriv: &[u32]) -> Result<(), PrefilterError> {
+    fn check(&self, x: &[f64], deriv: &[u32]) -> Result<(), NdimageError> {
         if x.len() != self.ndim() {
-            return Err(PrefilterError::PointDimension {
+            return Err(NdimageError::PointDimension {
                 expected: self.ndim(),
                 got: x.len(),
             });
         }
         if let Some(i) = x.iter().position(|c| !c.is_finite()) {
-            return Err(PrefilterError::NonFiniteCoordinate(i));
+            return Err(NdimageError::NonFiniteCoordinate(i));
         }
         match deriv.iter().find(|&&d| d >= self.order) {
-            Some(&d) => Err(PrefilterError::DerivativeTooHigh {
+            Some(&d) => Err(NdimageError::DerivativeTooHigh {
                 order: d,
                 degree: self.degree(),
             }),
@@ -275,7 +275,7 @@ impl<T: Real + Send + Sync> Interpolant<T> {
     /// `f(x)` at one point of `ndim` coordinates (sample indices). No heap
     /// allocation for `ndim × (degree + 1) ≤ 24` with `f64`/`f32` (MPFR
     /// values allocate their own limbs).
-    pub fn eval(&self, x: &[f64]) -> Result<T, PrefilterError> {
+    pub fn eval(&self, x: &[f64]) -> Result<T, NdimageError> {
         const NONE: [u32; SMALL] = [0; SMALL];
         match NONE.get(..x.len()) {
             Some(zero) => self.eval_derivative(x, zero),
@@ -287,10 +287,10 @@ impl<T: Real + Send + Sync> Interpolant<T> {
     /// `d_a ≤` degree (`deriv.len() = ndim`). Derivatives of the spline
     /// itself (under `nearest`, of the edge-extended signal's spline: zero
     /// far outside, where it is constant).
-    pub fn eval_derivative(&self, x: &[f64], deriv: &[u32]) -> Result<T, PrefilterError> {
+    pub fn eval_derivative(&self, x: &[f64], deriv: &[u32]) -> Result<T, NdimageError> {
         self.check(x, deriv)?;
         if deriv.len() != x.len() {
-            return Err(PrefilterError::PointDimension {
+            return Err(NdimageError::PointDimension {
                 expected: self.ndim(),
                 got: deriv.len(),
             });
@@ -385,7 +385,7 @@ pub fn map_coordinates<T, S, D>(
     data: &ArrayBase<S, D>,
     coordinates: ArrayView2<'_, f64>,
     opts: Options,
-) -> Result<Vec<T>, PrefilterError>
+) -> Result<Vec<T>, NdimageError>
 where
     T: Real + Send + Sync,
     S: Data<Elem = T>,

@@ -27,7 +27,7 @@
 use super::Interpolant;
 use crate::scalar::Real;
 use crate::sspline::bspline_uniform::{cell_derivatives_into, centred_cell};
-use crate::sspline::prefilter::PrefilterError;
+use crate::ndimage::NdimageError;
 use rayon::prelude::*;
 
 /// One axis of the resampling: for each output index the `m` window
@@ -62,7 +62,7 @@ impl<T: Real + Copy + Send + Sync> Interpolant<T> {
         coordinates: &[&[f64]],
         deriv: &[u32],
         out: &mut [T],
-    ) -> Result<(), PrefilterError> {
+    ) -> Result<(), NdimageError> {
         self.check_grid(coordinates, deriv, out.len())?;
         let plans: Vec<AxisPlan<T>> = coordinates
             .iter()
@@ -90,9 +90,9 @@ impl<T: Real + Copy + Send + Sync> Interpolant<T> {
         Ok(())
     }
 
-    fn check_grid(&self, xs: &[&[f64]], deriv: &[u32], len: usize) -> Result<(), PrefilterError> {
+    fn check_grid(&self, xs: &[&[f64]], deriv: &[u32], len: usize) -> Result<(), NdimageError> {
         if xs.len() != self.ndim() || deriv.len() != self.ndim() {
-            return Err(PrefilterError::PointDimension {
+            return Err(NdimageError::PointDimension {
                 expected: self.ndim(),
                 got: if xs.len() != self.ndim() {
                     xs.len()
@@ -103,7 +103,7 @@ impl<T: Real + Copy + Send + Sync> Interpolant<T> {
         }
         let count: usize = xs.iter().map(|x| x.len()).product();
         if count != len {
-            return Err(PrefilterError::BufferLength {
+            return Err(NdimageError::BufferLength {
                 expected: count,
                 got: len,
             });
@@ -111,12 +111,12 @@ impl<T: Real + Copy + Send + Sync> Interpolant<T> {
         let mut flat = 0;
         for x in xs {
             if let Some(k) = x.iter().position(|c| !c.is_finite()) {
-                return Err(PrefilterError::NonFiniteCoordinate(flat + k));
+                return Err(NdimageError::NonFiniteCoordinate(flat + k));
             }
             flat += x.len();
         }
         match deriv.iter().find(|&&d| d >= self.order) {
-            Some(&d) => Err(PrefilterError::DerivativeTooHigh {
+            Some(&d) => Err(NdimageError::DerivativeTooHigh {
                 order: d,
                 degree: self.degree(),
             }),
@@ -279,7 +279,7 @@ mod tests {
         assert!(err.to_string().contains('6'), "{err}");
         let err = f.resample_grid(&[&r], &[0], &mut out).unwrap_err();
         assert!(
-            matches!(err, PrefilterError::PointDimension { .. }),
+            matches!(err, NdimageError::PointDimension { .. }),
             "{err}"
         );
     }

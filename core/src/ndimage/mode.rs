@@ -26,7 +26,7 @@
 //! rule. Our coefficients for those two modes are the exact ones of the
 //! extended signal (the ones scipy's `map_coordinates` approximates).
 
-use super::end_conditions::EndRule;
+use crate::sspline::end_conditions::EndRule;
 use std::fmt;
 use std::str::FromStr;
 
@@ -98,7 +98,7 @@ impl Mode {
     /// Cost `O(1)`.
     ///
     /// ```
-    /// use splinelab::sspline::mode::Mode;
+    /// use splinelab::ndimage::mode::Mode;
     /// let idx = |m: Mode| (-3..7).map(|i| m.fold(i, 4)).collect::<Vec<_>>();
     /// assert_eq!(idx(Mode::Mirror), [3, 2, 1, 0, 1, 2, 3, 2, 1, 0].map(Some));
     /// assert_eq!(idx(Mode::Reflect), [2, 1, 0, 0, 1, 2, 3, 3, 2, 1].map(Some));
@@ -183,7 +183,7 @@ impl Mode {
     /// rounds up to an integer, e.g. `y = ½ − 2^{−54}` (scipy: 1, here 0).
     ///
     /// ```
-    /// use splinelab::sspline::mode::Mode;
+    /// use splinelab::ndimage::mode::Mode;
     /// assert_eq!(Mode::Mirror.nearest_index(8.5, 9), Some(7));
     /// assert_eq!(Mode::Mirror.nearest_index(-2.5, 9), Some(3));
     /// assert_eq!(Mode::GridConstant.nearest_index(-0.5, 9), Some(0));

@@ -12,9 +12,9 @@
 //! compounds to at most `((A + b)^D − A^D) · max|s|` with `A = Σ|c_j|` the
 //! amplification (`1/|V(−1)|`) and `b` the per-axis bound (≈ `D A^{D−1} b`).
 
+use super::NdimageError;
 use super::line_filter::LineFilter;
 use super::mode::Mode;
-use super::prefilter::PrefilterError;
 use crate::scalar::Real;
 use ndarray::{Array, ArrayBase, ArrayViewMut3, Axis, Data, DataMut, Dimension, Zip};
 use rayon::prelude::*;
@@ -25,7 +25,7 @@ pub(crate) fn check_range<T: Real, S: Data<Elem = T>, D: Dimension>(
     a: &ArrayBase<S, D>,
     filter: &LineFilter<T>,
     axes: usize,
-) -> Result<(), PrefilterError> {
+) -> Result<(), NdimageError> {
     if T::BITS > 53 {
         return Ok(());
     }
@@ -36,9 +36,9 @@ pub(crate) fn check_range<T: Real, S: Data<Elem = T>, D: Dimension>(
 /// The first non-finite element (in logical order), as an error.
 pub(crate) fn check_finite<T: Real, S: Data<Elem = T>, D: Dimension>(
     a: &ArrayBase<S, D>,
-) -> Result<(), PrefilterError> {
+) -> Result<(), NdimageError> {
     if a.is_empty() {
-        return Err(PrefilterError::Empty);
+        return Err(NdimageError::Empty);
     }
     if let Some(s) = a.as_slice_memory_order() {
         // Fast path: one vectorisable pass; the position only on failure.
@@ -47,16 +47,16 @@ pub(crate) fn check_finite<T: Real, S: Data<Elem = T>, D: Dimension>(
         }
     }
     match a.iter().position(|x| !x.is_finite()) {
-        Some(i) => Err(PrefilterError::NonFinite(i)),
+        Some(i) => Err(NdimageError::NonFinite(i)),
         None => Ok(()),
     }
 }
 
-fn check_axis<D: Dimension>(dim: &D, axis: usize) -> Result<(), PrefilterError> {
+fn check_axis<D: Dimension>(dim: &D, axis: usize) -> Result<(), NdimageError> {
     if axis < dim.ndim() {
         Ok(())
     } else {
-        Err(PrefilterError::Axis {
+        Err(NdimageError::Axis {
             axis,
             ndim: dim.ndim(),
         })
@@ -78,7 +78,7 @@ pub fn spline_filter1d<T, S, D>(
     a: &mut ArrayBase<S, D>,
     axis: usize,
     filter: &LineFilter<T>,
-) -> Result<(), PrefilterError>
+) -> Result<(), NdimageError>
 where
     T: Real + Send + Sync,
     S: DataMut<Elem = T>,
@@ -218,7 +218,7 @@ where
 pub fn spline_filter<T, S, D>(
     a: &mut ArrayBase<S, D>,
     filter: &LineFilter<T>,
-) -> Result<(), PrefilterError>
+) -> Result<(), NdimageError>
 where
     T: Real + Send + Sync,
     S: DataMut<Elem = T>,
@@ -240,7 +240,7 @@ pub fn padded_coefficients<T, S, D>(
     a: &ArrayBase<S, D>,
     filter: &LineFilter<T>,
     pad: usize,
-) -> Result<Array<T, D>, PrefilterError>
+) -> Result<Array<T, D>, NdimageError>
 where
     T: Real + Send + Sync,
     S: Data<Elem = T>,
@@ -263,7 +263,7 @@ pub fn padded_extension<T, S, D>(
     mode: Mode,
     cval: f64,
     pad: usize,
-) -> Result<Array<T, D>, PrefilterError>
+) -> Result<Array<T, D>, NdimageError>
 where
     T: Real + Send + Sync,
     S: Data<Elem = T>,

@@ -15,7 +15,7 @@
 
 use super::Interpolant;
 use crate::scalar::Real;
-use crate::sspline::prefilter::PrefilterError;
+use crate::ndimage::NdimageError;
 use ndarray::Array2;
 use rayon::prelude::*;
 
@@ -43,7 +43,7 @@ impl<T: Real + Copy + Send + Sync> Interpolant<T> {
     ///
     /// ```
     /// use splinelab::prelude::*;
-    /// use splinelab::sspline::interpolant::PointRule;
+    /// use splinelab::ndimage::interpolant::PointRule;
     /// let data = ndarray::array![[0.0, 1.0, 4.0], [1.0, 2.0, 5.0], [4.0, 5.0, 8.0]];
     /// let f: Interpolant<f64> = Interpolant::new(&data, Options::new(3, Mode::Mirror)).unwrap();
     /// // The transpose: output (i, j) reads input (j, i).
@@ -59,23 +59,23 @@ impl<T: Real + Copy + Send + Sync> Interpolant<T> {
         shift: f64,
         rule: PointRule,
         out: &mut [T],
-    ) -> Result<(), PrefilterError> {
+    ) -> Result<(), NdimageError> {
         let (n, k) = (self.ndim(), out_shape.len());
         if matrix.len() != n * k || offset.len() != n || k == 0 {
-            return Err(PrefilterError::PointDimension {
+            return Err(NdimageError::PointDimension {
                 expected: n,
                 got: if offset.len() != n { offset.len() } else { k },
             });
         }
         let count: usize = out_shape.iter().product();
         if out.len() != count {
-            return Err(PrefilterError::BufferLength {
+            return Err(NdimageError::BufferLength {
                 expected: count,
                 got: out.len(),
             });
         }
         if let Some(i) = matrix.iter().chain(offset).position(|v| !v.is_finite()) {
-            return Err(PrefilterError::NonFiniteCoordinate(i));
+            return Err(NdimageError::NonFiniteCoordinate(i));
         }
         out.par_chunks_mut(BLOCK)
             .enumerate()

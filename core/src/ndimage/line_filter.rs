@@ -23,11 +23,12 @@
 //!   against the exact result its error is at most
 //!   `Σ_{|j|>n} |c_j| · max|s|`, the width chooser's guaranteed bound.
 
-use super::SplineFamily;
+use super::NdimageError;
 use super::mode::Mode;
-use super::prefilter::{ConvolutionPrefilter, PrefilterError, RecursivePrefilter};
-use super::width::certified_width;
 use crate::scalar::Real;
+use crate::sspline::SplineFamily;
+use crate::sspline::prefilter::{ConvolutionPrefilter, RecursivePrefilter};
+use crate::sspline::width::certified_width;
 
 /// How the coefficients are computed.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -59,7 +60,8 @@ impl<T: Real> LineFilter<T> {
     /// truncated route one width choice, `O(n)` MPFR coefficients).
     ///
     /// ```
-    /// use splinelab::sspline::{SplineFamily, mode::Mode, line_filter::{LineFilter, Route}};
+    /// use splinelab::sspline::SplineFamily;
+    /// use splinelab::ndimage::{mode::Mode, line_filter::{LineFilter, Route}};
     /// let f = LineFilter::<f64>::new(&SplineFamily::Order(4), Mode::Reflect, 0.0, Route::Exact).unwrap();
     /// let mut c = vec![1.0, 4.0, 2.0, 0.0];
     /// f.apply(&mut c, &mut Vec::new());
@@ -71,7 +73,7 @@ impl<T: Real> LineFilter<T> {
         mode: Mode,
         cval: f64,
         route: Route,
-    ) -> Result<Self, PrefilterError> {
+    ) -> Result<Self, NdimageError> {
         let recursive = RecursivePrefilter::new(family)?;
         let (convolution, bound) = match route {
             Route::Exact => (None, 0.0),
@@ -117,7 +119,7 @@ impl<T: Real> LineFilter<T> {
     /// f64), `max(max_abs, |cval|) · growth^axes` must stay below the
     /// largest finite value ([`Self::growth`]); MPFR's exponent range makes
     /// overflow unreachable. `O(p)`.
-    pub fn check_magnitude(&self, max_abs: f64, axes: usize) -> Result<(), PrefilterError> {
+    pub fn check_magnitude(&self, max_abs: f64, axes: usize) -> Result<(), NdimageError> {
         if T::BITS > 53 {
             return Ok(());
         }
@@ -132,7 +134,7 @@ impl<T: Real> LineFilter<T> {
         if max <= limit {
             return Ok(());
         }
-        Err(PrefilterError::Overflow { max, growth, limit })
+        Err(NdimageError::Overflow { max, growth, limit })
     }
 
     /// The truncation half-width, `None` for the exact route.
@@ -248,7 +250,8 @@ impl<T: Real> LineFilter<T> {
     /// few ulps of `max|s|`, not bitwise; `4p + 1` flops per sample.
     ///
     /// ```
-    /// use splinelab::sspline::{SplineFamily, mode::Mode, line_filter::{LineFilter, Route}};
+    /// use splinelab::sspline::SplineFamily;
+    /// use splinelab::ndimage::{mode::Mode, line_filter::{LineFilter, Route}};
     /// let f = LineFilter::<f64>::new(&SplineFamily::Order(4), Mode::Mirror, 0.0, Route::Exact).unwrap();
     /// let (a, b) = ([1.0, 4.0, 2.0, 0.0], [3.0, -1.0, 0.5, 2.0]);
     /// let mut rows: Vec<f64> = a.iter().zip(&b).flat_map(|(x, y)| [*x, *y]).collect();

@@ -12,9 +12,9 @@
 //! prefetch is only a hint).
 
 use super::{Interpolant, Scratch};
+use crate::ndimage::NdimageError;
 use crate::scalar::Real;
 use crate::sspline::bspline_uniform::{cell_derivatives_into, centred_cell};
-use crate::sspline::prefilter::PrefilterError;
 use ndarray::{ArrayView2, s};
 use rayon::prelude::*;
 
@@ -34,21 +34,21 @@ impl<T: Real + Send + Sync> Interpolant<T> {
         &self,
         points: ArrayView2<'_, f64>,
         out: &mut [T],
-    ) -> Result<(), PrefilterError> {
+    ) -> Result<(), NdimageError> {
         if points.ncols() != self.ndim() {
-            return Err(PrefilterError::PointDimension {
+            return Err(NdimageError::PointDimension {
                 expected: self.ndim(),
                 got: points.ncols(),
             });
         }
         if out.len() != points.nrows() {
-            return Err(PrefilterError::BufferLength {
+            return Err(NdimageError::BufferLength {
                 expected: points.nrows(),
                 got: out.len(),
             });
         }
         if let Some(k) = points.iter().position(|c| !c.is_finite()) {
-            return Err(PrefilterError::NonFiniteCoordinate(k));
+            return Err(NdimageError::NonFiniteCoordinate(k));
         }
         out.par_chunks_mut(CHUNK)
             .enumerate()

@@ -17,12 +17,12 @@
 //! the columns of one buffer, so the recursion runs as vector operations
 //! rather than one latency-bound chain.
 
-use super::SplineFamily;
+use super::NdimageError;
 use super::line_filter::{LineFilter, Route};
 use super::mode::Mode;
-use super::prefilter::PrefilterError;
-use super::width::certified_width;
 use crate::scalar::Real;
+use crate::sspline::SplineFamily;
+use crate::sspline::width::certified_width;
 use rayon::prelude::*;
 use std::borrow::Cow;
 
@@ -38,7 +38,8 @@ impl<T: Real + Send + Sync> BlockPrefilter<T> {
     /// Blocks overlapping by the certified width of `tol` for `family`.
     ///
     /// ```
-    /// use splinelab::sspline::{SplineFamily, mode::Mode, block_filter::BlockPrefilter};
+    /// use splinelab::sspline::SplineFamily;
+    /// use splinelab::ndimage::{mode::Mode, block_filter::BlockPrefilter};
     /// let f = BlockPrefilter::<f64>::new(&SplineFamily::Order(4), Mode::Mirror, 0.0, 1e-12).unwrap();
     /// assert!(f.bound() < 1e-12 && f.overlap() == 22);
     /// ```
@@ -47,7 +48,7 @@ impl<T: Real + Send + Sync> BlockPrefilter<T> {
         mode: Mode,
         cval: f64,
         tol: f64,
-    ) -> Result<Self, PrefilterError> {
+    ) -> Result<Self, NdimageError> {
         let (overlap, bound) = certified_width(family, tol)?;
         Ok(BlockPrefilter {
             filter: LineFilter::new(family, mode, cval, Route::Exact)?,
@@ -71,7 +72,7 @@ impl<T: Real + Send + Sync> BlockPrefilter<T> {
     /// block is cut into windows of at most [`WINDOW`] samples (plus the
     /// overlap), filtered eight at a time in an L2-sized buffer. The bound
     /// holds for every window, whatever its size.
-    pub fn apply(&self, s: &[T], block: usize) -> Result<Vec<T>, PrefilterError> {
+    pub fn apply(&self, s: &[T], block: usize) -> Result<Vec<T>, NdimageError> {
         let mut out = vec![T::zero(); s.len()];
         self.apply_into(s, &mut out, block)?;
         Ok(out)
@@ -81,22 +82,23 @@ impl<T: Real + Send + Sync> BlockPrefilter<T> {
     /// repeated calls neither allocate nor fault in fresh pages.
     ///
     /// ```
-    /// use splinelab::sspline::{SplineFamily, mode::Mode, block_filter::BlockPrefilter};
+    /// use splinelab::sspline::SplineFamily;
+    /// use splinelab::ndimage::{mode::Mode, block_filter::BlockPrefilter};
     /// let f = BlockPrefilter::<f64>::new(&SplineFamily::Order(4), Mode::Mirror, 0.0, 1e-12).unwrap();
     /// let s: Vec<f64> = (0..1000).map(|i| (i as f64 * 0.1).sin()).collect();
     /// let mut out = vec![0.0; s.len()];
     /// f.apply_into(&s, &mut out, 256).unwrap();
     /// assert_eq!(out, f.apply(&s, 256).unwrap());
     /// ```
-    pub fn apply_into(&self, s: &[T], out: &mut [T], block: usize) -> Result<(), PrefilterError> {
+    pub fn apply_into(&self, s: &[T], out: &mut [T], block: usize) -> Result<(), NdimageError> {
         if out.len() != s.len() {
-            return Err(PrefilterError::BufferLength {
+            return Err(NdimageError::BufferLength {
                 expected: s.len(),
                 got: out.len(),
             });
         }
         if s.is_empty() {
-            return Err(PrefilterError::Empty);
+            return Err(NdimageError::Empty);
         }
         let block = block.max(1);
         // Each group checks its own samples while they are on their way to
@@ -119,7 +121,7 @@ impl<T: Real + Send + Sync> BlockPrefilter<T> {
                 });
         if finite.is_err() {
             let i = s.iter().position(|x| !x.is_finite()).unwrap_or(0);
-            return Err(PrefilterError::NonFinite(i));
+            return Err(NdimageError::NonFinite(i));
         }
         Ok(())
     }

@@ -1,0 +1,90 @@
+//! Why the N-D engine refused a request or failed: [`NdimageError`].
+
+use crate::sspline::prefilter::PrefilterError;
+
+/// Why a prefilter, interpolation or resampling request of the engine was
+/// refused or failed. The 1-D prefilters' own failures (an ill-conditioned
+/// scalar, an unsupported end rule, the poles) arrive as
+/// [`NdimageError::Prefilter`]; empty and non-finite data keep their own
+/// variants whichever layer finds them.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum NdimageError {
+    /// No samples.
+    #[error("the signal is empty")]
+    Empty,
+    /// A sample is NaN or infinite (its flat index in the array's logical order).
+    #[error("sample {0} is not finite")]
+    NonFinite(usize),
+    /// Samples so large that the coefficients could overflow the scalar.
+    #[error(
+        "samples up to {max:e} could overflow: the filter forms values up to {growth:e} × max|s| per axis; \
+         scale the data below {limit:e} (or use --prec / an MPFR scalar)"
+    )]
+    Overflow {
+        /// The largest |sample| (or |cval|).
+        max: f64,
+        /// The filter's growth bound ([`crate::ndimage::line_filter::LineFilter::growth`]).
+        growth: f64,
+        /// The largest safe |sample|.
+        limit: f64,
+    },
+    /// A point has the wrong number of coordinates.
+    #[error("a point has {got} coordinates, the array has {expected} dimensions")]
+    PointDimension {
+        /// Dimensions of the interpolant.
+        expected: usize,
+        /// Coordinates given.
+        got: usize,
+    },
+    /// A coordinate is NaN or infinite.
+    #[error("coordinate {0} is not finite")]
+    NonFiniteCoordinate(usize),
+    /// A derivative above the degree was asked for.
+    #[error("derivative order {order} exceeds the degree {degree}")]
+    DerivativeTooHigh {
+        /// The derivative order asked for.
+        order: u32,
+        /// The spline degree.
+        degree: u32,
+    },
+    /// An output buffer of the wrong length.
+    #[error("output buffer holds {got} values, {expected} are needed")]
+    BufferLength {
+        /// Values needed.
+        expected: usize,
+        /// Buffer length.
+        got: usize,
+    },
+    /// An axis outside the array.
+    #[error("axis {axis} is out of range for an array of {ndim} dimensions")]
+    Axis {
+        /// The axis.
+        axis: usize,
+        /// Dimensions of the array.
+        ndim: usize,
+    },
+    /// A degree outside `1..=199`.
+    #[error("degree {0} is outside the supported range 1..=199")]
+    Degree(u32),
+    /// The 1-D prefilter failed (ill-conditioned scalar, end rule, poles).
+    #[error(transparent)]
+    Prefilter(PrefilterError),
+}
+
+impl From<PrefilterError> for NdimageError {
+    /// Empty and non-finite data keep the engine's own variants, so a caller
+    /// matches one variant whichever layer found the sample.
+    fn from(e: PrefilterError) -> Self {
+        match e {
+            PrefilterError::Empty => NdimageError::Empty,
+            PrefilterError::NonFinite(i) => NdimageError::NonFinite(i),
+            other => NdimageError::Prefilter(other),
+        }
+    }
+}
+
+impl From<crate::sspline::SsplineError> for NdimageError {
+    fn from(e: crate::sspline::SsplineError) -> Self {
+        NdimageError::Prefilter(PrefilterError::Sspline(e))
+    }
+}
