@@ -10,8 +10,8 @@ use numpy::{
     Element, PyArrayDyn, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2, PyReadonlyArrayDyn,
 };
 use pyo3::prelude::*;
-use splinelab::prelude::*;
 use splinelab::ndimage::interpolant::PointRule;
+use splinelab::prelude::*;
 
 /// The interpolant (from samples, or from coefficients when `prefilter` is
 /// false) evaluated on the grid; the result has one axis per vector.

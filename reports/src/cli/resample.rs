@@ -22,8 +22,8 @@ use crate::outln;
 use crate::output::{emit, path_text};
 use clap::{ArgGroup, Args};
 use serde_json::json;
-use splinelab::prelude::{Interpolant, Real};
 use splinelab::ndimage::interpolant::PointRule;
+use splinelab::prelude::{Interpolant, Real};
 use std::path::PathBuf;
 
 /// Arguments of `splinelab resample`.

@@ -14,8 +14,8 @@
 //! [`Interpolant::eval`].
 
 use super::Interpolant;
-use crate::scalar::Real;
 use crate::ndimage::NdimageError;
+use crate::scalar::Real;
 use ndarray::Array2;
 use rayon::prelude::*;
 

@@ -25,9 +25,9 @@
 //! after them too.
 
 use super::Interpolant;
+use crate::ndimage::NdimageError;
 use crate::scalar::Real;
 use crate::sspline::bspline_uniform::{cell_derivatives_into, centred_cell};
-use crate::ndimage::NdimageError;
 use rayon::prelude::*;
 
 /// One axis of the resampling: for each output index the `m` window
@@ -278,9 +278,6 @@ mod tests {
         let err = f.resample_grid(&[&r, &c], &[0, 6], &mut out).unwrap_err();
         assert!(err.to_string().contains('6'), "{err}");
         let err = f.resample_grid(&[&r], &[0], &mut out).unwrap_err();
-        assert!(
-            matches!(err, NdimageError::PointDimension { .. }),
-            "{err}"
-        );
+        assert!(matches!(err, NdimageError::PointDimension { .. }), "{err}");
     }
 }
