@@ -2,7 +2,9 @@
 
 Drop-in for ``scipy.ndimage``'s spline functions, with the same argument
 names and defaults where they overlap: ``spline_filter1d``,
-``spline_filter`` and ``map_coordinates``. As in scipy, ``order`` is the
+``spline_filter``, ``map_coordinates``, ``zoom``, ``shift``, ``rotate``,
+``affine_transform`` and ``geometric_transform`` (plus ``spline_gradient``
+and ``map_coordinates(derivative=...)``). As in scipy, ``order`` is the
 spline **degree** (scipy's ``order``; the papers' B-spline order is
 ``degree + 1``), here any of 0..199 where scipy stops at 5.
 
@@ -16,12 +18,13 @@ Extra keywords:
 Modes: scipy's names, computed as scipy 1.17 computes them (the filters
 have scipy's three rules: mirror, half-sample reflect, periodic; see
 :func:`spline_filter1d`); ``map_coordinates`` defaults to ``constant`` as
-scipy and refuses scipy's ``wrap`` (use ``grid-wrap``). ``exact_edges=True``
+scipy and computes scipy's ``wrap`` (period ``n - 1``) as scipy does. ``exact_edges=True``
 gives the exact spline of the edge- or constant-extended signal for
 ``nearest`` / ``grid-constant``, which scipy approximates.
 
-Data: float64 and float32 arrays (integer arrays are converted), any
-strides. Functions release the GIL while computing. Bad arguments raise
+Data: every dtype scipy takes (bool, integer, float, complex), any
+strides; ``output`` as in scipy (integer results rounded as scipy rounds
+them). Functions release the GIL while computing. Bad arguments raise
 ``ValueError`` (bad values, with the Rust engine's message) or ``TypeError``
 (wrong types).
 
@@ -36,7 +39,8 @@ from __future__ import annotations
 
 from . import _splinelab as _ext
 from ._check import check
-from ._ndimage import map_coordinates, spline_filter, spline_filter1d
+from ._ndimage import map_coordinates, spline_filter, spline_filter1d, spline_gradient
+from ._resample import affine_transform, geometric_transform, rotate, shift, zoom
 from ._sspline import coefficients, filter_bound, truncation_width
 from ._validate import MAX_DEGREE
 
@@ -46,6 +50,12 @@ __all__ = [
     "spline_filter1d",
     "spline_filter",
     "map_coordinates",
+    "spline_gradient",
+    "zoom",
+    "shift",
+    "rotate",
+    "affine_transform",
+    "geometric_transform",
     "truncation_width",
     "coefficients",
     "check",

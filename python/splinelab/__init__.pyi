@@ -1,14 +1,15 @@
 # Type stubs of splinelab (order = spline degree everywhere, as in scipy).
-from typing import Any, Literal, Sequence
+from typing import Any, Callable, Literal, Sequence
 import numpy as np
 import numpy.typing as npt
 
 __version__: str
 MAX_DEGREE: int
 
-# scipy's names; 'wrap' is taken by the filters (scipy's mirror rule), not by map_coordinates.
+# scipy's names, computed as scipy 1.17 computes them ('wrap': period n - 1, the mirror filter rule).
 Mode = Literal["mirror", "reflect", "grid-mirror", "grid-wrap", "wrap", "nearest", "grid-constant", "constant"]
-Output = type[np.float64] | type[np.float32] | np.dtype[Any] | str | npt.NDArray[np.floating[Any]]
+# Any numeric dtype scipy takes (a type, a dtype or its name), or an array of any dtype, byte order and strides.
+Output = type[np.generic] | type[bool] | type[int] | type[float] | type[complex] | np.dtype[Any] | str | npt.NDArray[Any]
 
 def spline_filter1d(
     input: npt.ArrayLike,
@@ -20,7 +21,7 @@ def spline_filter1d(
     tol: float | None = None,
     threads: int | None = None,
     exact_edges: bool = False,
-) -> npt.NDArray[np.floating[Any]]: ...
+) -> npt.NDArray[Any]: ...
 def spline_filter(
     input: npt.ArrayLike,
     order: int = 3,
@@ -30,20 +31,107 @@ def spline_filter(
     tol: float | None = None,
     threads: int | None = None,
     exact_edges: bool = False,
-) -> npt.NDArray[np.floating[Any]]: ...
+) -> npt.NDArray[Any]: ...
 def map_coordinates(
     input: npt.ArrayLike,
     coordinates: npt.ArrayLike,
     output: Output | None = None,
     order: int = 3,
     mode: Mode = "constant",
-    cval: float = 0.0,
+    cval: float | complex = 0.0,
     prefilter: bool = True,
     *,
     tol: float | None = None,
     threads: int | None = None,
     exact_edges: bool = False,
-) -> npt.NDArray[np.floating[Any]]: ...
+    derivative: Sequence[int] | None = None,
+) -> npt.NDArray[Any]: ...
+def spline_gradient(
+    input: npt.ArrayLike,
+    coordinates: npt.ArrayLike,
+    order: int = 3,
+    mode: Mode = "constant",
+    cval: float | complex = 0.0,
+    prefilter: bool = True,
+    *,
+    tol: float | None = None,
+    threads: int | None = None,
+    exact_edges: bool = False,
+) -> npt.NDArray[Any]: ...
+def zoom(
+    input: npt.ArrayLike,
+    zoom: float | Sequence[float],
+    output: Output | None = None,
+    order: int = 3,
+    mode: Mode = "constant",
+    cval: float | complex = 0.0,
+    prefilter: bool = True,
+    *,
+    grid_mode: bool = False,
+    tol: float | None = None,
+    threads: int | None = None,
+    exact_edges: bool = False,
+) -> npt.NDArray[Any]: ...
+def shift(
+    input: npt.ArrayLike,
+    shift: float | Sequence[float],
+    output: Output | None = None,
+    order: int = 3,
+    mode: Mode = "constant",
+    cval: float | complex = 0.0,
+    prefilter: bool = True,
+    *,
+    tol: float | None = None,
+    threads: int | None = None,
+    exact_edges: bool = False,
+) -> npt.NDArray[Any]: ...
+def rotate(
+    input: npt.ArrayLike,
+    angle: float,
+    axes: Sequence[int] = (1, 0),
+    reshape: bool = True,
+    output: Output | None = None,
+    order: int = 3,
+    mode: Mode = "constant",
+    cval: float | complex = 0.0,
+    prefilter: bool = True,
+    *,
+    tol: float | None = None,
+    threads: int | None = None,
+    exact_edges: bool = False,
+) -> npt.NDArray[Any]: ...
+def affine_transform(
+    input: npt.ArrayLike,
+    matrix: npt.ArrayLike,
+    offset: float | Sequence[float] = 0.0,
+    output_shape: Sequence[int] | None = None,
+    output: Output | None = None,
+    order: int = 3,
+    mode: Mode = "constant",
+    cval: float | complex = 0.0,
+    prefilter: bool = True,
+    *,
+    tol: float | None = None,
+    threads: int | None = None,
+    exact_edges: bool = False,
+) -> npt.NDArray[Any]: ...
+def geometric_transform(
+    input: npt.ArrayLike,
+    mapping: Callable[..., Any],
+    output_shape: Sequence[int] | None = None,
+    output: Output | None = None,
+    order: int = 3,
+    mode: Mode = "constant",
+    cval: float | complex = 0.0,
+    prefilter: bool = True,
+    extra_arguments: Sequence[Any] = (),
+    extra_keywords: dict[str, Any] | None = None,
+    *,
+    vectorized: bool = False,
+    tol: float | None = None,
+    threads: int | None = None,
+    exact_edges: bool = False,
+) -> npt.NDArray[Any]: ...
 def truncation_width(
     degree: int | None = None,
     order: int | None = None,

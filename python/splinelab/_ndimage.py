@@ -2,9 +2,12 @@
 
 from __future__ import annotations
 
+import numbers
+
 import numpy as np
 
 from . import _splinelab as _ext
+from . import _dtypes as _dt
 from ._validate import _degree, _int, _mode, _opt_float, _real_array, _threads
 
 _SCIPY_FILTER_RULE = {
@@ -32,43 +35,52 @@ def _filter_mode(mode, exact_edges):
     return _SCIPY_FILTER_RULE[mode]
 
 
-def _output_dtype(output, default):
-    """The result dtype and the array to write into (scipy's `output`)."""
-    target = None
-    if isinstance(output, np.ndarray):
-        target, dtype = output, output.dtype
-    else:
-        try:
-            dtype = np.dtype(default if output is None else output)
-        except TypeError as e:
-            raise TypeError(f"output must be a dtype or an array: {e}") from None
-    if dtype not in (np.dtype(np.float64), np.dtype(np.float32)):
-        raise TypeError(f"output dtype must be float64 or float32, got {dtype}")
-    return dtype, target
-
-
-def _deliver(result, target, shape):
-    if target is None:
-        return result
-    if target.shape != tuple(shape):
-        raise ValueError(f"output has shape {target.shape}, expected {tuple(shape)}")
-    target[...] = result
-    return target
-
-
 def _same_layout(a, b):
     """Whether `a` and `b` are the same elements in the same places."""
     ia, ib = a.__array_interface__, b.__array_interface__
     return ia["data"][0] == ib["data"][0] and a.strides == b.strides and a.shape == b.shape
 
 
+_FLOATS = (np.dtype(np.float64), np.dtype(np.float32))
+
+
 def _filter(input, axes, order, output, mode, tol, threads, exact_edges=False):
-    a = _real_array(input)
-    dtype, target = _output_dtype(output, np.float64)
+    """scipy's spline_filter(1d) for every dtype it takes: float64/float32
+    results straight from the engine; integer and boolean results computed
+    in float64 and converted as scipy's filter converts them (truncated),
+    after each axis as scipy does (it filters axis by axis into ``output``);
+    complex input filtered part by part (same filter). ``output=None``: the
+    input's dtype."""
+    a = _dt.input_array(input)
+    cplx = a.dtype.kind == "c"
+    dtype, target = _dt.output_dtype(output, a.dtype, _dt.default_output(a.dtype, cplx), cplx)
     if target is not None and target.shape != a.shape:
         raise ValueError(f"output has shape {target.shape}, expected {a.shape}")
-    mode = _filter_mode(mode, bool(exact_edges))
-    args = (axes, _degree(order), mode, 0.0, _opt_float(tol, "tol"), _threads(threads))
+    d = _degree(order)
+    rule = _filter_mode(mode, bool(exact_edges))
+    tol, threads = _opt_float(tol, "tol"), _threads(threads)
+    if d < 2:
+        # scipy: output[...] = input (numpy's conversion), no filter.
+        out = target if target is not None else np.empty(a.shape, dtype)
+        with np.errstate(invalid="ignore", over="ignore"):
+            np.copyto(out, a, casting="unsafe")
+        return out
+    if cplx:
+        part = _dt.real_dtype(dtype)
+        out = np.empty(a.shape, dtype)
+        out.real = _filter_float(a.real, part, None, (axes, d, rule, 0.0, tol, threads))
+        out.imag = _filter_float(a.imag, part, None, (axes, d, rule, 0.0, tol, threads))
+        return _dt.deliver(out, target, a.shape)
+    if dtype in _FLOATS:
+        return _filter_float(a, dtype, target, (axes, d, rule, 0.0, tol, threads))
+    work = _dt.compute_dtype(dtype)
+    for axis in axes:
+        a = _dt.store_truncated(_filter_float(a, work, None, ([axis], d, rule, 0.0, tol, threads)), dtype)
+    return _dt.deliver(a, target, a.shape)
+
+
+def _filter_float(a, dtype, target, args):
+    """The engine's filter into a float64/float32 result (`target` or new)."""
     # The result is written straight into `output` when it is C-ordered and
     # writeable, else into a new C-ordered array (numpy's allocator, which
     # asks for huge pages); the engine copies the input into it and filters
@@ -108,15 +120,19 @@ def spline_filter1d(
 
     Parameters
     ----------
-    input : array_like, float64/float32/integer, any strides and shape.
-        It is read once, strided (and converted when its dtype is not
-        ``output``'s), into the C-ordered result, which is then filtered in
-        place: one copy, no other.
+    input : array_like, float, integer, bool or complex, any strides and
+        shape. It is read once, strided (and converted when its dtype is
+        not ``output``'s), into the C-ordered result, which is then
+        filtered in place: one copy, no other. Complex input: the real and
+        imaginary parts through the same filter, as scipy.
     order : int, the degree.
     axis : int, the axis to filter (negative counts from the end).
-    output : float64 (default) or float32 dtype, or an array to write into
-        (written directly when C-contiguous, else through a temporary;
-        ``output=input`` filters in place).
+    output : a dtype or dtype name (default float64; None: the input's
+        dtype), or an array of any dtype, byte order and strides to write
+        into (float64/float32 C-contiguous ones directly, others through a
+        temporary; ``output=input`` filters in place). Integer and boolean
+        results are computed in float64 and converted as scipy's filter
+        converts them (truncated toward zero, numpy's ``astype``).
         float32 output is *computed* in float32 (scipy computes in float64
         and rounds); relative error about ``amplification * 6e-8``.
     mode : scipy's names and scipy's filters: 'mirror', 'constant',
@@ -174,6 +190,7 @@ def map_coordinates(
     tol=None,
     threads=None,
     exact_edges=False,
+    derivative=None,
 ):
     """Values of the spline interpolant at coordinates (``scipy.ndimage.map_coordinates``).
 
@@ -197,11 +214,31 @@ def map_coordinates(
     (off by about ``rho**(24 - k)`` of the data ``k <= 12`` samples outside,
     ``rho`` the largest pole: 2e-14 for cubics, 2e-9 for quintics at the
     ends). ``exact_edges=True``, and every degree above 5, evaluate that
-    spline exactly instead. scipy's 'wrap' (period ``n - 1``, the first and
-    last samples overlap) is not offered: use 'grid-wrap' (period ``n``).
-    float32 input is computed in float32 unless ``output`` says float64.
+    spline exactly instead. 'wrap' is scipy's: the 'mirror' spline at the
+    point moved by whole periods ``n - 1`` into ``[0, n - 1]`` (the first
+    and last samples overlap; 'grid-wrap' is the periodic spline, period
+    ``n``).
+
+    Data types as scipy's: bool, integer, float and complex input;
+    ``output`` None (the input's dtype), a dtype, a dtype name or an array
+    of any dtype, byte order and strides that does not share memory with
+    ``input`` or ``coordinates``. Integer and boolean results are computed
+    in float64 and rounded as scipy rounds them (half away from zero,
+    saturated: :mod:`splinelab._dtypes`); float32 and complex64 results are
+    computed in float32; complex input is interpolated part by part
+    (``cval`` may be complex).
     Cost: the prefilter (O(poles) per sample and axis) once, then
     ``(order + 1)**ndim`` multiply-adds per point.
+
+    ``derivative=(k_0, k_1, ...)`` (ours; scipy has none): the partial
+    derivative ``d^(k_0 + k_1 + ...) f / dx_0^k_0 dx_1^k_1 ...`` of the same
+    spline at the points instead of its values, each ``k_a <= order``, from
+    the B-spline derivative weights (exact rational recurrences, the
+    engine's ``Interpolant::eval_derivative``); outside the grid it is the
+    derivative of the extended spline (the folding's reflections change
+    the sign of odd orders; 0 where 'constant' gives ``cval``). Tested
+    against 5-point central differences of scipy's values
+    (python/tests/test_gradient.py). See also :func:`spline_gradient`.
 
     >>> import numpy as np, splinelab
     >>> v = splinelab.map_coordinates(np.array([0.0, 1, 8, 27, 64]), [[1.0, 2.5]], order=3)
@@ -212,40 +249,256 @@ def map_coordinates(
     >>> bool(np.allclose(v, w, rtol=0, atol=1e-13))
     True
     """
-    if not isinstance(prefilter, (bool, np.bool_)):
-        raise TypeError(f"prefilter must be True or False, got {type(prefilter).__name__}")
-    a = _real_array(input)
-    default = a.dtype if a.dtype in (np.float32, np.float64) else np.float64
-    dtype, target = _output_dtype(output, default)
-    a = a.astype(dtype, copy=False)
-    at = _real_array(coordinates, "coordinates").astype(np.float64, copy=False)
-    if at.ndim < 1 or at.shape[0] != a.ndim:
-        raise ValueError(f"coordinates must have shape ({a.ndim}, ...), got {at.shape}")
-    flat = np.ascontiguousarray(at.reshape(a.ndim, -1))
-    if not np.isfinite(flat).all():
-        raise ValueError("coordinates must be finite")
-    run = _ext.map_coordinates_f64 if dtype == np.float64 else _ext.map_coordinates_f32
-    cv = _opt_float(cval, "cval")
-    d, mode, tol, threads = _degree(order), _mode(mode), _opt_float(tol, "tol"), _threads(threads)
-    if mode == "wrap":
-        raise ValueError(
-            "mode 'wrap' (scipy's: period n - 1, the first and last samples overlap) is not offered: "
-            "use 'grid-wrap' (period n)"
-        )
+    prefilter = _flag(prefilter, "prefilter")
+    at = _coordinates(coordinates, np.ndim(input))
+    shape = at.shape[1:]
+    flat = np.ascontiguousarray(at.reshape(at.shape[0], -1))
+    d, mode = _degree(order), _interp_mode(mode)
+    tol, threads = _opt_float(tol, "tol"), _threads(threads)
+    deriv = _derivative(derivative, at.shape[0])
+    sign = _reflection_sign(flat, np.shape(input), mode, deriv) if deriv else None
+
+    def evaluate(a, cv):
+        values = _map_real(a, flat, d, mode, cv, prefilter, tol, threads, exact_edges, deriv)
+        return values if sign is None else values * sign.astype(values.dtype)
+
+    return _interpolate(input, output, shape, cval, evaluate, coordinates)
+
+
+def _derivative(derivative, ndim):
+    """``derivative``: None or one non-negative order per axis."""
+    if derivative is None:
+        return None
+    orders = [_int(k, "derivative order") for k in np.atleast_1d(np.asarray(derivative, dtype=object))]
+    if len(orders) != ndim or any(k < 0 for k in orders):
+        raise ValueError(f"derivative must give one non-negative order per axis ({ndim}), got {derivative!r}")
+    return orders if any(orders) else None
+
+
+def _reflection_sign(flat, shape, mode, deriv):
+    """+1 or -1 per point: the engine differentiates the spline at the
+    folded point; where the fold reflects ('mirror', 'reflect' /
+    'grid-mirror'), an odd derivative order changes sign."""
+    sign = np.ones(flat.shape[1])
+    for axis, (x, n, k) in enumerate(zip(flat, shape, deriv)):
+        if k % 2 == 0 or n < 2:
+            continue
+        if mode == "mirror":
+            reflected = np.mod(x, 2.0 * (n - 1)) > n - 1
+        elif mode in ("reflect", "grid-mirror"):
+            reflected = np.mod(x + 0.5, 2.0 * n) > n
+        else:
+            continue
+        sign[reflected] = -sign[reflected]
+    return sign
+
+
+def spline_gradient(
+    input, coordinates, order=3, mode="constant", cval=0.0, prefilter=True, *, tol=None, threads=None,
+    exact_edges=False,
+):
+    """All first partial derivatives of the interpolant of
+    :func:`map_coordinates` at the points: an array of shape ``(ndim,
+    *coordinates.shape[1:])``, row ``a`` the derivative along axis ``a``
+    (``map_coordinates(..., derivative=e_a)``; float64, or float32 for
+    float32 input). Cost: ``ndim`` evaluations (and prefilters).
+
+    >>> import numpy as np, splinelab
+    >>> x = np.add.outer(0.5 * np.arange(40.0), 3 * np.arange(40.0))  # i / 2 + 3 j
+    >>> g = splinelab.spline_gradient(x, [[19.5], [20.25]], order=3, mode="mirror")
+    >>> bool(np.allclose(g[:, 0], [0.5, 3.0], rtol=0, atol=1e-8))  # far from the ends
+    True
+    """
+    a = np.asarray(input)
+    out = np.float32 if a.dtype in (np.float32, np.complex64) else np.float64
+    if a.dtype.kind == "c":
+        out = np.complex64 if out == np.float32 else np.complex128
+    rows = []
+    for axis in range(a.ndim):
+        unit = [0] * a.ndim
+        unit[axis] = 1
+        rows.append(map_coordinates(a, coordinates, output=out, order=order, mode=mode, cval=cval,
+                                    prefilter=prefilter, tol=tol, threads=threads, exact_edges=exact_edges,
+                                    derivative=unit))
+    return np.stack(rows)
+
+
+def _flag(value, what):
+    if not isinstance(value, (bool, np.bool_)):
+        raise TypeError(f"{what} must be True or False, got {type(value).__name__}")
+    return bool(value)
+
+
+def _interp_mode(mode):
+    mode = _mode(mode)
     if mode not in _SCIPY_FILTER_RULE:
         raise ValueError(f"unknown mode {mode!r}: expected one of {_MODES}")
+    return mode
+
+
+def _coordinates(coordinates, ndim):
+    """scipy's coordinate array, ``(ndim, ...)``, as finite float64."""
+    at = _real_array(coordinates, "coordinates").astype(np.float64, copy=False)
+    if at.ndim < 1 or at.shape[0] != ndim:
+        raise ValueError(f"coordinates must have shape ({ndim}, ...), got {at.shape}")
+    if not np.isfinite(at).all():
+        raise ValueError("coordinates must be finite")
+    return at
+
+
+def _cval(cval, complex_input):
+    if complex_input:
+        if isinstance(cval, (bool, np.bool_)) or not isinstance(cval, numbers.Number):
+            raise TypeError(f"cval must be a number, got {type(cval).__name__}")
+        return complex(cval)
+    if isinstance(cval, numbers.Complex) and not isinstance(cval, numbers.Real):
+        raise TypeError("cval is complex but the input is real")
+    return _opt_float(cval, "cval")
+
+
+def _interpolate(input, output, shape, cval, evaluate, *others):
+    """The interpolation functions' dtype handling, as scipy's: the result
+    has ``output``'s dtype (None: the input's), integer and boolean results
+    are computed in float64 and rounded as scipy rounds them
+    (:func:`splinelab._dtypes.store_rounded`), float32 and complex64 results
+    are computed in float32, and complex input goes through ``evaluate``
+    part by part (``cval``'s real and imaginary parts). ``evaluate(a, cv)``
+    takes a real array of the working dtype and returns the flat values."""
+    a = _dt.input_array(input)
+    cplx = a.dtype.kind == "c"
+    dtype, target = _dt.output_dtype(output, a.dtype, _dt.default_output(a.dtype, cplx), cplx)
+    _dt.refuse_aliasing(target, a, *[np.asarray(o) for o in others])
+    if target is not None and target.shape != tuple(shape):
+        raise ValueError(f"output has shape {target.shape}, expected {tuple(shape)}")
+    cv = _cval(cval, cplx)
+    work = _dt.compute_dtype(_dt.real_dtype(dtype))
+    if cplx:
+        result = np.empty(shape, dtype)
+        result.real = evaluate(a.real.astype(work), cv.real).reshape(shape)
+        result.imag = evaluate(a.imag.astype(work), cv.imag).reshape(shape)
+    else:
+        values = evaluate(a.astype(work, copy=False), cv).reshape(shape)
+        result = values if values.dtype == dtype else _dt.store_rounded(values, dtype)
+    return _dt.deliver(result, target, shape)
+
+
+def _wrap_axis(x, n):
+    """scipy's 'wrap' point rule (``map_coordinate`` in ni_interpolation.c)
+    on one axis of ``n`` samples: a coordinate outside ``[0, n - 1]`` moves
+    by whole periods ``n - 1`` (the first and last samples overlap) into
+    it, with scipy's operations (a C truncating division), so the same
+    bits; ``n = 1``: 0."""
+    x = np.array(x, dtype=np.float64)
+    if n <= 1:
+        return np.zeros_like(x)
+    sz = float(n - 1)
+    low, high = x < 0, x > n - 1
+    x[low] += sz * (np.trunc(-x[low] / sz) + 1)
+    x[high] -= sz * np.trunc(x[high] / sz)
+    return x
+
+
+def _wrap_coordinates(flat, shape):
+    """:func:`_wrap_axis` on every row of ``flat`` (``(ndim, k)``)."""
+    return np.stack([_wrap_axis(x, n) for x, n in zip(flat, shape)]) if len(shape) else flat
+
+
+class _Points:
+    """Points at which to evaluate: scattered, ``(ndim, k)`` (scipy's
+    coordinate array), evaluated point by point; the engine's
+    ``map_coordinates``."""
+
+    def __init__(self, flat):
+        self.flat = flat
+
+    def shifted(self, pad):
+        """The points moved by ``pad`` on every axis (scipy's ``x + 12``)."""
+        return type(self)([x + pad for x in self.flat])
+
+    def wrapped(self, shape):
+        """The points folded by scipy's 'wrap' rule (:func:`_wrap_axis`)."""
+        return type(self)([_wrap_axis(x, n) for x, n in zip(self.flat, shape)])
+
+    def outside(self, shape):
+        """Whether each point lies outside ``[0, n - 1]`` on some axis."""
+        limit = np.array(shape, dtype=np.float64)[:, None] - 1.0
+        flat = np.asarray(self.flat)
+        return ((flat < 0) | (flat > limit)).any(axis=0)
+
+    def run(self, a, d, mode, cv, tol, prefilter, threads, deriv, cval_outside=False):
+        """The values (flat), ``cval`` (its derivative 0) at points outside
+        the grid with ``cval_outside`` (scipy's 'constant')."""
+        values = self.evaluate(a, d, mode, cv, tol, prefilter, threads, deriv)
+        if cval_outside:
+            fill = 0.0 if deriv and any(deriv) else cv
+            values = np.where(self.outside(a.shape), np.asarray(fill, values.dtype), values)
+        return values
+
+    def evaluate(self, a, d, mode, cv, tol, prefilter, threads, deriv):
+        run = _ext.map_coordinates_f64 if a.dtype == np.float64 else _ext.map_coordinates_f32
+        return run(a, np.ascontiguousarray(np.asarray(self.flat, dtype=np.float64)), d, mode, cv, tol, prefilter,
+                   threads, deriv)
+
+
+class _Grid(_Points):
+    """The tensor grid of one coordinate vector per axis (zoom, shift),
+    evaluated separably by the engine (``degree + 1`` multiply-adds per
+    output sample and axis); values flat in C order."""
+
+    def outside(self, shape):
+        mask = np.zeros([len(x) for x in self.flat], dtype=bool)
+        for axis, (x, n) in enumerate(zip(self.flat, shape)):
+            view = [1] * len(shape)
+            view[axis] = -1
+            mask |= ((x < 0) | (x > n - 1)).reshape(view)
+        return mask.reshape(-1)
+
+    def evaluate(self, a, d, mode, cv, tol, prefilter, threads, deriv):
+        run = _ext.resample_f64 if a.dtype == np.float64 else _ext.resample_f32
+        axes = [np.ascontiguousarray(x, dtype=np.float64) for x in self.flat]
+        return run(a, axes, d, mode, cv, tol, prefilter, list(deriv or [0] * a.ndim), threads).reshape(-1)
+
+
+class _Affine(_Points):
+    """The points ``matrix @ o + offset`` of every output index ``o``
+    (affine_transform, rotate), generated by the engine where they are
+    evaluated (no coordinate array; scipy's operations, so its bits)."""
+
+    def __init__(self, matrix, offset, out_shape, shift=0.0, wrap=False):
+        self.matrix, self.offset, self.out_shape = matrix, offset, tuple(out_shape)
+        self.shift, self.wrap = shift, wrap
+
+    def shifted(self, pad):
+        return _Affine(self.matrix, self.offset, self.out_shape, self.shift + pad, self.wrap)
+
+    def wrapped(self, shape):
+        return _Affine(self.matrix, self.offset, self.out_shape, self.shift, True)
+
+    def run(self, a, d, mode, cv, tol, prefilter, threads, deriv, cval_outside=False):
+        if deriv:
+            raise ValueError("derivatives are taken by map_coordinates, not by the affine resampling")
+        rule = "wrap" if self.wrap else "cval-outside" if cval_outside else "fold"
+        run = _ext.affine_f64 if a.dtype == np.float64 else _ext.affine_f32
+        return run(a, self.matrix, self.offset, list(self.out_shape), d, mode, cv, tol, prefilter, self.shift, rule,
+                   threads).reshape(-1)
+
+
+def _map_real(a, flat, d, mode, cv, prefilter, tol, threads, exact_edges, deriv=None):
+    """map_coordinates of a real float64/float32 array at ``flat`` (``(ndim,
+    k)``, or a :class:`_Points`): the values (or the partial derivative
+    ``deriv``), flat, in ``a``'s dtype."""
+    points = flat if isinstance(flat, _Points) else _Points(flat)
     if prefilter and 1 < d <= 5 and mode in _EXACT_EDGES and not exact_edges:
         # scipy's route (_prepad_for_spline_filter): pad 12, filter with
         # its rule, evaluate the coefficients at x + 12 (rounded as scipy).
         pad = 12
         kind = {"mode": "edge"} if mode == "nearest" else {"mode": "constant", "constant_values": cv}
-        coeffs = _filter(np.pad(a, pad, **kind), list(range(a.ndim)), d, dtype, mode, tol, threads)
-        values = run(coeffs, flat + pad, d, mode, cv, None, False, threads)
-    else:
-        engine_mode = "mirror" if mode == "constant" else mode
-        values = run(a, flat, d, engine_mode, cv, tol, bool(prefilter), threads)
-    if mode == "constant":
-        # scipy: no interpolation beyond the edges.
-        limit = np.array(a.shape, dtype=np.float64)[:, None] - 1.0
-        values = np.where(((flat < 0) | (flat > limit)).any(axis=0), np.asarray(cv, values.dtype), values)
-    return _deliver(values.reshape(at.shape[1:]), target, at.shape[1:])
+        coeffs = _filter(np.pad(a, pad, **kind), list(range(a.ndim)), d, a.dtype, mode, tol, threads)
+        return points.shifted(pad).run(coeffs, d, mode, cv, None, False, threads, deriv)
+    if mode == "wrap":
+        # The mirror spline (scipy filters 'wrap' with the mirror rule and
+        # reads the window with it) at the point folded with period n - 1.
+        return points.wrapped(a.shape).run(a, d, "mirror", cv, tol, prefilter, threads, deriv)
+    engine_mode = "mirror" if mode == "constant" else mode
+    # scipy's 'constant': no interpolation beyond the edges.
+    return points.run(a, d, engine_mode, cv, tol, prefilter, threads, deriv, cval_outside=mode == "constant")

@@ -38,7 +38,7 @@ import numpy as np
 import splinelab
 from splinelab._ndimage import _axis, _filter, _filter_mode
 
-__all__ = ["spline_filter", "spline_filter1d", "depth", "bound"]
+__all__ = ["spline_filter", "spline_filter1d", "depth", "bound", "map_coordinates", "zoom", "shift", "affine_transform", "rotate"]
 
 DEFAULT_TOL = 1e-12
 ROUTES = ("truncated", "recursive")
@@ -94,7 +94,9 @@ def _map(darr, axes, order, mode, tol, output, threads, route):
     darr = da.asarray(darr)
     dtype = np.dtype(output)
     d = depth(order, tol, route)
-    depths = {ax: (d if ax in axes else 0) for ax in range(darr.ndim)}
+    # An axis in one chunk has no seam: no overlap (and none that the
+    # array's length could not hold).
+    depths = {ax: (d if ax in axes and darr.numblocks[ax] > 1 else 0) for ax in range(darr.ndim)}
     # Edge blocks extend by scipy's filter rule for `mode` (splinelab._ndimage._filter).
     boundary = "periodic" if _filter_mode(mode, False) == "grid-wrap" else "none"
     block_tol = tol if route == "truncated" else None
@@ -135,3 +137,284 @@ def spline_filter1d(
     """
     darr = da.asarray(darr)
     return _map(darr, [_axis(axis, darr.ndim)], order, mode, tol, output, threads, route)
+
+
+# ---------------------------------------------------------------------------
+# Resampling on dask: the coefficients once, by the certified chunked
+# prefilter above; each output chunk then reads only the coefficient region
+# its points need (their bounding box after the mode's folding, plus the
+# spline's support) and evaluates it as given coefficients. The windows of
+# every point lie inside its region, and a region reaches an array edge only
+# where the true edge is, so the engine's extension there is the true one:
+# chunked = unchunked evaluation of the chunked coefficients, which are
+# within ``bound(order, tol, ndim) * max|input|`` of the exact ones; the
+# B-spline weights are non-negative and sum to 1, so the values are within
+# the same bound (plus rounding) of splinelab's unchunked result, whatever
+# the chunking.
+
+_FOLDING = ("mirror", "reflect", "grid-mirror", "grid-wrap")
+
+
+def _fold(x, n, mode):
+    """The engine's ``Mode::fold_coordinate`` (the same operations, so the
+    same bits) for the symmetric and periodic modes."""
+    x = np.asarray(x, dtype=np.float64)
+    if mode == "mirror":
+        if n == 1:
+            return np.zeros_like(x)
+        p = 2.0 * (n - 1.0)
+        r = np.abs(np.where(np.abs(x) <= p, x, np.mod(x, p)))
+        return np.where(r <= n - 1.0, r, p - r)
+    if mode in ("reflect", "grid-mirror"):
+        p = 2.0 * n
+        inside = (x >= -p - 0.5) & (x <= p - 0.5)
+        r = np.where(inside, x, np.mod(x + 0.5, p) - 0.5)
+        r = np.where(r < -0.5, -1.0 - r, r)
+        return np.where(r <= n - 0.5, r, p - 1.0 - r)
+    # grid-wrap
+    return np.where((x >= -0.5) & (x <= n - 0.5), x,
+                    np.where((x < -0.5) & (x >= -0.5 - n), x + n,
+                             np.where((x > n - 0.5) & (x <= 2.0 * n - 0.5), x - n, np.mod(x + 0.5, n) - 0.5)))
+
+
+class _Plan:
+    """How a mode reads coefficients: the coefficient array (lazy), the
+    engine mode for given coefficients, and the points' transformation."""
+
+    def __init__(self, darr, order, mode, cval, tol, route, threads):
+        from splinelab._ndimage import _EXACT_EDGES, _interp_mode
+
+        self.d, self.mode, self.cval = order, _interp_mode(mode), float(cval)
+        self.shape = darr.shape
+        self.pad = 12 if (1 < order <= 5 and self.mode in _EXACT_EDGES) else 0
+        if order > 5 and self.mode in _EXACT_EDGES:
+            raise ValueError(f"mode {self.mode!r} above degree 5 (the exact extension) is not offered on dask")
+        if self.pad:
+            kind = {"mode": "edge"} if self.mode == "nearest" else {"mode": "constant", "constant_values": self.cval}
+            darr = da.pad(darr, self.pad, **kind)
+        if order > 1:
+            smallest = min(darr.chunksize)
+            need = depth(order, tol, route)
+            if smallest < need:  # the overlap needs chunks of at least the depth
+                darr = darr.rechunk(tuple(min(max(c, need), n) for c, n in zip(darr.chunksize, darr.shape)))
+            darr = spline_filter(darr, order=order, mode=self.mode, tol=tol, output=darr.dtype, threads=threads,
+                                 route=route)
+        self.coeffs = darr
+        self.engine_mode = {"constant": "mirror", "wrap": "mirror", "grid-mirror": "reflect"}.get(self.mode, self.mode)
+
+    def prepared(self, flat):
+        """Global points (``(ndim, k)``) the way the engine reads them: the
+        scipy rules applied, then folded into the grid (folding modes) or
+        clamped where the spline is constant (padded ones); and the mask of
+        'constant' points that take ``cval``."""
+        from splinelab._ndimage import _wrap_axis
+
+        mask = None
+        if self.mode == "constant":
+            limit = np.array(self.shape, dtype=np.float64)[:, None] - 1.0
+            mask = ((flat < 0) | (flat > limit)).any(axis=0)
+        rows = []
+        reach = self.d // 2 + 1 + 1
+        for axis, x in enumerate(flat):
+            n = self.coeffs.shape[axis]
+            if self.mode == "wrap":
+                x = _wrap_axis(x, n)
+            if self.engine_mode in _FOLDING and self.d > 0:
+                x = _fold(x, n, self.engine_mode)
+            elif self.pad or self.mode in ("nearest", "grid-constant"):
+                x = np.clip(x + self.pad, -reach, n - 1 + reach)
+            rows.append(x)
+        return np.stack(rows), mask
+
+    def region(self, x):
+        """Per axis ``(lo, hi)``: the coefficients the windows at ``x`` read."""
+        m = self.d + 1
+        out = []
+        for axis, row in enumerate(x):
+            n = self.coeffs.shape[axis]
+            if row.size == 0 or (self.d == 0 and self.engine_mode in _FOLDING):
+                # Degree 0 folds by its own rule at half-integers (scipy's):
+                # the whole axis (one sample per point, cheap).
+                out.append((0, n))
+                continue
+            lo = int(np.floor(row.min())) - m // 2 - 2
+            hi = int(np.ceil(row.max())) + m // 2 + 3
+            if self.engine_mode == "grid-wrap" and (lo < 0 or hi > n):
+                # A window over an end reads the other end: the whole axis.
+                lo, hi = 0, n
+            out.append((max(lo, 0), min(hi, n)))
+        return out
+
+
+def _evaluate_region(region_coeffs, lo, x, mask, plan, dtype):
+    """The values at global points ``x`` (prepared) from the coefficient
+    region starting at ``lo``; every window inside the region."""
+    from splinelab._ndimage import _Points
+
+    local = x - np.array(lo, dtype=np.float64)[:, None]
+    coeffs = np.ascontiguousarray(region_coeffs, dtype=dtype)
+    values = _Points(local).evaluate(coeffs, plan.d, plan.engine_mode, plan.cval, None, False, 1, None)
+    if mask is not None:
+        values = np.where(mask, np.asarray(plan.cval, values.dtype), values)
+    return values
+
+
+def _chunk(plan, flat, dtype):
+    """One output chunk (flat values) as a lazy array."""
+    import dask
+
+    x, mask = plan.prepared(flat)
+    bounds = plan.region(x)
+    region = plan.coeffs[tuple(slice(a, b) for a, b in bounds)]
+    lo = [a for a, _ in bounds]
+    values = dask.delayed(_evaluate_region)(region, lo, x, mask, plan, dtype)
+    return da.from_delayed(values, shape=(flat.shape[1],), dtype=dtype)
+
+
+def _work_dtype(darr, output):
+    dtype = np.dtype(output) if output is not None else darr.dtype
+    if dtype.kind not in "f":
+        raise TypeError(f"dask resampling computes float64 or float32 results, got output={dtype}")
+    return dtype
+
+
+def _on_output_grid(darr, out_shape, chunks, points_of, order, mode, cval, tol, route, output, threads):
+    """The output of ``out_shape`` in ``chunks``, chunk ``slices`` at the
+    points ``points_of(slices)`` (``(ndim, k)``, scipy's arithmetic)."""
+    import itertools
+
+    darr = da.asarray(darr)
+    dtype = _work_dtype(darr, output)
+    plan = _Plan(darr.astype(dtype), order, mode, cval, tol, route, threads)
+    chunks = da.core.normalize_chunks(chunks if chunks is not None else darr.chunksize[: len(out_shape)] if
+                                      len(out_shape) == darr.ndim else "auto", out_shape, dtype=dtype)
+    starts = [np.concatenate([[0], np.cumsum(c)[:-1]]).astype(int) for c in chunks]
+    blocks = np.empty([len(c) for c in chunks], dtype=object)
+    for idx in itertools.product(*[range(len(c)) for c in chunks]):
+        slices = tuple(slice(starts[a][i], starts[a][i] + chunks[a][i]) for a, i in enumerate(idx))
+        shape = tuple(s.stop - s.start for s in slices)
+        blocks[idx] = _chunk(plan, points_of(slices), dtype).reshape(shape)
+    return da.block(blocks.tolist())
+
+
+def map_coordinates(input, coordinates, order=3, mode="constant", cval=0.0, tol=DEFAULT_TOL, output=None,
+                    threads=1, route="truncated"):
+    """``splinelab.map_coordinates`` with dask: ``input`` (dask or numpy)
+    prefiltered once by the certified chunked filter, ``coordinates`` a
+    dask array ``(ndim, ...)`` chunked along the points (axis 0 whole); the
+    result is chunked like them. Each chunk reads only the coefficient
+    region its points need (its bounding box, computed when the graph is
+    built). Within ``bound(order, tol, ndim) * max|input|`` (plus rounding)
+    of ``splinelab.map_coordinates`` (module notes above).
+
+    >>> import dask.array as da, numpy as np, splinelab, splinelab.dask
+    >>> x = np.random.default_rng(0).uniform(-1, 1, (40, 40))
+    >>> at = da.from_array(np.random.default_rng(1).uniform(0, 39, (2, 500)), chunks=(2, 64))
+    >>> v = splinelab.dask.map_coordinates(da.from_array(x, chunks=20), at, order=3, mode="mirror").compute()
+    >>> bool(np.abs(v - splinelab.map_coordinates(x, at.compute(), order=3, mode="mirror")).max() < 1e-11)
+    True
+    """
+    import dask
+
+    darr = da.asarray(input)
+    at = da.asarray(coordinates)
+    if at.ndim < 1 or at.shape[0] != darr.ndim:
+        raise ValueError(f"coordinates must have shape ({darr.ndim}, ...), got {at.shape}")
+    dtype = _work_dtype(darr, output)
+    plan = _Plan(darr.astype(dtype), order, mode, cval, tol, route, threads)
+    flat = at.reshape(at.shape[0], -1).rechunk({0: -1}).astype(np.float64)
+    parts = dask.compute(*flat.to_delayed().ravel())  # each chunk's points, to find its region
+    pieces = [_chunk(plan, np.asarray(p), dtype) for p in parts]
+    return da.concatenate(pieces).reshape(at.shape[1:])
+
+
+def zoom(input, zoom, order=3, mode="constant", cval=0.0, *, grid_mode=False, tol=DEFAULT_TOL, output=None,
+         chunks=None, threads=1, route="truncated"):
+    """``splinelab.zoom`` of a dask array (scipy's output shape and
+    coordinates), output in ``chunks`` (default: the input's chunk size).
+    Bound as :func:`map_coordinates`."""
+    from splinelab._resample import _per_axis, _zoom_shift_coordinates
+
+    darr = da.asarray(input)
+    zooms = _per_axis(zoom, darr.ndim, "zoom")
+    out_shape = tuple(int(round(n * z)) for n, z in zip(darr.shape, zooms))
+    num, div = np.array(darr.shape), np.array(out_shape)
+    if not grid_mode:
+        num, div = num - 1, div - 1
+    factors = np.divide(num, div, out=np.ones(darr.ndim, dtype=np.float64), where=div != 0)
+    axes = _zoom_shift_coordinates(out_shape, zooms=factors, grid_mode=grid_mode)
+    return _on_output_grid(darr, out_shape, chunks, lambda s: _grid_points(axes, s), order, mode, cval, tol, route,
+                           output, threads)
+
+
+def shift(input, shift, order=3, mode="constant", cval=0.0, *, tol=DEFAULT_TOL, output=None, chunks=None,
+          threads=1, route="truncated"):
+    """``splinelab.shift`` of a dask array; arguments and bound as :func:`zoom`."""
+    from splinelab._resample import _per_axis, _zoom_shift_coordinates
+
+    darr = da.asarray(input)
+    shifts = [-s for s in _per_axis(shift, darr.ndim, "shift")]
+    axes = _zoom_shift_coordinates(darr.shape, shifts=shifts)
+    return _on_output_grid(darr, darr.shape, chunks, lambda s: _grid_points(axes, s), order, mode, cval, tol, route,
+                           output, threads)
+
+
+def _grid_points(axes, slices):
+    mesh = np.meshgrid(*[x[s] for x, s in zip(axes, slices)], indexing="ij")
+    return np.stack([m.reshape(-1) for m in mesh])
+
+
+def affine_transform(input, matrix, offset=0.0, output_shape=None, order=3, mode="constant", cval=0.0, *,
+                     tol=DEFAULT_TOL, output=None, chunks=None, threads=1, route="truncated"):
+    """``splinelab.affine_transform`` of a dask array (every matrix form
+    scipy takes); arguments and bound as :func:`zoom`."""
+    from splinelab._resample import _affine_parts, _zoom_shift_coordinates
+
+    darr = da.asarray(input)
+    out_shape = tuple(output_shape) if output_shape is not None else darr.shape
+    m, offsets = _affine_parts(matrix, offset, darr.ndim, len(out_shape))
+    if m.ndim == 1:
+        with np.errstate(divide="ignore", invalid="ignore"):
+            axes = _zoom_shift_coordinates(out_shape, zooms=m, shifts=offsets / m)
+
+        def points_of(slices):
+            return _grid_points(axes, slices)
+    else:
+        def points_of(slices):
+            grid = np.indices([s.stop - s.start for s in slices], dtype=np.float64).reshape(len(slices), -1)
+            grid += np.array([s.start for s in slices], dtype=np.float64)[:, None]
+            points = np.empty((m.shape[0], grid.shape[1]))
+            for h in range(m.shape[0]):
+                t = np.full(grid.shape[1], offsets[h])
+                for ll in range(len(slices)):
+                    t += grid[ll] * m[h, ll]
+                points[h] = t
+            return points
+
+    return _on_output_grid(darr, out_shape, chunks, points_of, order, mode, cval, tol, route, output, threads)
+
+
+def rotate(input, angle, axes=(1, 0), reshape=True, order=3, mode="constant", cval=0.0, *, tol=DEFAULT_TOL,
+           output=None, chunks=None, threads=1, route="truncated"):
+    """``splinelab.rotate`` of a 2-D dask array (scipy's matrix, centre and
+    output shape); arguments and bound as :func:`zoom`."""
+    from splinelab._resample import _sincos_degrees
+
+    darr = da.asarray(input)
+    if darr.ndim != 2:
+        raise ValueError(f"rotate on dask takes 2-D arrays, got {darr.ndim}-D")
+    axes = sorted(int(a) % 2 for a in axes)
+    if axes != [0, 1]:
+        raise ValueError(f"invalid rotation plane specified: {axes}")
+    c, s = _sincos_degrees(angle)
+    rot = np.array([[c, s], [-s, c]])
+    in_plane = np.asarray(darr.shape)
+    if reshape:
+        iy, ix = in_plane
+        bounds = rot @ [[0, 0, iy, iy], [0, ix, 0, ix]]
+        out_plane = (np.ptp(bounds, axis=1) + 0.5).astype(int)
+    else:
+        out_plane = in_plane
+    offset = (in_plane - 1) / 2 - rot @ ((out_plane - 1) / 2)
+    return affine_transform(darr, rot, offset, tuple(int(n) for n in out_plane), order, mode, cval, tol=tol,
+                            output=output, chunks=chunks, threads=threads, route=route)

@@ -1,4 +1,4 @@
-from typing import Any
+from typing import Any, Sequence
 import dask.array as da
 import numpy as np
 
@@ -13,5 +13,28 @@ def spline_filter(
 ) -> da.Array: ...
 def spline_filter1d(
     darr: Any, order: int = 3, axis: int = -1, mode: str = "mirror", tol: float = ..., output: Any = ...,
+    threads: int | None = 1, route: str = "truncated",
+) -> da.Array: ...
+def map_coordinates(
+    input: Any, coordinates: Any, order: int = 3, mode: str = "constant", cval: float = 0.0, tol: float = ...,
+    output: Any = None, threads: int | None = 1, route: str = "truncated",
+) -> da.Array: ...
+def zoom(
+    input: Any, zoom: float | Sequence[float], order: int = 3, mode: str = "constant", cval: float = 0.0, *,
+    grid_mode: bool = False, tol: float = ..., output: Any = None, chunks: Any = None, threads: int | None = 1,
+    route: str = "truncated",
+) -> da.Array: ...
+def shift(
+    input: Any, shift: float | Sequence[float], order: int = 3, mode: str = "constant", cval: float = 0.0, *,
+    tol: float = ..., output: Any = None, chunks: Any = None, threads: int | None = 1, route: str = "truncated",
+) -> da.Array: ...
+def affine_transform(
+    input: Any, matrix: Any, offset: float | Sequence[float] = 0.0, output_shape: Sequence[int] | None = None,
+    order: int = 3, mode: str = "constant", cval: float = 0.0, *, tol: float = ..., output: Any = None,
+    chunks: Any = None, threads: int | None = 1, route: str = "truncated",
+) -> da.Array: ...
+def rotate(
+    input: Any, angle: float, axes: Sequence[int] = (1, 0), reshape: bool = True, order: int = 3,
+    mode: str = "constant", cval: float = 0.0, *, tol: float = ..., output: Any = None, chunks: Any = None,
     threads: int | None = 1, route: str = "truncated",
 ) -> da.Array: ...

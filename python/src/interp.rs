@@ -3,20 +3,50 @@
 //! With `prefilter` the array holds samples (the engine solves for the
 //! coefficients); without, it already holds coefficients (scipy's
 //! `prefilter=False`), which are extended by the mode and evaluated as given.
+//! With `deriv`, a partial derivative of the interpolant instead of its values.
 
 use crate::error::value_error;
 use crate::pool::run_with;
 use numpy::{Element, IntoPyArray, PyArray1, PyReadonlyArray2, PyReadonlyArrayDyn};
 use pyo3::prelude::*;
+use rayon::prelude::*;
 use splinelab::prelude::*;
 
-fn options(degree: u32, mode: &str, cval: f64, tol: Option<f64>) -> PyResult<Options> {
+pub(crate) fn options(degree: u32, mode: &str, cval: f64, tol: Option<f64>) -> PyResult<Options> {
     let mut opts = Options::new(degree, mode.parse().map_err(value_error)?);
     opts.cval = cval;
     if let Some(tol) = tol {
         opts.route = Route::Truncated { tol };
     }
     Ok(opts)
+}
+
+/// The interpolant of samples (`prefilter`: the engine solves for the
+/// coefficients) or of given coefficients (scipy's `prefilter=False`).
+pub(crate) fn interpolant<T: Real + Send + Sync>(
+    data: &ndarray::ArrayViewD<'_, T>,
+    opts: Options,
+    prefilter: bool,
+) -> Result<Interpolant<T>, NdimageError> {
+    if prefilter {
+        Interpolant::new(data, opts)
+    } else {
+        Interpolant::from_coefficients(data, opts.degree, opts.mode, opts.cval)
+    }
+}
+
+/// `∂^deriv f` at each point (columns of `at`), in parallel: the engine's
+/// [`Interpolant::eval_derivative`] per point.
+fn derivatives<T: Real + Send + Sync>(
+    f: &Interpolant<T>,
+    at: ndarray::ArrayView2<'_, f64>,
+    deriv: &[u32],
+) -> Result<Vec<T>, NdimageError> {
+    (0..at.ncols())
+        .into_par_iter()
+        .with_min_len(256)
+        .map(|k| f.eval_derivative(&at.column(k).to_vec(), deriv))
+        .collect()
 }
 
 fn map_generic<'py, T>(
@@ -26,6 +56,7 @@ fn map_generic<'py, T>(
     opts: Options,
     prefilter: bool,
     threads: Option<usize>,
+    deriv: Option<Vec<u32>>,
 ) -> PyResult<Bound<'py, PyArray1<T>>>
 where
     T: Real + Element + Send + Sync,
@@ -33,10 +64,14 @@ where
     let data = input.as_array();
     let at = coordinates.as_array();
     let run = || {
-        if prefilter {
+        let deriv = deriv.filter(|d| d.iter().any(|&k| k > 0));
+        if prefilter && deriv.is_none() {
             return map_coordinates(&data, at, opts);
         }
-        let f = Interpolant::from_coefficients(&data, opts.degree, opts.mode, opts.cval)?;
+        let f = interpolant(&data, opts, prefilter)?;
+        if let Some(d) = deriv {
+            return derivatives(&f, at, &d);
+        }
         let mut out = vec![T::zero(); at.ncols()];
         f.eval_many(at.t(), &mut out).map(|()| out)
     };
@@ -49,7 +84,7 @@ macro_rules! map_fn {
     ($name:ident, $t:ty, $doc:literal) => {
         #[doc = $doc]
         #[pyfunction]
-        #[pyo3(signature = (input, coordinates, degree, mode, cval, tol, prefilter, threads))]
+        #[pyo3(signature = (input, coordinates, degree, mode, cval, tol, prefilter, threads, deriv=None))]
         #[allow(clippy::too_many_arguments)]
         pub fn $name<'py>(
             py: Python<'py>,
@@ -61,9 +96,10 @@ macro_rules! map_fn {
             tol: Option<f64>,
             prefilter: bool,
             threads: Option<usize>,
+            deriv: Option<Vec<u32>>,
         ) -> PyResult<Bound<'py, PyArray1<$t>>> {
             let opts = options(degree, mode, cval, tol)?;
-            map_generic(py, input, coordinates, opts, prefilter, threads)
+            map_generic(py, input, coordinates, opts, prefilter, threads, deriv)
         }
     };
 }

@@ -12,6 +12,7 @@ mod error;
 mod filter;
 mod interp;
 mod pool;
+mod resample;
 mod width;
 
 use pyo3::prelude::*;
@@ -25,6 +26,10 @@ fn _splinelab(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(filter::filter_bound, m)?)?;
     m.add_function(wrap_pyfunction!(interp::map_coordinates_f64, m)?)?;
     m.add_function(wrap_pyfunction!(interp::map_coordinates_f32, m)?)?;
+    m.add_function(wrap_pyfunction!(resample::resample_f64, m)?)?;
+    m.add_function(wrap_pyfunction!(resample::resample_f32, m)?)?;
+    m.add_function(wrap_pyfunction!(resample::affine_f64, m)?)?;
+    m.add_function(wrap_pyfunction!(resample::affine_f32, m)?)?;
     m.add_function(wrap_pyfunction!(width::truncation_width, m)?)?;
     m.add_function(wrap_pyfunction!(width::coefficients_f64, m)?)?;
     m.add_function(wrap_pyfunction!(width::coefficients_decimal, m)?)?;

@@ -25,7 +25,10 @@ use crate::sspline::bspline_uniform::{cell_derivatives_into, centred_cell};
 use crate::sspline::{MAX_ORDER, SplineFamily};
 use ndarray::{ArrayBase, ArrayD, ArrayView2, ArrayViewD, Data, Dimension, Slice};
 
+mod affine;
 mod batch;
+mod separable;
+pub use affine::PointRule;
 
 /// How to build an [`Interpolant`].
 #[derive(Debug, Clone, Copy, PartialEq)]

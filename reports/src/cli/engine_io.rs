@@ -18,7 +18,7 @@ use clap::Args;
 use ndarray::ArrayD;
 use serde_json::json;
 use splinelab::prelude::{
-    Mode, NdimageError, PrefilterError, RecursivePrefilter, Route, SplineFamily,
+    Mode, NdimageError, Options, PrefilterError, RecursivePrefilter, Route, SplineFamily,
 };
 use splinelab::scalar::Real;
 use splinelab_verify::check::UserFormat;
@@ -405,6 +405,16 @@ pub fn decimal<T: Real>(working: Working, x: &T) -> String {
         Working::F32 => format!("{:e}", round_f32(x)),
         Working::Prec(Prec::F64) => format!("{:e}", round_f64(x)),
         Working::Prec(p) => p.format(x),
+    }
+}
+
+/// The engine options of a run (degree, mode, cval, route).
+pub fn options(plan: &Plan, args: &EngineArgs) -> Options {
+    Options {
+        degree: plan.degree,
+        mode: args.mode,
+        cval: args.cval,
+        route: plan.route,
     }
 }
 

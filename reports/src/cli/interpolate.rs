@@ -13,8 +13,8 @@
 //! approximates by padding 12 samples).
 
 use super::engine_io::{
-    EngineArgs, Plan, Working, check_conditioning, engine_error, estimate, plan, to_working,
-    write_result,
+    EngineArgs, Plan, Working, check_conditioning, engine_error, estimate, options, plan,
+    to_working, write_result,
 };
 use crate::array_io::read_array;
 use crate::error::CliError;
@@ -25,7 +25,7 @@ use crate::with_real;
 use clap::Args;
 use ndarray::Array2;
 use serde_json::json;
-use splinelab::prelude::{Interpolant, Options, Real};
+use splinelab::prelude::{Interpolant, Real};
 use std::path::{Path, PathBuf};
 
 /// Arguments of `splinelab interpolate`.
@@ -103,13 +103,7 @@ fn compute<T: Real + Send + Sync>(
         if plan.degree >= 1 {
             check_conditioning::<T>(plan)?;
         }
-        let opts = Options {
-            degree: plan.degree,
-            mode: e.mode,
-            cval: e.cval,
-            route: plan.route,
-        };
-        Interpolant::new(&data, opts)
+        Interpolant::new(&data, options(plan, e))
     }
     .map_err(|err| engine_error(&e.input, err))?;
     let mut out = vec![T::zero(); points.nrows()];

@@ -15,6 +15,7 @@ pub mod prec;
 pub mod prefilter;
 pub mod qi;
 pub mod report;
+pub mod resample;
 pub mod width;
 pub mod width_emit;
 
@@ -60,6 +61,8 @@ pub enum Command {
     Prefilter(prefilter::PrefilterArgs),
     /// Evaluate the spline interpolant of an N-D array at points (scipy's map_coordinates).
     Interpolate(interpolate::InterpolateArgs),
+    /// scipy's zoom, shift, rotate and affine_transform of an N-D array (.npy in and out).
+    Resample(resample::ResampleArgs),
 }
 
 /// The environment and exit statuses, shown under `--help`.
@@ -174,5 +177,6 @@ pub fn run(command: &Command) -> Result<ExitCode, CliError> {
         Command::Check(a) => check::run(a),
         Command::Prefilter(a) => done(prefilter::run(a)),
         Command::Interpolate(a) => done(interpolate::run(a)),
+        Command::Resample(a) => done(resample::run(a)),
     }
 }

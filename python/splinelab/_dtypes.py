@@ -1,0 +1,170 @@
+"""Data types as scipy.ndimage 1.17 handles them: which arrays are taken,
+what ``output`` means, the dtype the engine computes in, and how a float64
+result is stored into an integer, boolean or complex output.
+
+scipy computes every value in float64 and stores it with a C conversion
+(``ni_interpolation.c``, ``CASE_INTERP_OUT_INT`` / ``_UINT``): the
+interpolation functions round half away from zero and saturate (``t + 0.5``
+or ``t - 0.5`` in float64, clamped to the type's range, then truncated);
+the filters (``NI_LineBufferToArray``) truncate without rounding or
+clamping, as numpy's ``astype`` does. :func:`store_rounded` reproduces the
+first bit for bit, including what x86-64 gives where the C conversion is
+undefined (NaN, and 2**63 / 2**64 after rounding), as measured on scipy
+1.17.1 (python/tests/test_dtypes.py compares them live).
+"""
+
+from __future__ import annotations
+
+import warnings
+
+import numpy as np
+
+_F32 = (np.dtype(np.float32), np.dtype(np.complex64), np.dtype(np.float16))
+
+
+def input_array(input, what="input"):
+    """``input`` as an array of a numeric dtype scipy takes: bool, integer,
+    float or complex."""
+    a = np.asarray(input)
+    if a.dtype.kind not in "biufc":
+        raise TypeError(f"{what} must be a numeric (bool, integer, float or complex) array, got dtype {a.dtype}")
+    return a
+
+
+def output_dtype(output, input_dtype, default, complex_input):
+    """The result dtype and the array to write into (scipy's ``output``:
+    None for ``default``, a dtype, a dtype name, or an array).
+
+    Complex input with a real dtype given as a type or dtype is promoted to
+    complex with a warning, as scipy does; a real dtype name or a real array
+    is refused (scipy: RuntimeError; here TypeError)."""
+    target = None
+    if isinstance(output, np.ndarray):
+        target, dtype = output, output.dtype
+        if complex_input and dtype.kind != "c":
+            raise TypeError(f"output must have a complex dtype for complex input, got {dtype}")
+    else:
+        try:
+            dtype = np.dtype(default if output is None else output)
+        except TypeError as e:
+            raise TypeError(f"output must be a dtype, a dtype name or an array: {e}") from None
+        if complex_input and dtype.kind != "c":
+            if isinstance(output, str):
+                raise TypeError(f"output must have a complex dtype for complex input, got {output!r}")
+            warnings.warn("promoting specified output dtype to complex", stacklevel=4)
+            dtype = np.promote_types(dtype, np.complex64)
+    if dtype.kind not in "biufc":
+        raise TypeError(f"output must have a numeric dtype, got {dtype}")
+    return dtype, target
+
+
+def default_output(input_dtype, complex_input):
+    """scipy's ``output=None``: the input's dtype (complex input: at least complex64)."""
+    native = np.dtype(input_dtype).newbyteorder("=")  # scipy: dtype=input.dtype.name
+    if complex_input:
+        return np.promote_types(native, np.complex64)
+    return native
+
+
+def compute_dtype(out):
+    """The dtype the engine computes in for a result of dtype ``out``:
+    float32 for float32 / complex64 (and float16) results, float64 for
+    everything else (integers and booleans are computed in float64 and
+    rounded, as in scipy)."""
+    return np.dtype(np.float32) if np.dtype(out) in _F32 else np.dtype(np.float64)
+
+
+def real_dtype(dtype):
+    """The real dtype of one part of a complex dtype (itself when real)."""
+    dtype = np.dtype(dtype)
+    return np.empty(0, dtype).real.dtype
+
+
+def refuse_aliasing(target, *inputs):
+    """scipy writes ``output`` while it reads ``input``; an ``output`` that
+    shares memory with an input is refused rather than half overwritten."""
+    if target is None:
+        return
+    for a in inputs:
+        if isinstance(a, np.ndarray) and np.may_share_memory(target, a):
+            raise ValueError("output shares memory with the input: pass a separate array (or output=None)")
+
+
+def _round_signed(t, info, itemsize):
+    r = np.where(t > 0, t + 0.5, t - 0.5)
+    lo, hi = float(info.min), float(info.max)
+    nan = np.isnan(r)
+    # NaN converts to the type's minimum for 32 and 64 bits and to 0 below
+    # (x86-64: cvttsd2si to 32 bits, then truncated to the narrow type).
+    nan_value = info.min if itemsize >= 4 else 0
+    if itemsize < 8:
+        r = np.clip(np.where(nan, 0.0, r), lo, hi)
+        out = np.trunc(r).astype(info.dtype)
+    else:
+        # Above 2**63 scipy stores the maximum; 2**63 itself (not above the
+        # maximum as a double) converts to the minimum.
+        fits = ~nan & (r > lo) & (r < hi)
+        out = np.where(fits, np.trunc(np.where(fits, r, 0.0)), 0.0).astype(info.dtype)
+        out = np.where(r > hi, info.max, out)
+        out = np.where(r == hi, info.min, out)
+        out = np.where(r <= lo, info.min, out)
+    return np.where(nan, nan_value, out).astype(info.dtype)
+
+
+def _round_unsigned(t, info, itemsize):
+    r = np.where(t > 0, t + 0.5, 0.0)  # NaN > 0 is false: NaN stores 0
+    hi = float(info.max)
+    if itemsize < 8:
+        r = np.minimum(r, hi)
+    else:
+        # (double) UINT64_MAX is 2**64, which converts to 0 on x86-64.
+        r = np.where(r >= hi, 0.0, r)
+    return np.trunc(r).astype(info.dtype)
+
+
+def _to_bool(t):
+    # scipy stores (npy_bool) t, an unsigned char: the value truncated to a
+    # 32-bit integer (out of range and NaN: INT_MIN), then its low byte.
+    fits = np.isfinite(t) & (t > -2.0**31 - 1) & (t < 2.0**31)
+    low = np.fmod(np.trunc(np.where(fits, t, 0.0)), 256.0)
+    return low != 0
+
+
+def store_rounded(t, dtype):
+    """Values ``t`` (float64 or float32) as scipy's interpolation functions
+    store them into ``dtype``: integers rounded half away from zero and
+    saturated, booleans as scipy's unsigned-char conversion, floats and
+    complex as numpy converts them."""
+    dtype = np.dtype(dtype)
+    if dtype.kind in "fc":
+        return np.asarray(t).astype(dtype)
+    t = np.asarray(t, dtype=np.float64)
+    if dtype.kind == "b":
+        return _to_bool(t)
+    info = np.iinfo(dtype)
+    if dtype.kind == "u":
+        return _round_unsigned(t, info, dtype.itemsize)
+    return _round_signed(t, info, dtype.itemsize)
+
+
+def store_truncated(t, dtype):
+    """Values ``t`` as scipy's filters store them into ``dtype``: a plain C
+    conversion (numpy's ``astype``; integers truncated toward zero; bool as
+    scipy's unsigned-char conversion, so 0.9999 is False)."""
+    if np.dtype(dtype).kind == "b":
+        return _to_bool(np.asarray(t, dtype=np.float64))
+    with np.errstate(invalid="ignore", over="ignore"):
+        return np.asarray(t).astype(np.dtype(dtype))
+
+
+def deliver(result, target, shape):
+    """``result`` written into ``target`` (any dtype, byte order or
+    strides) when given, else returned."""
+    if target is None:
+        return result
+    if target.shape != tuple(shape):
+        raise ValueError(f"output has shape {target.shape}, expected {tuple(shape)}")
+    if not target.flags.writeable:
+        raise ValueError("output is read-only")
+    np.copyto(target, result, casting="unsafe")
+    return target

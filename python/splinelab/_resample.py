@@ -1,0 +1,357 @@
+"""scipy.ndimage's resampling functions on the engine: zoom, shift, rotate,
+affine_transform and geometric_transform, with scipy 1.17's names,
+arguments, defaults and coordinate arithmetic (``_interpolation.py`` and
+``NI_ZoomShift`` / ``NI_GeometricTransform`` in ``ni_interpolation.c``:
+the same floating-point operations in the same order, so the points are
+scipy's to the bit). Each is "the coordinates of every output sample, then
+:func:`splinelab.map_coordinates` at them": the prefilter once, then
+``(order + 1)**ndim`` multiply-adds per output sample. zoom and shift
+(and affine_transform with a diagonal matrix) are separable: their
+coordinates are one vector per axis, evaluated by the engine's
+tensor-product resampling (``(order + 1)`` multiply-adds per output sample
+and axis) when the extension has it.
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+import numbers
+import warnings
+
+import numpy as np
+
+from . import _dtypes as _dt
+from ._ndimage import _Affine, _flag, _Grid, _interp_mode, _interpolate, _map_real
+from ._validate import _degree, _int, _opt_float, _threads
+
+
+def _per_axis(value, ndim, what):
+    """scipy's ``_normalize_sequence``: a number for every axis, or one each."""
+    if not isinstance(value, str) and np.iterable(value):
+        values = list(value)
+        if len(values) != ndim:
+            raise ValueError(f"{what} must have one value per axis ({ndim}), got {len(values)}")
+    else:
+        values = [value] * ndim
+    for v in values:
+        if isinstance(v, (bool, np.bool_)) or not isinstance(v, numbers.Real):
+            raise TypeError(f"{what} must be real numbers, got {type(v).__name__}")
+    return [float(v) for v in values]
+
+
+class _Spec:
+    """The interpolation arguments shared by every function."""
+
+    def __init__(self, order, mode, cval, prefilter, tol, threads, exact_edges):
+        self.d = _degree(order)
+        self.mode = _interp_mode(mode)
+        self.cval = cval
+        self.prefilter = _flag(prefilter, "prefilter")
+        self.tol = _opt_float(tol, "tol")
+        self.threads = _threads(threads)
+        self.exact_edges = bool(exact_edges)
+
+    def at_points(self, input, output, shape, flat_of):
+        """The values at the points ``flat_of(a)`` (``(ndim, prod(shape))``)."""
+
+        def evaluate(a, cv):
+            return _map_real(a, flat_of(a), self.d, self.mode, cv, self.prefilter, self.tol, self.threads,
+                             self.exact_edges)
+
+        return _interpolate(input, output, shape, self.cval, evaluate)
+
+    def on_grid(self, input, output, shape, axis_coordinates):
+        """The values on the tensor grid of per-axis coordinate vectors."""
+
+        grid = _Grid(axis_coordinates)
+
+        def evaluate(a, cv):
+            return _map_real(a, grid, self.d, self.mode, cv, self.prefilter, self.tol, self.threads,
+                             self.exact_edges)
+
+        return _interpolate(input, output, shape, self.cval, evaluate)
+
+
+def _zoom_shift_coordinates(out_shape, zooms=None, shifts=None, grid_mode=False):
+    """``NI_ZoomShift``'s coordinate of output index ``k`` on each axis:
+    ``k + shift``, then ``* zoom`` (``grid_mode``: ``+ 0.5``, ``* zoom``,
+    ``- 0.5``), in scipy's order of operations."""
+    coords = []
+    for axis, n in enumerate(out_shape):
+        cc = np.arange(n, dtype=np.float64)
+        if shifts is not None:
+            cc = cc + shifts[axis]
+        if zooms is not None:
+            cc = (cc + 0.5) * zooms[axis] - 0.5 if grid_mode else cc * zooms[axis]
+        coords.append(np.ascontiguousarray(cc))
+    return coords
+
+
+def _early_copy(input, output, shape):
+    """zoom by 1 with the prefilter: scipy returns the input converted
+    (``output[...] = input``, numpy's conversion), no interpolation."""
+    a = np.asarray(input)
+    if isinstance(output, np.ndarray):
+        out = output
+    else:
+        dtype = a.dtype if output is None else np.dtype(output)
+        if a.dtype.kind == "c" and dtype.kind != "c":
+            dtype = np.promote_types(dtype, np.complex64)
+        out = np.empty(shape, dtype)
+    with np.errstate(invalid="ignore", over="ignore"):
+        np.copyto(out, a, casting="unsafe")
+    return out
+
+
+def zoom(input, zoom, output=None, order=3, mode="constant", cval=0.0, prefilter=True, *, grid_mode=False,
+         tol=None, threads=None, exact_edges=False):
+    """Resample an array by ``zoom`` per axis (``scipy.ndimage.zoom``).
+
+    The output shape is ``round(n * zoom)`` per axis (Python's ``round``);
+    output index ``k`` reads the input at ``k * (n - 1) / (m - 1)``
+    (``grid_mode=True``: ``(k + 0.5) * n / m - 0.5``, the pixel edges
+    aligned; an axis of one output sample reads index 0). ``order`` is the
+    spline degree, 0..199; modes, ``cval``, ``prefilter``, dtypes and
+    ``output`` as :func:`splinelab.map_coordinates` (scipy's rules). A zoom
+    of 1 on every axis with the prefilter returns the input converted, as
+    scipy. Cost: the prefilter, then ``order + 1`` multiply-adds per output
+    sample and axis (separable tensor-product evaluation).
+
+    >>> import numpy as np, splinelab
+    >>> splinelab.zoom(np.array([0.0, 1.0, 2.0]), 5 / 3, order=1)
+    array([0. , 0.5, 1. , 1.5, 2. ])
+    """
+    a = np.asarray(input)
+    if a.ndim < 1:
+        raise ValueError("input must have at least one dimension")
+    zooms = _per_axis(zoom, a.ndim, "zoom")
+    out_shape = tuple(int(round(n * z)) for n, z in zip(a.shape, zooms))
+    if any(m < 0 for m in out_shape):
+        raise ValueError(f"zoom gives a negative output shape {out_shape}")
+    spec = _Spec(order, mode, cval, prefilter, tol, threads, exact_edges)
+    if all(z == 1 for z in zooms) and spec.prefilter:
+        return _early_copy(a, output, out_shape)
+    grid_mode = _flag(grid_mode, "grid_mode")
+    if grid_mode and spec.mode in ("constant", "wrap"):
+        better = {"constant": "grid-constant", "wrap": "grid-wrap"}[spec.mode]
+        warnings.warn(f"It is recommended to use mode = {better} instead of {spec.mode} when grid_mode is True.",
+                      stacklevel=2)
+    num = np.array(a.shape)
+    div = np.array(out_shape)
+    if not grid_mode:
+        num, div = num - 1, div - 1
+    factors = np.divide(num, div, out=np.ones(a.ndim, dtype=np.float64), where=div != 0)
+    coords = _zoom_shift_coordinates(out_shape, zooms=factors, grid_mode=grid_mode)
+    return spec.on_grid(a, output, out_shape, coords)
+
+
+def shift(input, shift, output=None, order=3, mode="constant", cval=0.0, prefilter=True, *, tol=None,
+          threads=None, exact_edges=False):
+    """Shift an array by ``shift`` samples per axis (``scipy.ndimage.shift``):
+    output index ``k`` reads the input at ``k - shift``. Arguments as
+    :func:`zoom`; cost the prefilter, then ``order + 1`` multiply-adds per
+    sample and axis.
+
+    >>> import numpy as np, splinelab
+    >>> splinelab.shift(np.array([0.0, 1.0, 4.0, 9.0]), 1, order=1, mode="nearest")
+    array([0., 0., 1., 4.])
+    """
+    a = np.asarray(input)
+    if a.ndim < 1:
+        raise ValueError("input must have at least one dimension")
+    shifts = [-s for s in _per_axis(shift, a.ndim, "shift")]
+    spec = _Spec(order, mode, cval, prefilter, tol, threads, exact_edges)
+    coords = _zoom_shift_coordinates(a.shape, shifts=shifts)
+    return spec.on_grid(a, output, a.shape, coords)
+
+
+def _affine_parts(matrix, offset, ndim, out_ndim):
+    """scipy's matrix forms: (ndim,) diagonal, (ndim, out_ndim), and the
+    homogeneous (ndim, ndim + 1) / (ndim + 1, ndim + 1) whose last column is
+    the offset (then ``offset`` is ignored, as scipy)."""
+    m = np.asarray(matrix, dtype=np.float64)
+    if m.ndim not in (1, 2) or m.shape[0] < 1:
+        raise ValueError(f"matrix must be 1-D or 2-D, got shape {m.shape}")
+    if m.ndim == 2 and m.shape[1] == ndim + 1 and m.shape[0] in (ndim, ndim + 1):
+        if m.shape[0] == ndim + 1:
+            expected = [0] * ndim + [1]
+            if not np.all(m[ndim] == expected):
+                raise ValueError(f"homogeneous matrix of shape {m.shape}: bottom row must be {expected}")
+        offset = m[:ndim, ndim]
+        m = m[:ndim, :ndim]
+    if m.shape[0] != ndim:
+        raise ValueError(f"matrix has {m.shape[0]} rows, expected {ndim} (the input's dimensions)")
+    if m.ndim == 2 and m.shape[1] != out_ndim:
+        raise ValueError(f"matrix has {m.shape[1]} columns, expected {out_ndim} (the output's dimensions)")
+    offsets = np.asarray(_per_axis(offset if np.ndim(offset) else float(offset), ndim, "offset"))
+    if not (np.isfinite(m).all() and np.isfinite(offsets).all()):
+        raise ValueError("matrix and offset must be finite")
+    return np.ascontiguousarray(m), offsets
+
+
+def _output_shape(output_shape, output, default):
+    if output_shape is None:
+        return tuple(output.shape) if isinstance(output, np.ndarray) else tuple(default)
+    shape = tuple(_int(n, "output_shape") for n in output_shape)
+    if any(n < 0 for n in shape):
+        raise ValueError(f"output_shape must not be negative, got {shape}")
+    return shape
+
+
+def affine_transform(input, matrix, offset=0.0, output_shape=None, output=None, order=3, mode="constant",
+                     cval=0.0, prefilter=True, *, tol=None, threads=None, exact_edges=False):
+    """Apply an affine transformation (``scipy.ndimage.affine_transform``):
+    output index ``o`` reads the input at ``matrix @ o + offset`` (the
+    "pull" direction, as scipy).
+
+    ``matrix``: (ndim,) a diagonal (evaluated separably, as scipy's
+    zoom/shift: ``(o + offset / m) * m``), (ndim, out_ndim), or homogeneous
+    (ndim, ndim + 1) / (ndim + 1, ndim + 1) with the offset in its last
+    column. ``output_shape`` defaults to ``output``'s shape or the input's.
+    Other arguments as :func:`zoom`. Cost: the prefilter, then
+    ``(order + 1)**ndim`` multiply-adds per output sample.
+
+    >>> import numpy as np, splinelab
+    >>> x = np.arange(12.0).reshape(3, 4)
+    >>> splinelab.affine_transform(x, [[0, 1], [1, 0]], output_shape=(4, 3), order=1)[1]
+    array([1., 5., 9.])
+    """
+    a = np.asarray(input)
+    if a.ndim < 1:
+        raise ValueError("input must have at least one dimension")
+    out_shape = _output_shape(output_shape, output, a.shape)
+    if len(out_shape) < 1:
+        raise ValueError("output must have at least one dimension")
+    m, offsets = _affine_parts(matrix, offset, a.ndim, len(out_shape))
+    spec = _Spec(order, mode, cval, prefilter, tol, threads, exact_edges)
+    if m.ndim == 1:
+        if len(out_shape) != a.ndim:
+            raise ValueError(f"a diagonal matrix needs an output of {a.ndim} dimensions, got {out_shape}")
+        with np.errstate(divide="ignore", invalid="ignore"):
+            shifts = offsets / m
+        coords = _zoom_shift_coordinates(out_shape, zooms=m, shifts=shifts)
+        return spec.on_grid(a, output, out_shape, coords)
+    return spec.at_points(a, output, out_shape, lambda _: _Affine(m, offsets, out_shape))
+
+
+def _sincos_degrees(angle):
+    """``(cos, sin)`` of ``angle`` degrees: the angle reduced exactly to
+    ``[-45, 45]`` about a multiple of 90 (``fmod`` and the subtraction are
+    exact), so multiples of 90 give exact 0 and ±1 as scipy's
+    ``special.cosdg`` / ``sindg`` do; elsewhere within an ulp of them."""
+    x = math.fmod(float(angle), 360.0)
+    q = round(x / 90.0)
+    r = math.radians(x - 90.0 * q)
+    s, c = math.sin(r), math.cos(r)
+    return [(c, s), (-s, c), (-c, -s), (s, -c)][q % 4]
+
+
+def rotate(input, angle, axes=(1, 0), reshape=True, output=None, order=3, mode="constant", cval=0.0,
+           prefilter=True, *, tol=None, threads=None, exact_edges=False):
+    """Rotate an array by ``angle`` degrees in the plane of ``axes``
+    (``scipy.ndimage.rotate``): about the centre ``(n - 1) / 2`` of the
+    plane, the matrix ``[[c, s], [-s, c]]`` from output to input;
+    ``reshape=True`` enlarges the plane to hold the whole rotated input
+    (``(extent + 0.5)`` truncated, as scipy). Arrays of more than two
+    dimensions are rotated plane by plane. Other arguments as :func:`zoom`.
+
+    >>> import numpy as np, splinelab
+    >>> splinelab.rotate(np.arange(6.0).reshape(2, 3), 90, order=1)
+    array([[2., 5.],
+           [1., 4.],
+           [0., 3.]])
+    """
+    a = np.asarray(input)
+    ndim = a.ndim
+    if ndim < 2:
+        raise ValueError("input array should be at least 2D")
+    axes = list(axes)
+    if len(axes) != 2:
+        raise ValueError("axes should contain exactly two values")
+    if not all(float(ax).is_integer() for ax in axes):
+        raise ValueError("axes should contain only integer values")
+    axes = [int(ax) + ndim if ax < 0 else int(ax) for ax in axes]
+    if not all(0 <= ax < ndim for ax in axes) or axes[0] == axes[1]:
+        raise ValueError(f"invalid rotation plane specified: {axes}")
+    axes.sort()
+    c, s = _sincos_degrees(angle)
+    rot = np.array([[c, s], [-s, c]])
+    img_shape = np.asarray(a.shape)
+    in_plane = img_shape[axes]
+    if reshape:
+        iy, ix = in_plane
+        bounds = rot @ [[0, 0, iy, iy], [0, ix, 0, ix]]
+        out_plane = (np.ptp(bounds, axis=1) + 0.5).astype(int)
+    else:
+        out_plane = img_shape[axes]
+    offset = (in_plane - 1) / 2 - rot @ ((out_plane - 1) / 2)
+    out_shape = img_shape.copy()
+    out_shape[axes] = out_plane
+    out_shape = tuple(int(n) for n in out_shape)
+    kwargs = dict(order=order, mode=mode, cval=cval, prefilter=prefilter, tol=tol, threads=threads,
+                  exact_edges=exact_edges)
+    if ndim == 2:
+        return affine_transform(a, rot, offset, out_shape, output, **kwargs)
+    # Plane by plane, as scipy (each plane prefiltered on its own), each
+    # written into its slice of the result.
+    if isinstance(output, np.ndarray):
+        if output.shape != out_shape:
+            raise ValueError(f"output has shape {output.shape}, expected {out_shape}")
+        full = output
+    else:
+        cplx = a.dtype.kind == "c"
+        dtype, _ = _dt.output_dtype(output, a.dtype, _dt.default_output(a.dtype, cplx), cplx)
+        full = np.empty(out_shape, dtype)
+    plane_shape = tuple(int(n) for n in out_plane)
+    for index in itertools.product(*[[slice(None)] if ax in axes else range(a.shape[ax]) for ax in range(ndim)]):
+        affine_transform(a[index], rot, offset, plane_shape, full[index], **kwargs)
+    return full
+
+
+def geometric_transform(input, mapping, output_shape=None, output=None, order=3, mode="constant", cval=0.0,
+                        prefilter=True, extra_arguments=(), extra_keywords=None, *, vectorized=False, tol=None,
+                        threads=None, exact_edges=False):
+    """Apply an arbitrary coordinate mapping (``scipy.ndimage.geometric_transform``).
+
+    ``mapping(out_index, *extra_arguments, **extra_keywords)`` takes a
+    tuple of integers (an output index) and returns the input coordinates
+    (a sequence of ``input.ndim`` numbers), called once per output sample
+    as scipy does. ``vectorized=True`` (ours): ``mapping(indices, ...)``
+    takes an array of shape ``(out_ndim, *output_shape)`` of float64 output
+    indices (``numpy.indices``) and returns an array of shape
+    ``(input.ndim, *output_shape)``: one call, no Python loop. Other
+    arguments as :func:`zoom`; cost the prefilter, ``(order + 1)**ndim``
+    multiply-adds per sample, and the mapping.
+
+    >>> import numpy as np, splinelab
+    >>> x = np.arange(5.0) ** 2
+    >>> splinelab.geometric_transform(x, lambda o: (o[0] / 2,), output_shape=(3,), order=1)
+    array([0. , 0.5, 1. ])
+    """
+    a = np.asarray(input)
+    if a.ndim < 1:
+        raise ValueError("input must have at least one dimension")
+    if not callable(mapping):
+        raise TypeError(f"mapping must be callable, got {type(mapping).__name__}")
+    out_shape = _output_shape(output_shape, None, a.shape)
+    if len(out_shape) < 1:
+        raise ValueError("output must have at least one dimension")
+    kwargs = {} if extra_keywords is None else dict(extra_keywords)
+    extra = tuple(extra_arguments)
+    spec = _Spec(order, mode, cval, prefilter, tol, threads, exact_edges)
+    if vectorized:
+        points = np.asarray(mapping(np.indices(out_shape, dtype=np.float64), *extra, **kwargs), dtype=np.float64)
+        if points.shape != (a.ndim, *out_shape):
+            raise ValueError(f"mapping returned shape {points.shape}, expected {(a.ndim, *out_shape)}")
+        points = points.reshape(a.ndim, -1)
+    else:
+        points = np.empty((a.ndim, math.prod(out_shape)))
+        for k, index in enumerate(np.ndindex(*out_shape)):
+            p = mapping(tuple(int(i) for i in index), *extra, **kwargs)
+            if len(p) != a.ndim:
+                raise ValueError(f"mapping returned {len(p)} coordinates at {index}, expected {a.ndim}")
+            points[:, k] = p
+    if not np.isfinite(points).all():
+        raise ValueError("mapping returned a non-finite coordinate")
+    return spec.at_points(a, output, out_shape, lambda _: points)
