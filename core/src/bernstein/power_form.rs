@@ -66,6 +66,10 @@ impl<T: Real> PowerForm<T> {
     /// then each `a_i` correctly rounded to `T` (radius `u|â_i|`).
     ///
     /// **Cost**: `O(n²)` rational operations (for studies, not for speed).
+    /// **Accuracy**: each coefficient correctly rounded (one rounding, the
+    /// final one); equal bit for bit to the working-precision route where that
+    /// is exact (`power_form.rs::tests::conversion_routes_agree_when_exact`).
+    /// **Source**: the Bernstein-to-power basis change, Farouki & Rajan (1987), §2.
     pub fn from_bernstein_exact(poly: &BernsteinPoly<T>) -> Result<Self, BezierError> {
         let m = RoundingModel::<T>::new();
         let n = poly.degree();

@@ -123,8 +123,12 @@ impl<T: Real, const D: usize> SsplineSurface<T, D> {
         (self.u.domain(), self.v.domain())
     }
 
-    /// `Q(u, v)`: two basis windows and `m_u m_v` axpys. Error
-    /// `≤ γ_{3(m_u+m_v)} Σ |D_{kl}| β_u β_v`.
+    /// `Q(u, v) = Σ_{k,l} D_{kl} β_u(u − k) β_v(v − l)`, evaluated by two
+    /// basis windows and `m_u m_v` axpys. **Accuracy**: error
+    /// `≤ γ_{3(m_u+m_v)} Σ |D_{kl}| β_u β_v` (Higham, 2nd ed., §3.1); the
+    /// surface reproduces its data grid
+    /// (`verify/tests/sspline_curve.rs::surface_edit_interpolation_and_curves_of_curves`).
+    /// **Source**: seed 000 eqs 24–25 (tensor-product S-spline surfaces).
     pub fn eval(&self, u: &T, v: &T) -> Result<SVector<T, D>, CurveError> {
         self.u.check_param(u)?;
         self.v.check_param(v)?;

@@ -133,8 +133,13 @@ pub struct TruncationAnalysis<T> {
 }
 
 impl<T: Real> TruncationAnalysis<T> {
-    /// Precomputes the expansion and `c_0..c_K` (production coefficients).
-    /// Cost: one pole computation and `K` coefficients.
+    /// Precomputes the pole expansion `c_k = Σ_r κ_r ξ_r^{|k|}` (for the
+    /// tail bound) and `c_0..c_K` by [`coefficients`] (production method).
+    /// **Cost**: one pole computation and `K` coefficients. **Accuracy**:
+    /// the neglected tail `k > K` changes each measure by `< 2^{−60}` of it;
+    /// the knot measure agrees with direct evaluation to `1e-14` relative
+    /// (`verify/tests/sspline_truncation.rs::knot_error_matches_direct_evaluation`).
+    /// **Source**: seed 000 eqs 10 and 28 (truncation at half-width `n`).
     pub fn new(family: &SplineFamily, max_n: usize) -> Result<Self, SsplineError> {
         if max_n > super::MAX_HALF_WIDTH {
             return Err(SsplineError::WidthTooLarge(max_n));
