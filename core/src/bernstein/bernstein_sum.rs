@@ -36,6 +36,9 @@ fn check_binomials<T: Real>(poly: &BernsteinPoly<T>) -> Result<(), BezierError> 
 /// more, so `|p̂ − p| ≤ γ_{3n+2} Σ |b_i| B_i^n(t)` — as stable as de Casteljau
 /// with a slightly larger constant, at `O(n)` cost.
 ///
+/// **Source**: the Bernstein form of Farouki & Rajan (1987); the
+/// `γ_k` analysis as in Higham, 2nd ed., §3.1.
+///
 /// ```
 /// use splinelab::bernstein::{bezier::BernsteinPoly, bernstein_sum::bernstein_sum};
 /// let p = BernsteinPoly::new(vec![0.25f64, -0.25, 0.25]).unwrap();

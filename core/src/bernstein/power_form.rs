@@ -38,6 +38,10 @@ impl<T: Real> PowerForm<T> {
     /// Σ_k C(i, k)|b_k|`, up to `≈ (n+1) u 4ⁿ max|b_k|` — the radii returned are
     /// the (smaller) running bounds. Errors: an overflowing coefficient.
     ///
+    /// Checked bit for bit against the rational route where both are exact
+    /// (`power_form.rs::tests::conversion_routes_agree_when_exact`). **Source**:
+    /// the Bernstein-to-power basis change of Farouki & Rajan (1987), §2.
+    ///
     /// ```
     /// use splinelab::bernstein::{bezier::BernsteinPoly, power_form::PowerForm};
     /// // (t − ½)² = ¼ − t + t².

@@ -109,6 +109,9 @@ pub fn principal_angles<T: Real>(d: &Vector3<T>) -> Result<(T, T), QiError> {
 /// among `(α₀ + 2kπ, β₀ + mπ)` and `(α₀ + π + 2kπ, −β₀ + mπ)` built from the
 /// principal angles `(α₀, β₀)`, the one with least `(α − α_p)² + (β − β_p)²`;
 /// at a pole (`d ∥ v_x`) `α = α_p`. Cost: a few roundings and `atan2`s.
+/// **Accuracy**: `T(α, β)` reproduces `d` within `1e-14` in f64
+/// (`tangent.rs::tests::angles_invert_the_tangent_on_every_branch`).
+/// **Source**: the `(α, β)` parametrisation of seed 004 eqs 3–4 and 16.
 pub fn nearest_angles<T: Real>(d: &Vector3<T>, prev: (&T, &T)) -> Result<(T, T), QiError> {
     let (a0, b0) = principal_angles(d)?;
     let at_pole = d.y.is_zero() && d.z.is_zero();

@@ -88,6 +88,7 @@ impl<T: Real> TruncatedBasis<T> {
     /// `S_n(x) = Σ_{|i|≤n} c_{|i|} β(x − i)`: one basis window (`O(m²)`) and
     /// `m` products. Error: a sum of `m` terms of alternating sign, about
     /// `m u Σ_i |c_i| β(x − i)` absolute.
+    /// **Source**: seed 000 eq 10.
     pub fn eval(&self, x: &T) -> T {
         let w = self.family.basis_window(x);
         let n = self.half_width() as i64;
@@ -251,6 +252,8 @@ impl<T: Real> TruncationAnalysis<T> {
     /// the located value is a lower bound within about `10⁻⁹` relative of the
     /// sup (checked against dense sampling in the tests); the value itself
     /// carries the full accuracy of `T`.
+    /// Test: `verify/tests/sspline_truncation.rs::uniform_error_is_the_sup_of_dense_samples`.
+    /// **Source**: seed 000 eq 28 (the uniform truncation error).
     pub fn uniform_error(&self, n: usize) -> T {
         const GRID: i32 = 16;
         let at = |j: i32| j as f64 / (2 * GRID) as f64;
