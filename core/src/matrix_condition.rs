@@ -77,6 +77,17 @@ pub fn singular_values<T: Real>(a: &DMatrix<T>) -> Result<Vec<T>, ConditionError
 /// let a = DMatrix::from_row_slice(2, 2, &[2.0f64, 0.0, 0.0, 0.5]);
 /// assert!((cond2(&a).unwrap() - 4.0).abs() < 1e-15);
 /// ```
+///
+/// ```
+/// use splinelab::matrix_condition::cond2;
+/// // In MPFR: cond₂ [[1, 1], [0, 1]] = φ² = (3 + √5)/2 (σ = φ, 1/φ).
+/// use splinelab::nalgebra::{ComplexField, DMatrix};
+/// use splinelab::scalar::{Mp, Real};
+/// type M = Mp<200>;
+/// let a = DMatrix::from_fn(2, 2, |i, j| M::from_int(if i > j { 0 } else { 1 }));
+/// let want = (M::from_int(3) + M::from_int(5).sqrt()) / M::from_int(2);
+/// assert!((cond2(&a).unwrap() - want).to_f64().abs() < 1e-40);
+/// ```
 pub fn cond2<T: Real>(a: &DMatrix<T>) -> Result<T, ConditionError> {
     let s = singular_values(a)?;
     let (max, min) = (s[0].clone(), s[s.len() - 1].clone());

@@ -133,6 +133,16 @@ impl<T: Real> GaussLegendre<T> {
     /// Tests: `quadrature.rs::tests::exact_on_polynomials_f64`,
     /// `exact_on_polynomials_mp`, `mp_nodes_are_not_f64_limited`. **Source**:
     /// Gauss–Legendre by Newton on `P_m`, weights by Abramowitz & Stegun (1964), 25.4.29.
+    ///
+    /// ```
+    /// // In MPFR: 3 nodes integrate t⁵ exactly, ∫₀¹ t⁵ dt = 1/6, to 256-bit rounding.
+    /// use splinelab::quadrature::GaussLegendre;
+    /// use splinelab::scalar::{Mp, Real};
+    /// type M = Mp<256>;
+    /// let rule = GaussLegendre::<M>::new(3).unwrap();
+    /// let q = rule.integrate(|t| { let t2 = t.clone() * t.clone(); t2.clone() * t2 * t.clone() });
+    /// assert!((q - M::from_int(1) / M::from_int(6)).to_f64().abs() < 1e-74);
+    /// ```
     pub fn new(m: usize) -> Result<Self, QuadratureError> {
         if m == 0 {
             return Err(QuadratureError::ZeroOrder);

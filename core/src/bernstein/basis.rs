@@ -47,6 +47,17 @@ pub fn binomial_real<T: Real>(n: u32, k: u32) -> T {
 /// let b = bernstein_basis(3, &0.5f64);
 /// assert_eq!(b, vec![0.125, 0.375, 0.375, 0.125]);
 /// ```
+///
+/// ```
+/// use splinelab::bernstein::basis::bernstein_basis;
+/// // In MPFR: B_i^3(1/3) = C(3, i) 2^{3−i} / 27, i.e. 8/27, 12/27, 6/27, 1/27.
+/// use splinelab::scalar::{Mp, Real};
+/// type M = Mp<128>;
+/// let b = bernstein_basis(3, &(M::from_int(1) / M::from_int(3)));
+/// for (bi, num) in b.iter().zip([8, 12, 6, 1]) {
+///     assert!((bi.clone() - M::from_int(num) / M::from_int(27)).to_f64().abs() < 1e-36);
+/// }
+/// ```
 pub fn bernstein_basis<T: Real>(n: usize, t: &T) -> Vec<T> {
     let one_minus_t = T::one() - t.clone();
     let mut b = Vec::with_capacity(n + 1);

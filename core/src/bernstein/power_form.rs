@@ -135,6 +135,7 @@ impl<T: Real> PowerForm<T> {
     /// exact `p(t)`: Horner in [`Running`] arithmetic whose coefficients carry
     /// the conversion radii (Higham Alg. 5.1 made rigorous). **Cost**: about
     /// 6× [`horner`](Self::horner).
+    /// **Method**: Horner's recurrence `p ← p t + a_i`.
     pub fn horner_bounded(&self, t: &T) -> Result<Evaluation<T>, BezierError> {
         let extrapolated = check_parameter(t)?;
         let m = RoundingModel::<T>::new();

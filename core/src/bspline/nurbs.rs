@@ -322,6 +322,19 @@ impl<T: Real> NurbsSurface<T, 3> {
     /// (`verify/tests/curves_rational.rs::nurbs_circle_and_cylinder_are_exact`).
     /// **Source**: Piegl & Tiller, *The NURBS Book*, §7.5 (circle) and §8.3
     /// (extruded surfaces).
+    ///
+    /// ```
+    /// // In MPFR: a point of the cylinder r = 2, height 3 is at distance 2 from
+    /// // the axis to 128-bit rounding, and z = v · height.
+    /// use splinelab::bspline::nurbs::NurbsSurface;
+    /// use splinelab::scalar::{Mp, Real};
+    /// type M = Mp<128>;
+    /// let s = NurbsSurface::<M, 3>::cylinder(&M::from_int(2), &M::from_int(3)).unwrap();
+    /// let p = s.eval(&M::from_f64_exact(0.3), &M::from_f64_exact(0.5)).unwrap();
+    /// let r2 = p[0].clone() * p[0].clone() + p[1].clone() * p[1].clone();
+    /// assert!((r2 - M::from_int(4)).to_f64().abs() < 1e-35);
+    /// assert!((p[2].clone() - M::from_f64_exact(1.5)).to_f64().abs() < 1e-35);
+    /// ```
     pub fn cylinder(r: &T, height: &T) -> Result<Self, BSplineError> {
         check_radius(r)?;
         finite("height", height)?;

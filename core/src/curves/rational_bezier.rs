@@ -60,6 +60,8 @@ impl<T: Real, const D: usize> RationalBezier<T, D> {
     /// A curve from homogeneous control points `H_i = w_i P_i` and weights.
     /// Weights must be finite and `≥ 0` with positive end weights; an
     /// interior zero weight makes `H_i` a point at infinity (a direction).
+    /// Validation only: the homogeneous points are stored exactly. **Source**:
+    /// seed 002 (rational Bézier); Piegl & Tiller, *The NURBS Book*, §1.5.
     pub fn from_homogeneous(
         homogeneous: Vec<SVector<T, D>>,
         weights: Vec<T>,

@@ -284,6 +284,8 @@ impl<T: Real, const D: usize> SsplineCurve<T, D> {
     /// independent of `ν`. **Result**: bitwise identical to a full rebuild
     /// with the moved point (same summation order). Returns the number of
     /// control points recomputed. On error nothing is changed.
+    /// Tested in `verify/tests/sspline_curve.rs::local_edit_equals_rebuild_f64`.
+    /// **Source**: seed 000 §3 (local update).
     pub fn move_point(&mut self, k: usize, p: SVector<T, D>) -> Result<usize, CurveError> {
         self.check_edit(k, &p)?;
         self.data[k] = p;

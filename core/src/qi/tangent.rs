@@ -59,6 +59,10 @@ pub struct TangentJet<T: Real> {
 
 impl<T: Real> TangentJet<T> {
     /// Evaluates `T`, `∂T/∂α`, `∂T/∂β` (cost: two `sin_cos`).
+    /// **Accuracy**: equals the quaternion product `q v_x q⁻¹`
+    /// (`tangent.rs::tests::closed_form_matches_quaternion_product_f64`); the
+    /// partials match central differences (`partials_match_central_differences`).
+    /// **Source**: seed 004 eq 16.
     pub fn new(alpha: &T, beta: &T) -> Self {
         let (sa, ca) = alpha.clone().sin_cos();
         let (s2, c2) = (beta.clone() + beta.clone()).sin_cos();

@@ -59,6 +59,9 @@ pub fn cell_values<T: Real>(m: u32, u: &T) -> Vec<T> {
 /// [`cell_values`] into `a[0..m]`, without allocating (the recursion runs
 /// in place, `s` descending, so each step reads the previous order's
 /// `a[s]` and `a[s − 1]`). Same arithmetic, bit for bit.
+/// **Accuracy**: exact at rationals
+/// (`bspline_uniform.rs::tests::recursion_matches_truncated_powers_exactly_at_rationals`).
+/// **Source**: seed 000 eq 7; de Boor, *A Practical Guide to Splines*.
 pub fn cell_values_into<T: Real>(m: u32, u: &T, a: &mut [T]) {
     a[0] = T::one();
     for k in 2..=m as usize {

@@ -108,6 +108,17 @@ impl<T: Real> RecursivePrefilter<T> {
     /// assert!(((d[1] + 4.0 * d[2] + d[3]) / 6.0 - 2.0).abs() < 1e-15);
     /// assert!(((2.0 * d[1] + 4.0 * d[0]) / 6.0 - 1.0).abs() < 1e-15);
     /// ```
+    ///
+    /// ```
+    /// use splinelab::sspline::{SplineFamily, end_conditions::EndRule, prefilter::RecursivePrefilter};
+    /// // In MPFR: the quintic filter of constant data is that constant
+    /// // (the B-spline translates sum to 1), to 256-bit rounding.
+    /// use splinelab::scalar::{Mp, Real};
+    /// type M = Mp<256>;
+    /// let f = RecursivePrefilter::<M>::new(&SplineFamily::Order(6)).unwrap();
+    /// let d = f.apply(&vec![M::from_int(5); 9], EndRule::Reflect).unwrap();
+    /// assert!(d.iter().all(|x| (x.clone() - M::from_int(5)).to_f64().abs() < 1e-70));
+    /// ```
     pub fn new(family: &SplineFamily) -> Result<Self, PrefilterError> {
         let poles: Vec<T> = poles_rounded(family)?;
         let exact = node_values_exact(family)?;
@@ -130,6 +141,9 @@ impl<T: Real> RecursivePrefilter<T> {
     /// [`Self::new`], refused with [`PrefilterError::IllConditioned`] when
     /// [`Self::estimated_error`] exceeds `tol` (the error names the estimate
     /// and the precision that would meet `tol`).
+    ///
+    /// **Method**: [`Self::new`], then the a-priori estimate compared with `tol`.
+    /// **Source**: Unser, Aldroubi & Eden (1993).
     ///
     /// ```
     /// use splinelab::sspline::{SplineFamily, prefilter::{RecursivePrefilter, PrefilterError}};

@@ -34,6 +34,8 @@ impl<T: Real> TruncatedBasis<T> {
     /// The basis with the production coefficients
     /// ([`CoefficientMethod::Production`], ≤ 1 ulp) `c_0..c_n`.
     ///
+    /// **Method**: [`coefficients`] for `c_0..c_n`. **Source**: seed 000 eqs 10 and 28.
+    ///
     /// ```
     /// use splinelab::sspline::{SplineFamily, TruncatedBasis};
     /// let s = TruncatedBasis::<f64>::new(&SplineFamily::Order(4), 12).unwrap();
@@ -189,6 +191,10 @@ impl<T: Real> TruncationAnalysis<T> {
     /// `max_{j ≥ 0} |Σ_{|i|>n} c_i β(j − i)|`. Since `E(j) = δ_{0j} − S_n(j)`
     /// vanishes for `|j| > n + p`, only `n − p < j ≤ n + p` can be non-zero:
     /// `O(p²)`.
+    /// **Method**: the tail sums `Σ_{|i|>n} c_i β(j − i)` at the `2p` knots,
+    /// in `T`. **Accuracy**: agrees with direct evaluation to `1e-14` relative
+    /// (`verify/tests/sspline_truncation.rs::knot_error_matches_direct_evaluation`).
+    /// **Source**: seed 000 eq 28.
     pub fn knot_error(&self, n: usize) -> T {
         let p = (self.nodes.len() / 2) as i64;
         let n_i = n as i64;

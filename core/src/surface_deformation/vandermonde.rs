@@ -99,6 +99,17 @@ crate::named_enum!(NodeFamily, "node family", VandermondeError, |s: &str| {
 /// let a = bernstein_vandermonde(&[0.0f64, 0.5, 1.0]);
 /// assert_eq!(a[(1, 1)], 0.5);
 /// ```
+///
+/// ```
+/// use splinelab::surface_deformation::vandermonde::bernstein_vandermonde;
+/// // In MPFR, nodes 0, 1/3, 1: row 1 is (B_0^2, B_1^2, B_2^2)(1/3) = (4/9, 4/9, 1/9).
+/// use splinelab::scalar::{Mp, Real};
+/// type M = Mp<128>;
+/// let a = bernstein_vandermonde(&[M::from_int(0), M::from_int(1) / M::from_int(3), M::from_int(1)]);
+/// for (i, num) in [4, 4, 1].into_iter().enumerate() {
+///     assert!((a[(1, i)].clone() - M::from_int(num) / M::from_int(9)).to_f64().abs() < 1e-37);
+/// }
+/// ```
 pub fn bernstein_vandermonde<T: Real>(nodes: &[T]) -> DMatrix<T> {
     let n = nodes.len().saturating_sub(1);
     let rows: Vec<Vec<T>> = nodes.iter().map(|t| bernstein_basis(n, t)).collect();
