@@ -90,7 +90,7 @@ pub fn eval_with_derivatives<T: Real>(a: &[T], x: &T) -> (T, T, T) {
 ///
 /// Method, cost and accuracy: see the [module documentation](self).
 ///
-/// Tested in `roots.rs::tests::wilkinson_like_integers_in_mp`. **Source**:
+/// **Accuracy**: tested in `roots.rs::tests::wilkinson_like_integers_in_mp`. **Source**:
 /// Laguerre's method with implicit deflation (Press et al., *Numerical
 /// Recipes*, 3rd ed. (2007), §9.5).
 ///

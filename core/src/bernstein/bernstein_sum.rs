@@ -64,7 +64,7 @@ pub fn bernstein_sum<T: Real>(poly: &BernsteinPoly<T>, t: &T) -> Result<T, Bezie
     finite(sum, METHOD, n)
 }
 
-/// [`bernstein_sum`] with a rigorous running error bound: the same
+/// **Method**: [`bernstein_sum`] with a rigorous running error bound: the same
 /// operations in [`Running`] arithmetic (the rounded `1 − t` and binomials
 /// enter with their rounding errors; underflowed powers with `η`).
 /// Valid for every finite `t` (extrapolation is flagged). **Cost**: about 6×

@@ -245,7 +245,8 @@ impl<T: Real, const D: usize> From<BSpline<T, D>> for BSplineData<T> {
 
 impl<T: Real, const D: usize> BSpline<T, D> {
     /// Validates: order `k ≥ 1`, at least `k` points, all finite,
-    /// `#knots = #points + k`, non-empty domain.
+    /// `#knots = #points + k`, non-empty domain. **Method**: checks only; the
+    /// data are stored exactly (no rounding). **Source**: seed 003 eqs 1–2.
     pub fn new(
         order: usize,
         points: Vec<SVector<T, D>>,

@@ -106,7 +106,8 @@ pub struct NurbsCurve<T: Real, const D: usize> {
 
 impl<T: Real, const D: usize> NurbsCurve<T, D> {
     /// From affine control points, weights (`> 0`, finite) and knots;
-    /// stores `w_j Q_j` (one rounding per coordinate).
+    /// stores `w_j Q_j` (one rounding per coordinate). **Method**: the
+    /// homogeneous form of Piegl & Tiller, *The NURBS Book*, §4.2.
     pub fn new(
         order: usize,
         points: Vec<SVector<T, D>>,
@@ -123,7 +124,9 @@ impl<T: Real, const D: usize> NurbsCurve<T, D> {
         Self::from_homogeneous(order, h, weights, knots)
     }
 
-    /// From homogeneous points `w_j Q_j`, weights and knots.
+    /// From homogeneous points `w_j Q_j`, weights and knots. **Method**:
+    /// validation only; stored exactly (no rounding). **Source**: Piegl &
+    /// Tiller, *The NURBS Book*, §4.2.
     pub fn from_homogeneous(
         order: usize,
         homogeneous: Vec<SVector<T, D>>,
@@ -246,7 +249,9 @@ pub struct NurbsSurface<T: Real, const D: usize> {
 impl<T: Real, const D: usize> NurbsSurface<T, D> {
     /// Validates both directions like a [`BSpline`] (orders, counts, knots,
     /// non-empty domains), the net size, finite points and weights `> 0`.
-    /// Stores `w_ij P_ij`.
+    /// Stores `w_ij P_ij`: one rounding per coordinate (the product by the
+    /// weight), computed by the homogeneous rule of Piegl & Tiller, *The
+    /// NURBS Book*, §4.4 (NURBS surfaces).
     pub fn new(
         orders: (usize, usize),
         counts: (usize, usize),

@@ -146,7 +146,7 @@ pub fn interpolant<T: Real, const D: usize>(
     Ok(BSpline::new(4, d, knots)?)
 }
 
-/// Tensor-product global interpolation of a `ν_u × ν_v` grid (row-major,
+/// **Method**: tensor-product global interpolation of a `ν_u × ν_v` grid (row-major,
 /// `P[i·ν_v + j]`): the 1D solve along every row, then along every column of
 /// the result. Returns the `(ν_u + 2) × (ν_v + 2)` control net, row-major.
 /// **Cost** `O(ν_u ν_v)`; a single changed point changes the whole net.

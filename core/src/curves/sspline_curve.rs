@@ -40,6 +40,10 @@ pub(crate) struct Axis<T> {
 }
 
 impl<T: Real> Axis<T> {
+    /// One direction: validates `len ≥ 2` and the order, then computes
+    /// `c_0..c_n` by [`TruncatedBasis::new`] (production coefficients, ≤ 1 ulp
+    /// each; `verify/tests/sspline_coefficients.rs`) and the control index
+    /// range (integers, exact). **Source**: seed 000 eqs 10 and 20–23.
     pub fn new(
         family: &SplineFamily,
         n: usize,
@@ -93,6 +97,10 @@ impl<T: Real> Axis<T> {
     }
 
     /// Control positions `(slot, β(u − k))` with a non-zero-able basis value.
+    /// **Method**: the family's basis window at `u` (the B-spline recurrence,
+    /// error `O(m u)` per value, exact at rationals:
+    /// `bspline_uniform.rs::tests::recursion_matches_truncated_powers_exactly_at_rationals`),
+    /// clipped to the stored slots. **Source**: seed 000 eqs 7 and 31.
     pub fn window(&self, u: &T) -> Vec<(usize, T)> {
         let w = self.family.basis_window(u);
         w.values
@@ -109,6 +117,10 @@ impl<T: Real> Axis<T> {
 
     /// Control slots whose value depends on data point `k`, as sorted,
     /// merged, inclusive ranges; with each preimage `i` of `k`.
+    /// **Method**: the preimages of `k` under the end rule's fold, each
+    /// widened by `±n`; integer arithmetic, exact (checked by
+    /// `verify/tests/sspline_curve.rs::interior_edit_touches_2n_plus_1_points`).
+    /// **Source**: seed 000 §3 (local update).
     pub fn affected(&self, k: usize) -> (Vec<i64>, Vec<(usize, usize)>) {
         let n = self.half_width() as i64;
         let (lo, hi) = (self.first - n, self.first + self.count as i64 - 1 + n);

@@ -71,7 +71,7 @@ pub struct SampleGrid<T: Real> {
 impl<T: Real> SampleGrid<T> {
     /// A grid from explicit parameters, validated by [`check_nodes`] (so `B̃`
     /// is nonsingular) and of equal length `n + 1 ≥ 2`.
-    /// Validation only; exact. **Source**: seed 001 eq 2 (the sample parameters).
+    /// **Method**: validation only; exact. **Source**: seed 001 eq 2 (the sample parameters).
     pub fn new(u: Vec<T>, v: Vec<T>) -> Result<Self, InverseMappingError> {
         check_nodes(&u)?;
         check_nodes(&v)?;

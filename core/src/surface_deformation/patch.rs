@@ -123,7 +123,7 @@ fn tensor_sum<T: Real>(a: &[T], b: &[T], net: impl Fn(usize, usize) -> Point3<T>
 
 impl<T: Real> Patch<T> {
     /// A patch from `(n+1)²` control points (row-major `P_ij`), all finite.
-    /// Validation only; exact. **Source**: seed 001 eq 1 (tensor Bézier patch).
+    /// **Method**: validation only; exact. **Source**: seed 001 eq 1 (tensor Bézier patch).
     pub fn new(degree: usize, control: Vec<Point3<T>>) -> Result<Self, PatchError> {
         degree_at_least("a Bézier patch", 1, degree)?;
         // Saturates for absurd degrees: no vector holds usize::MAX points.
@@ -245,7 +245,7 @@ pub struct PatchGrid<T: Real> {
 
 impl<T: Real> PatchGrid<T> {
     /// A grid from its patches (row-major over `(p, q)`), all of one degree.
-    /// Validation only; exact. **Source**: seed 001 §3 (the patch grid).
+    /// **Method**: validation only; exact. **Source**: seed 001 §3 (the patch grid).
     pub fn new(nu: usize, nv: usize, patches: Vec<Patch<T>>) -> Result<Self, PatchError> {
         if nu == 0 || nv == 0 {
             return Err(PatchError::EmptyGrid { nu, nv });
