@@ -34,7 +34,7 @@ impl<T: Real> TruncatedBasis<T> {
     /// The basis with the production coefficients
     /// ([`CoefficientMethod::Production`], ≤ 1 ulp) `c_0..c_n`.
     ///
-    /// **Method**: [`coefficients`] for `c_0..c_n`. **Source**: seed 000 eqs 10 and 28.
+    /// **Method**: [`coefficients()`] for `c_0..c_n`. **Source**: seed 000 eqs 10 and 28.
     ///
     /// ```
     /// use splinelab::sspline::{SplineFamily, TruncatedBasis};
@@ -137,7 +137,7 @@ pub struct TruncationAnalysis<T> {
 
 impl<T: Real> TruncationAnalysis<T> {
     /// Precomputes the pole expansion `c_k = Σ_r κ_r ξ_r^{|k|}` (for the
-    /// tail bound) and `c_0..c_K` by [`coefficients`] (production method).
+    /// tail bound) and `c_0..c_K` by [`coefficients()`] (production method).
     /// **Cost**: one pole computation and `K` coefficients. **Accuracy**:
     /// the neglected tail `k > K` changes each measure by `< 2^{−60}` of it;
     /// the knot measure agrees with direct evaluation to `1e-14` relative
