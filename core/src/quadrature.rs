@@ -217,7 +217,8 @@ impl<T: Real> GaussLegendre<T> {
 /// integrals per doubling.
 /// **Accuracy**: the estimate is shown to bound the true error in
 /// `quadrature.rs::tests::doubling_estimate_bounds_true_error`. **Source**:
-/// seed 004's arc-length and G2 integrals, to the Newton tolerance.
+/// standard practice, not from the seeds (used for seed 004's arc-length
+/// and G2 integrals).
 pub fn choose_order<T: Real>(
     m0: usize,
     m_max: usize,

@@ -159,8 +159,8 @@ impl<T: Real> RoundingModel<T> {
     }
 
     /// `xⁿ` by binary powering (`⌊log₂ n⌋ + popcount(n) − 1` multiplications).
-    /// **Accuracy**: the radius bounds the accumulated error of the product
-    /// chain (`running_error.rs::tests::running_radius_encloses_exact_chain`).
+    /// **Accuracy**: each multiplication propagates the radius as [`Self::mul`]
+    /// does, so the result's radius bounds the accumulated error.
     /// **Source**: Higham, 2nd ed., §3.3 (running error analysis).
     pub fn powi(&self, x: &Running<T>, mut n: usize) -> Running<T> {
         let mut acc = Running::exact(T::one());

@@ -120,8 +120,8 @@ impl<T: Real> SampleGrid<T> {
 
 /// The samples `R̃ = B̃ P̃` of seed 001 eq 2: `R(u_a, v_b)` by evaluating the
 /// patch ([`Patch::eval`], independent of any solver). **Cost** `O(n⁴)`.
-/// **Accuracy**: that of [`Patch::eval`] (de Casteljau, `γ_{3n}`-bounded,
-/// Farouki & Rajan 1987).
+/// **Accuracy**: that of [`Patch::eval`], `≤ γ_{4n+2} max |P_ij|` per
+/// coordinate (non-negative Bernstein weights; Farouki & Rajan 1987).
 pub fn sample<T: Real>(
     patch: &Patch<T>,
     grid: &SampleGrid<T>,
@@ -218,9 +218,10 @@ pub fn deform<T: Real>(
 /// flow at patch `(p, q)`'s samples. Everything is validated before anything
 /// is solved. The joins between patches are not corrected here (see
 /// [`continuity`](super::continuity)).
-/// **Method**: [`deform`] per patch, seed 001 eq 4. **Accuracy**: each patch
-/// passes through its moved samples
-/// (`verify/tests/bv_deform.rs::deformed_patches_pass_through_the_moved_samples`).
+/// **Method**: [`deform`] per patch, seed 001 eq 4. **Accuracy**: every
+/// deformed patch passes through its moved samples
+/// (`verify/tests/bv_deform.rs::deformed_patches_pass_through_the_moved_samples`,
+/// which runs this routine through verify's `push_surfaces`).
 pub fn deform_grid<T: Real>(
     surface: &PatchGrid<T>,
     grid: &SampleGrid<T>,

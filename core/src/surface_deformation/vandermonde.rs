@@ -49,8 +49,8 @@ impl NodeFamily {
     /// right-hand side keeps every node to a few units of roundoff relative.
     /// Equispaced nodes are correctly rounded from the exact `j/n`.
     /// Test: `vandermonde.rs::tests::chebyshev_nodes_match_the_cosine_definition_in_high_precision`.
-    /// **Source**: the node families of seed 001's experiments; the identity as
-    /// in Higham, 2nd ed., §1.7 (avoiding subtractive cancellation).
+    /// **Source**: the Chebyshev nodes of the conditioning studies; the
+    /// identity as in Higham, 2nd ed., §1.7 (avoiding subtractive cancellation).
     pub fn nodes<T: Real>(self, n: usize) -> Result<Vec<T>, VandermondeError> {
         degree_at_least("a node family", 1, n)?;
         let mut nodes = Vec::new();
