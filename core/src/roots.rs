@@ -144,6 +144,17 @@ pub fn largest_real_roots<T: Real>(a: &[T], count: usize, start: &T) -> Result<V
 /// let r = palindromic_inner_roots(&[1.0f64, 4.0, 1.0], 1).unwrap();
 /// assert!((r[0] + 0.2679491924311227).abs() < 1e-16);
 /// ```
+///
+/// ```
+/// use splinelab::roots::palindromic_inner_roots;
+/// // In MPFR: z² + 4z + 1 has the inner root √3 − 2, to 256-bit rounding.
+/// use splinelab::nalgebra::ComplexField;
+/// use splinelab::scalar::{Mp, Real};
+/// type M = Mp<256>;
+/// let a = [1, 4, 1].map(M::from_int);
+/// let r = palindromic_inner_roots(&a, 1).unwrap();
+/// assert!((r[0].clone() - (M::from_int(3).sqrt() - M::from_int(2))).to_f64().abs() < 1e-74);
+/// ```
 pub fn palindromic_inner_roots<T: Real>(a: &[T], count: usize) -> Result<Vec<T>, RootsError> {
     check_coefficients(a)?;
     let degree = a.len() - 1;

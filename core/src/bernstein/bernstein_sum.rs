@@ -44,6 +44,17 @@ fn check_binomials<T: Real>(poly: &BernsteinPoly<T>) -> Result<(), BezierError> 
 /// let p = BernsteinPoly::new(vec![0.25f64, -0.25, 0.25]).unwrap();
 /// assert_eq!(bernstein_sum(&p, &0.75), Ok(0.0625));
 /// ```
+///
+/// ```
+/// // In MPFR: (t − ½)² at t = 1/3 is 1/36.
+/// use splinelab::bernstein::{bezier::BernsteinPoly, bernstein_sum::bernstein_sum};
+/// use splinelab::scalar::{Mp, Real};
+/// type M = Mp<128>;
+/// let q = |x: f64| M::from_f64_exact(x);
+/// let p = BernsteinPoly::new(vec![q(0.25), q(-0.25), q(0.25)]).unwrap();
+/// let s = bernstein_sum(&p, &(M::from_int(1) / M::from_int(3))).unwrap();
+/// assert!((s - M::from_int(1) / M::from_int(36)).to_f64().abs() < 1e-37);
+/// ```
 pub fn bernstein_sum<T: Real>(poly: &BernsteinPoly<T>, t: &T) -> Result<T, BezierError> {
     check_parameter(t)?;
     check_binomials(poly)?;

@@ -121,6 +121,19 @@ impl<T: Real> PowerForm<T> {
     /// let a = PowerForm::from_bernstein(&p).unwrap();
     /// assert_eq!(a.horner(&0.75), Ok(0.0625));
     /// ```
+    ///
+    /// ```
+    /// // In MPFR: (t − ½)² at t = 1/3 is 1/36, through both conversion routes.
+    /// use splinelab::bernstein::{bezier::BernsteinPoly, power_form::PowerForm};
+    /// use splinelab::scalar::{Mp, Real};
+    /// type M = Mp<128>;
+    /// let q = |x: f64| M::from_f64_exact(x);
+    /// let p = BernsteinPoly::new(vec![q(0.25), q(-0.25), q(0.25)]).unwrap();
+    /// let t = M::from_int(1) / M::from_int(3);
+    /// for a in [PowerForm::from_bernstein(&p).unwrap(), PowerForm::from_bernstein_exact(&p).unwrap()] {
+    ///     assert!((a.horner(&t).unwrap() - M::from_int(1) / M::from_int(36)).to_f64().abs() < 1e-37);
+    /// }
+    /// ```
     pub fn horner(&self, t: &T) -> Result<T, BezierError> {
         check_parameter(t)?;
         let y = self

@@ -189,6 +189,21 @@ impl<T: Real> RationalBezier<T, 2> {
     /// **Source**: seed 002 (rational Bézier, exact circular arcs); Piegl &
     /// Tiller, *The NURBS Book*, §7.3; the test is
     /// `verify/tests/curves_rational.rs::arcs_up_to_180_degrees_are_on_the_circle_f64`.
+    ///
+    /// ```
+    /// // In MPFR: the 120° arc of radius 3 about (1, 2); every point at distance 3.
+    /// use nalgebra::Vector2;
+    /// use splinelab::curves::rational_bezier::RationalBezier;
+    /// use splinelab::nalgebra::RealField;
+    /// use splinelab::scalar::{Mp, Real};
+    /// type M = Mp<200>;
+    /// let sweep = M::two_pi() / M::from_int(3);
+    /// let c = RationalBezier::circular_arc(&Vector2::new(M::from_int(1), M::from_int(2)), &M::from_int(3), &M::from_int(0), &sweep).unwrap();
+    /// for k in 0..=8 {
+    ///     let d = c.eval(&(M::from_int(k) / M::from_int(8))).unwrap() - Vector2::new(M::from_int(1), M::from_int(2));
+    ///     assert!((d.norm_squared() - M::from_int(9)).to_f64().abs() < 1e-55);
+    /// }
+    /// ```
     pub fn circular_arc(
         centre: &Vector2<T>,
         r: &T,

@@ -242,6 +242,20 @@ impl<T: Real> BvBidiagonal<T> {
     /// **Accuracy**: a few ulps against exact rational solutions
     /// (`verify/tests/bv_solvers.rs::marco_martinez_matches_exact_rational_solutions_to_a_few_ulps`).
     /// **Source**: Marco & Martínez (2007); seed 001 eqs 2–3.
+    ///
+    /// ```
+    /// // In MPFR at nodes 0, 1/3, 2/3, 1: p(t) = t³ has Bézier coefficients (0, 0, 0, 1).
+    /// use splinelab::scalar::{Mp, Real};
+    /// use splinelab::surface_deformation::bv_solve::BvBidiagonal;
+    /// type M = Mp<128>;
+    /// let t: Vec<M> = (0..4).map(|j| M::from_int(j) / M::from_int(3)).collect();
+    /// let bd = BvBidiagonal::new(&t).unwrap();
+    /// let mut r: Vec<M> = t.iter().map(|x| x.clone() * x.clone() * x.clone()).collect();
+    /// bd.solve_in_place(&mut r);
+    /// for (c, want) in r.iter().zip([0, 0, 0, 1]) {
+    ///     assert!((c.clone() - M::from_int(want)).to_f64().abs() < 1e-36);
+    /// }
+    /// ```
     pub fn solve_in_place(&self, r: &mut [T]) {
         let n = self.degree();
         for j in 0..n {

@@ -188,6 +188,22 @@ impl<T: Real> Patch<T> {
     /// let p = Patch::bilinear(3, &z, &Vector3::new(2.0, 0.0, 0.0), &Vector3::new(0.0, 4.0, 0.0)).unwrap();
     /// assert_eq!(p.eval(&0.25, &0.5).unwrap(), Vector3::new(0.5, 2.0, 0.0));
     /// ```
+    ///
+    /// ```
+    /// // In MPFR: the flat patch is the parallelogram origin + u e_u + v e_v.
+    /// use nalgebra::Vector3;
+    /// use splinelab::surface_deformation::patch::Patch;
+    /// use splinelab::scalar::{Mp, Real};
+    /// type M = Mp<128>;
+    /// let v = |x, y, z| Vector3::new(M::from_int(x), M::from_int(y), M::from_int(z));
+    /// let p = Patch::bilinear(3, &v(1, 1, 1), &v(2, 0, 0), &v(0, 4, 0)).unwrap();
+    /// let (u, w) = (M::from_int(1) / M::from_int(3), M::from_int(2) / M::from_int(7));
+    /// let r = p.eval(&u, &w).unwrap();
+    /// let want = [M::from_int(1) + M::from_int(2) * u.clone(), M::from_int(1) + M::from_int(4) * w.clone(), M::from_int(1)];
+    /// for i in 0..3 {
+    ///     assert!((r[i].clone() - want[i].clone()).to_f64().abs() < 1e-36);
+    /// }
+    /// ```
     pub fn eval(&self, u: &T, v: &T) -> Result<Point3<T>, PatchError> {
         check_param("u", u)?;
         check_param("v", v)?;
