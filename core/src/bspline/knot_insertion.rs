@@ -102,6 +102,20 @@ impl<T: Real, const D: usize> BSpline<T, D> {
     /// assert_eq!(r.points().len(), 5);
     /// assert!((r.eval(&0.7).unwrap() - c.eval(&0.7).unwrap()).norm() < 1e-15);
     /// ```
+    ///
+    /// ```
+    /// // In MPFR: inserting 1/3 keeps the curve to 160-bit rounding.
+    /// use nalgebra::Vector2;
+    /// use splinelab::bspline::{de_boor::BSpline, knots::KnotVector};
+    /// use splinelab::scalar::{Mp, Real};
+    /// type M = Mp<160>;
+    /// let v = |x: i64, y: i64| Vector2::new(M::from_int(x), M::from_int(y));
+    /// let knots = KnotVector::new([0.0, 0.0, 0.0, 0.5, 1.0, 1.0, 1.0].map(M::from_f64_exact).to_vec()).unwrap();
+    /// let c = BSpline::new(3, vec![v(0, 0), v(1, 2), v(3, 2), v(4, 0)], knots).unwrap();
+    /// let r = c.insert_knot(&(M::from_int(1) / M::from_int(3))).unwrap();
+    /// let t = M::from_f64_exact(0.7);
+    /// assert!((r.eval(&t).unwrap() - c.eval(&t).unwrap()).norm().to_f64() < 1e-45);
+    /// ```
     pub fn insert_knot(&self, u: &T) -> Result<Self, InsertionError> {
         let mut c = self.clone();
         c.insert_knot_in_place(u)?;

@@ -244,6 +244,21 @@ impl<T: Real, const D: usize> CatmullRom<T, D> {
     /// assert_eq!(c.eval(&0.0).unwrap().0, Vector2::new(1.0, 1.0));
     /// assert!((c.eval(&end).unwrap().0 - Vector2::new(2.0, 1.0)).norm() < 1e-15);
     /// ```
+    ///
+    /// ```
+    /// // In MPFR with chordal spacing: the spline passes through the inner points
+    /// // and the segment ends to 128-bit rounding.
+    /// use nalgebra::Vector2;
+    /// use splinelab::curves::catmull_rom::{CatmullRom, Spacing};
+    /// use splinelab::scalar::{Mp, Real};
+    /// type M = Mp<128>;
+    /// let v = |x: i64, y: i64| Vector2::new(M::from_int(x), M::from_int(y));
+    /// let c = CatmullRom::new(vec![v(0, 0), v(1, 1), v(3, 1), v(4, 0), v(5, 2)], Spacing::Chordal, false).unwrap();
+    /// for (k, want) in [v(1, 1), v(3, 1), v(4, 0)].iter().enumerate() {
+    ///     let p = c.eval(&c.knots()[k]).unwrap().0;
+    ///     assert!((p - want.clone()).norm().to_f64() < 1e-36);
+    /// }
+    /// ```
     pub fn eval(&self, t: &T) -> Result<(SVector<T, D>, SVector<T, D>), CurveError> {
         let hi = self.knots[self.knots.len() - 1].clone();
         if !t.is_finite() || *t < T::zero() || *t > hi {

@@ -58,6 +58,19 @@ pub enum CubicEnds<T: Real, const D: usize> {
 /// let d = control_points(&p, &CubicEnds::Natural).unwrap();
 /// assert!(d.iter().enumerate().all(|(k, x)| (x[0] - (k as f64 - 1.0)).abs() < 1e-15));
 /// ```
+///
+/// ```
+/// // In MPFR: the same line, D_k = k − 1 to 128-bit rounding.
+/// use nalgebra::Vector1;
+/// use splinelab::curves::global_cubic::{CubicEnds, control_points};
+/// use splinelab::scalar::{Mp, Real};
+/// type M = Mp<128>;
+/// let p: Vec<Vector1<M>> = (0..5).map(|i| Vector1::new(M::from_int(i))).collect();
+/// let d = control_points(&p, &CubicEnds::Natural).unwrap();
+/// for (k, x) in d.iter().enumerate() {
+///     assert!((x[0].clone() - M::from_int(k as i64 - 1)).to_f64().abs() < 1e-36);
+/// }
+/// ```
 pub fn control_points<T: Real, const D: usize>(
     data: &[SVector<T, D>],
     ends: &CubicEnds<T, D>,

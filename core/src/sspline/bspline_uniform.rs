@@ -159,6 +159,18 @@ pub fn centred_window<T: Real>(m: u32, x: &T) -> BasisWindow<T> {
 /// use splinelab::sspline::bspline_uniform::uniform_bspline;
 /// assert!((uniform_bspline(3, &1.5_f64) - 0.75).abs() < 1e-16);
 /// ```
+///
+/// ```
+/// // In MPFR against the exact rational truncated-power form: N_4(1/3) = 1/162.
+/// use rug::Rational;
+/// use splinelab::scalar::{Mp, Real};
+/// use splinelab::sspline::bspline_uniform::{uniform_bspline, uniform_bspline_exact};
+/// type M = Mp<128>;
+/// let x = Rational::from((1, 3));
+/// let exact = M::from_rational(&uniform_bspline_exact(4, &x));
+/// assert!((exact.clone() - M::from_int(1) / M::from_int(162)).to_f64().abs() < 1e-40);
+/// assert!((uniform_bspline(4, &M::from_rational(&x)) - exact).to_f64().abs() < 1e-40);
+/// ```
 pub fn uniform_bspline<T: Real>(m: u32, x: &T) -> T {
     if *x <= T::zero() || *x >= T::from_int(m as i64) {
         return T::zero();
