@@ -8,6 +8,8 @@
 
 /// Parses `s` as one of `variants`' names; the error names `what` and every
 /// accepted spelling, e.g. `unknown criterion 'x' (expected one of coeff, knot, uniform)`.
+/// **Method**: a linear search of `variants` by their `strum` names (string
+/// comparison only; not a numerical routine, so there is no accuracy or reference to cite).
 ///
 /// ```
 /// use splinelab::sspline::Criterion;

@@ -77,6 +77,9 @@ pub struct GaussLegendre<T> {
 /// `P'_m = m (x P_m − P_{m−1}) / (x² − 1)` (not valid at `x = ±1`).
 ///
 /// Cost `O(m)`; the recurrence is forward stable on `[−1, 1]`.
+/// Tested through the rules built on it
+/// (`quadrature.rs::tests::exact_on_polynomials_f64`, `exact_on_polynomials_mp`).
+/// **Source**: Abramowitz & Stegun (1964), 22.7.10 and 22.8.5.
 pub fn legendre<T: Real>(m: usize, x: &T) -> (T, T) {
     let mut p_prev = T::one();
     let mut p = x.clone();
@@ -127,6 +130,19 @@ impl<T: Real> GaussLegendre<T> {
     /// Accuracy: nodes and weights within a few ulps of `T` (checked in the
     /// tests by exactness on polynomials and by symmetry).
     /// Errors: `m = 0`, `m >` [`MAX_NODES`], a root that does not converge.
+    /// Tests: `quadrature.rs::tests::exact_on_polynomials_f64`,
+    /// `exact_on_polynomials_mp`, `mp_nodes_are_not_f64_limited`. **Source**:
+    /// Gauss–Legendre by Newton on `P_m`, weights by Abramowitz & Stegun (1964), 25.4.29.
+    ///
+    /// ```
+    /// // In MPFR: 3 nodes integrate t⁵ exactly, ∫₀¹ t⁵ dt = 1/6, to 256-bit rounding.
+    /// use splinelab::quadrature::GaussLegendre;
+    /// use splinelab::scalar::{Mp, Real};
+    /// type M = Mp<256>;
+    /// let rule = GaussLegendre::<M>::new(3).unwrap();
+    /// let q = rule.integrate(|t| { let t2 = t.clone() * t.clone(); t2.clone() * t2 * t.clone() });
+    /// assert!((q - M::from_int(1) / M::from_int(6)).to_f64().abs() < 1e-74);
+    /// ```
     pub fn new(m: usize) -> Result<Self, QuadratureError> {
         if m == 0 {
             return Err(QuadratureError::ZeroOrder);
@@ -199,6 +215,10 @@ impl<T: Real> GaussLegendre<T> {
 /// error of `Q_m` up to a factor close to 1 in the asymptotic regime.
 /// Cost: the rules up to `2m` plus two evaluations of the caller's
 /// integrals per doubling.
+/// **Accuracy**: the estimate is shown to bound the true error in
+/// `quadrature.rs::tests::doubling_estimate_bounds_true_error`. **Source**:
+/// standard practice, not from the seeds (used for seed 004's arc-length
+/// and G2 integrals).
 pub fn choose_order<T: Real>(
     m0: usize,
     m_max: usize,

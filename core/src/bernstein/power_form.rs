@@ -38,6 +38,10 @@ impl<T: Real> PowerForm<T> {
     /// Σ_k C(i, k)|b_k|`, up to `≈ (n+1) u 4ⁿ max|b_k|` — the radii returned are
     /// the (smaller) running bounds. Errors: an overflowing coefficient.
     ///
+    /// Checked bit for bit against the rational route where both are exact
+    /// (`power_form.rs::tests::conversion_routes_agree_when_exact`). **Source**:
+    /// the Bernstein-to-power basis change of Farouki & Rajan (1987), §2.
+    ///
     /// ```
     /// use splinelab::bernstein::{bezier::BernsteinPoly, power_form::PowerForm};
     /// // (t − ½)² = ¼ − t + t².
@@ -66,6 +70,10 @@ impl<T: Real> PowerForm<T> {
     /// then each `a_i` correctly rounded to `T` (radius `u|â_i|`).
     ///
     /// **Cost**: `O(n²)` rational operations (for studies, not for speed).
+    /// **Accuracy**: each coefficient correctly rounded (one rounding, the
+    /// final one); equal bit for bit to the working-precision route where that
+    /// is exact (`power_form.rs::tests::conversion_routes_agree_when_exact`).
+    /// **Source**: the Bernstein-to-power basis change, Farouki & Rajan (1987), §2.
     pub fn from_bernstein_exact(poly: &BernsteinPoly<T>) -> Result<Self, BezierError> {
         let m = RoundingModel::<T>::new();
         let n = poly.degree();
@@ -113,6 +121,19 @@ impl<T: Real> PowerForm<T> {
     /// let a = PowerForm::from_bernstein(&p).unwrap();
     /// assert_eq!(a.horner(&0.75), Ok(0.0625));
     /// ```
+    ///
+    /// ```
+    /// // In MPFR: (t − ½)² at t = 1/3 is 1/36, through both conversion routes.
+    /// use splinelab::bernstein::{bezier::BernsteinPoly, power_form::PowerForm};
+    /// use splinelab::scalar::{Mp, Real};
+    /// type M = Mp<128>;
+    /// let q = |x: f64| M::from_f64_exact(x);
+    /// let p = BernsteinPoly::new(vec![q(0.25), q(-0.25), q(0.25)]).unwrap();
+    /// let t = M::from_int(1) / M::from_int(3);
+    /// for a in [PowerForm::from_bernstein(&p).unwrap(), PowerForm::from_bernstein_exact(&p).unwrap()] {
+    ///     assert!((a.horner(&t).unwrap() - M::from_int(1) / M::from_int(36)).to_f64().abs() < 1e-37);
+    /// }
+    /// ```
     pub fn horner(&self, t: &T) -> Result<T, BezierError> {
         check_parameter(t)?;
         let y = self
@@ -127,6 +148,7 @@ impl<T: Real> PowerForm<T> {
     /// exact `p(t)`: Horner in [`Running`] arithmetic whose coefficients carry
     /// the conversion radii (Higham Alg. 5.1 made rigorous). **Cost**: about
     /// 6× [`horner`](Self::horner).
+    /// **Method**: Horner's recurrence `p ← p t + a_i`.
     pub fn horner_bounded(&self, t: &T) -> Result<Evaluation<T>, BezierError> {
         let extrapolated = check_parameter(t)?;
         let m = RoundingModel::<T>::new();

@@ -22,6 +22,12 @@ impl<T: Real, const D: usize> BSpline<T, D> {
     /// **Errors** (`out` untouched): `out.len() ≠ ts.len()`, or the first
     /// parameter that is not finite or lies outside the domain.
     ///
+    /// **Method**: per parameter, span search then de Boor's algorithm, as
+    /// [`BSpline::eval`](super::de_boor::BSpline::eval). **Accuracy**: equal bit
+    /// for bit to pointwise evaluation
+    /// (`verify/tests/curves_bspline.rs::batch_evaluation_equals_pointwise_eval`).
+    /// **Source**: de Boor, *A Practical Guide to Splines*; seed 003 eqs 1–2.
+    ///
     /// ```
     /// use nalgebra::Vector2;
     /// use splinelab::bspline::{de_boor::BSpline, knots::KnotVector};

@@ -245,7 +245,8 @@ impl<T: Real, const D: usize> From<BSpline<T, D>> for BSplineData<T> {
 
 impl<T: Real, const D: usize> BSpline<T, D> {
     /// Validates: order `k ≥ 1`, at least `k` points, all finite,
-    /// `#knots = #points + k`, non-empty domain.
+    /// `#knots = #points + k`, non-empty domain. **Method**: checks only; the
+    /// data are stored exactly (no rounding). **Source**: seed 003 eqs 1–2.
     pub fn new(
         order: usize,
         points: Vec<SVector<T, D>>,
@@ -322,6 +323,21 @@ impl<T: Real, const D: usize> BSpline<T, D> {
     /// let q = vec![Vector2::new(0.0f64, 0.0), Vector2::new(1.0, 1.0), Vector2::new(2.0, 0.0)];
     /// let c = BSpline::new(2, q, KnotVector::new(vec![0.0, 0.0, 1.0, 2.0, 2.0]).unwrap()).unwrap();
     /// assert_eq!(c.eval(&1.5).unwrap(), Vector2::new(1.5, 0.5));
+    /// ```
+    ///
+    /// ```
+    /// // In MPFR, the clamped quadratic on knots 0,0,0,1,1,1 is the Bézier curve
+    /// // (0,0), (1,2), (2,0): at t = 1/3, (2/3, 2 · 2t(1 − t)) = (2/3, 8/9).
+    /// use nalgebra::Vector2;
+    /// use splinelab::bspline::{de_boor::BSpline, knots::KnotVector};
+    /// use splinelab::scalar::{Mp, Real};
+    /// type M = Mp<160>;
+    /// let v = |x: i64, y: i64| Vector2::new(M::from_int(x), M::from_int(y));
+    /// let knots = KnotVector::new([0, 0, 0, 1, 1, 1].map(M::from_int).to_vec()).unwrap();
+    /// let c = BSpline::new(3, vec![v(0, 0), v(1, 2), v(2, 0)], knots).unwrap();
+    /// let p = c.eval(&(M::from_int(1) / M::from_int(3))).unwrap();
+    /// assert!((p[0].clone() - M::from_int(2) / M::from_int(3)).to_f64().abs() < 1e-45);
+    /// assert!((p[1].clone() - M::from_int(8) / M::from_int(9)).to_f64().abs() < 1e-45);
     /// ```
     pub fn eval(&self, t: &T) -> Result<SVector<T, D>, BSplineError> {
         let s = self.span(t)?;

@@ -80,6 +80,9 @@ impl<T: Real> KnotVector<T> {
     /// `[0, 1]`: `k` zeros, the interior knots `j/(points − k + 1)`, `k`
     /// ones (each correctly rounded). `points ≥ k ≥ 1`, else `TooFew`;
     /// `TooMany` when the `points + k` knots cannot be allocated.
+    /// **Method**: the knots computed as the ratios `j/(points − k + 1)`.
+    /// **Accuracy**: each knot correctly rounded (one division). **Source**:
+    /// Piegl & Tiller, *The NURBS Book*, §2.2 (clamped knot vectors).
     pub fn clamped_uniform(order: usize, points: usize) -> Result<Self, KnotError> {
         let too_many = KnotError::TooMany { order, points };
         let count = points.checked_add(order).ok_or(too_many.clone())?;
@@ -136,6 +139,9 @@ impl<T: Real> KnotVector<T> {
     /// right end `t = t_{hi+1}` belonging to the last non-empty span `≤ hi`.
     /// `None` if `t` is outside `[t_lo, t_{hi+1}]`, not finite, or the range
     /// is empty. **Cost**: `O(log m)` (binary search).
+    /// **Accuracy**: exact (comparisons only; tested in
+    /// `knots.rs::tests::validation_spans_and_serde_round_trip`). **Source**:
+    /// Piegl & Tiller, *The NURBS Book*, Algorithm A2.1 (FindSpan).
     pub fn span(&self, lo: usize, hi: usize, t: &T) -> Option<usize> {
         let k = &self.knots;
         if hi + 1 >= k.len()

@@ -97,7 +97,9 @@ fn lerp_d<T: Real, const D: usize>(
 impl<T: Real, const D: usize> CatmullRom<T, D> {
     /// Builds the spline; typed errors for too few points, non-finite
     /// points, zero chords under centripetal/chordal spacing and chords
-    /// that overflow the precision.
+    /// that overflow the precision. **Method**: knots by accumulated chord
+    /// lengths `|P_{i+1} − P_i|^α` (`α = 0, ½, 1`); each rounded a few times.
+    /// **Source**: seed 002; the parametrisations of Yuksel et al. (2011).
     pub fn new(
         points: Vec<SVector<T, D>>,
         spacing: Spacing,
@@ -227,6 +229,11 @@ impl<T: Real, const D: usize> CatmullRom<T, D> {
     /// (the segment containing `t`; at an interior knot, the segment that
     /// starts there). See [`CatmullRom::eval_segment`].
     ///
+    /// **Method**: binary search for the segment, then the segment's cubic by
+    /// [`CatmullRom::eval_segment`]. **Accuracy**: the uniform segment matches the
+    /// classical matrix form (`catmull_rom.rs::tests::uniform_segment_matches_the_classical_matrix_form`).
+    /// **Source**: seed 002 (Catmull–Rom, uniform / centripetal / chordal).
+    ///
     /// ```
     /// use nalgebra::Vector2;
     /// use splinelab::curves::catmull_rom::{CatmullRom, Spacing};
@@ -236,6 +243,21 @@ impl<T: Real, const D: usize> CatmullRom<T, D> {
     /// let end = *c.knots().last().unwrap();
     /// assert_eq!(c.eval(&0.0).unwrap().0, Vector2::new(1.0, 1.0));
     /// assert!((c.eval(&end).unwrap().0 - Vector2::new(2.0, 1.0)).norm() < 1e-15);
+    /// ```
+    ///
+    /// ```
+    /// // In MPFR with chordal spacing: the spline passes through the inner points
+    /// // and the segment ends to 128-bit rounding.
+    /// use nalgebra::Vector2;
+    /// use splinelab::curves::catmull_rom::{CatmullRom, Spacing};
+    /// use splinelab::scalar::{Mp, Real};
+    /// type M = Mp<128>;
+    /// let v = |x: i64, y: i64| Vector2::new(M::from_int(x), M::from_int(y));
+    /// let c = CatmullRom::new(vec![v(0, 0), v(1, 1), v(3, 1), v(4, 0), v(5, 2)], Spacing::Chordal, false).unwrap();
+    /// for (k, want) in [v(1, 1), v(3, 1), v(4, 0)].iter().enumerate() {
+    ///     let p = c.eval(&c.knots()[k]).unwrap().0;
+    ///     assert!((p - want.clone()).norm().to_f64() < 1e-36);
+    /// }
     /// ```
     pub fn eval(&self, t: &T) -> Result<(SVector<T, D>, SVector<T, D>), CurveError> {
         let hi = self.knots[self.knots.len() - 1].clone();

@@ -73,6 +73,19 @@ impl<T: Real, const D: usize> Hermite<T, D> {
     /// // y(t) = 3t − 3t², x(t) = 3t² − 2t³: at t = ½, (½, ¾).
     /// assert_eq!(h.eval(&0.5), Vector2::new(0.5, 0.75));
     /// ```
+    ///
+    /// ```
+    /// use nalgebra::Vector2;
+    /// use splinelab::curves::hermite::Hermite;
+    /// // In MPFR the same curve at t = 1/3: y = 3t − 3t² = 2/3, x = 3t² − 2t³ = 7/27.
+    /// use splinelab::scalar::{Mp, Real};
+    /// type M = Mp<128>;
+    /// let v = |x: i64, y: i64| Vector2::new(M::from_int(x), M::from_int(y));
+    /// let h = Hermite::new(v(0, 0), v(1, 0), v(0, 3), v(0, -3)).unwrap();
+    /// let p = h.eval(&(M::from_int(1) / M::from_int(3)));
+    /// assert!((p[0].clone() - M::from_int(7) / M::from_int(27)).to_f64().abs() < 1e-36);
+    /// assert!((p[1].clone() - M::from_int(2) / M::from_int(3)).to_f64().abs() < 1e-36);
+    /// ```
     pub fn eval(&self, t: &T) -> SVector<T, D> {
         let [a0, a1, a2, a3] = self.coefficients();
         ((a3 * t.clone() + a2) * t.clone() + a1) * t.clone() + a0
@@ -103,6 +116,8 @@ impl<T: Real, const D: usize> Hermite<T, D> {
     /// `x'_0 = 3(P_1 − P_0)`, `x'_1 = 3(P_3 − P_2)`. A typed error unless the
     /// curve has degree 3. **Accuracy**: derivatives within `2u` relative of
     /// `3(P_1 − P_0)` per coordinate.
+    /// Tested in `verify/tests/curves_hermite.rs::end_values_derivatives_and_bezier_form_hold_in_f64`.
+    /// **Source**: seed 002 (Hermite ↔ Bézier).
     pub fn from_bezier(curve: &Bezier<T, D>) -> Result<Self, CurveError> {
         if curve.degree() != 3 {
             return Err(CurveError::Degree {

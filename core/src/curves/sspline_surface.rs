@@ -53,6 +53,10 @@ impl<T: Real, const D: usize> SsplineSurface<T, D> {
     /// two directions add (times `max |P|` and the other direction's
     /// `Σ|c|`). Errors: grid too small, order above the point count,
     /// wrong grid size, non-finite data, a tangent rule.
+    /// **Method**: the convolution of [`SsplineCurve::new`](super::sspline_curve::SsplineCurve::new)
+    /// in `v` (the intermediate net `E`), then in `u` on `E` (the control net `D`). Tested in
+    /// `verify/tests/sspline_curve.rs::surface_edit_interpolation_and_curves_of_curves`.
+    /// **Source**: seed 000 eqs 24–25.
     pub fn new(
         du: &Direction,
         dv: &Direction,
@@ -123,8 +127,12 @@ impl<T: Real, const D: usize> SsplineSurface<T, D> {
         (self.u.domain(), self.v.domain())
     }
 
-    /// `Q(u, v)`: two basis windows and `m_u m_v` axpys. Error
-    /// `≤ γ_{3(m_u+m_v)} Σ |D_{kl}| β_u β_v`.
+    /// `Q(u, v) = Σ_{k,l} D_{kl} β_u(u − k) β_v(v − l)`, evaluated by two
+    /// basis windows and `m_u m_v` axpys. **Accuracy**: error
+    /// `≤ γ_{3(m_u+m_v)} Σ |D_{kl}| β_u β_v` (Higham, 2nd ed., §3.1); the
+    /// surface reproduces its data grid
+    /// (`verify/tests/sspline_curve.rs::surface_edit_interpolation_and_curves_of_curves`).
+    /// **Source**: seed 000 eqs 24–25 (tensor-product S-spline surfaces).
     pub fn eval(&self, u: &T, v: &T) -> Result<SVector<T, D>, CurveError> {
         self.u.check_param(u)?;
         self.v.check_param(v)?;
@@ -145,6 +153,9 @@ impl<T: Real, const D: usize> SsplineSurface<T, D> {
     /// `(2n_v + 1)²` for `E` plus `(2n_u + 1)²(2n_v + 1)` for `D`,
     /// independent of the grid size. Returns the number of `D` entries
     /// recomputed. On error nothing changes.
+    /// **Method**: recompute only the `D_{kl}` whose windows hold `P_{ab}`
+    /// (tested in `verify/tests/sspline_curve.rs::surface_edit_interpolation_and_curves_of_curves`).
+    /// **Source**: seed 000 §3 (local update) and eqs 24–25.
     pub fn move_point(
         &mut self,
         a: usize,

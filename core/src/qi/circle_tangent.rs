@@ -27,6 +27,9 @@ use nalgebra::Vector3;
 /// ill-determined and so is the circle). Errors when `A` coincides with `B`
 /// or `C`, or when the direction vanishes (`B = C`).
 ///
+/// Tested in `circle_tangent.rs::tests::tangent_is_perpendicular_to_radius`.
+/// **Source**: seed 004's end-tangent rule (circle through the first three points).
+///
 /// ```
 /// use nalgebra::Vector3;
 /// use splinelab::qi::circle_tangent::start_tangent;

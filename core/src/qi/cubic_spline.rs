@@ -46,6 +46,9 @@ impl<T: Real> ClampedCubicSpline<T> {
     /// under chord-length parameterisation) with finite
     /// end slopes `d_start = S'(u_0)`, `d_end = S'(u_n)` (derivatives with
     /// respect to the knot parameter). See the module doc for the method.
+    /// **Accuracy**: reproduces cubic polynomials
+    /// (`cubic_spline.rs::tests::reproduces_cubic_polynomials`). **Source**: seed
+    /// 004 Figure 2 (the comparison curve); de Boor, *A Practical Guide to Splines*, ch. IV.
     pub fn new(
         points: &[Vector3<T>],
         param: Parameterization,
@@ -96,6 +99,9 @@ impl<T: Real> ClampedCubicSpline<T> {
 
     /// `(S, dS/du, d²S/du²)` on piece `i` at local `t ∈ [0, 1]`
     /// (`u = u_i + t Δ_i`), from the cubic Hermite basis. Cost: ~60 flops.
+    /// **Accuracy**: exact on cubics to rounding
+    /// (`cubic_spline.rs::tests::reproduces_cubic_polynomials`). **Source**: de Boor,
+    /// *A Practical Guide to Splines*, ch. IV (Hermite form).
     pub fn jet(&self, i: usize, t: &T) -> [Vector3<T>; 3] {
         let dl = self.knots[i + 1].clone() - self.knots[i].clone();
         let (p0, p1) = (&self.points[i], &self.points[i + 1]);

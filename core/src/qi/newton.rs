@@ -97,6 +97,10 @@ fn all_finite<T: Real>(v: impl IntoIterator<Item = T>) -> bool {
 
 /// Runs Newton from `x0`; see the module doc. Never panics: every failure
 /// is reported in [`NewtonRun::failure`] with the history so far.
+/// **Method**: Newton–Raphson, one LU solve per step. **Accuracy**: quadratic
+/// convergence to a closed-form root (`newton.rs::tests::converges_quadratically_to_closed_form_root`,
+/// `verify/tests/qi_interpolation.rs::mp256_newton_converges_quadratically`).
+/// **Source**: seed 004 (solver); Golub & Van Loan, §3.4 (LU with pivoting).
 pub fn newton<T: Real, S: NonlinearSystem<T>>(
     sys: &S,
     x0: DVector<T>,

@@ -21,6 +21,23 @@ use nalgebra::{Quaternion, Vector3};
 /// let q = paper_quaternion(&0.0f64, &0.0f64);
 /// assert_eq!((q.w, q.i, q.j, q.k), (1.0, 0.0, 0.0, 0.0));
 /// ```
+///
+/// ```
+/// // In MPFR: α = 0 gives q = cos β + j sin β, the rotation by 2β about y,
+/// // so q v_x q⁻¹ = (cos 2β, 0, ∓sin 2β) and |q| = 1.
+/// use nalgebra::Vector3;
+/// use splinelab::nalgebra::ComplexField;
+/// use splinelab::qi::quaternion::{paper_quaternion, rotate};
+/// use splinelab::scalar::{Mp, Real};
+/// type M = Mp<200>;
+/// let b = M::from_int(1) / M::from_int(5);
+/// let q = paper_quaternion(&M::from_int(0), &b);
+/// let d = rotate(&q, &Vector3::new(M::from_int(1), M::from_int(0), M::from_int(0)));
+/// let two_b = b.clone() + b;
+/// assert!((d[0].clone() - two_b.clone().cos()).to_f64().abs() < 1e-55);
+/// assert!(d[1].to_f64().abs() < 1e-55);
+/// assert!((d[2].clone() * d[2].clone() - two_b.clone().sin() * two_b.sin()).to_f64().abs() < 1e-55);
+/// ```
 pub fn paper_quaternion<T: Real>(alpha: &T, beta: &T) -> Quaternion<T> {
     let (sa, ca) = alpha.clone().sin_cos();
     let (sb, cb) = beta.clone().sin_cos();

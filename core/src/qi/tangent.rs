@@ -59,6 +59,10 @@ pub struct TangentJet<T: Real> {
 
 impl<T: Real> TangentJet<T> {
     /// Evaluates `T`, `∂T/∂α`, `∂T/∂β` (cost: two `sin_cos`).
+    /// **Accuracy**: equals the quaternion product `q v_x q⁻¹`
+    /// (`tangent.rs::tests::closed_form_matches_quaternion_product_f64`); the
+    /// partials match central differences (`partials_match_central_differences`).
+    /// **Source**: seed 004 eq 16.
     pub fn new(alpha: &T, beta: &T) -> Self {
         let (sa, ca) = alpha.clone().sin_cos();
         let (s2, c2) = (beta.clone() + beta.clone()).sin_cos();
@@ -109,6 +113,9 @@ pub fn principal_angles<T: Real>(d: &Vector3<T>) -> Result<(T, T), QiError> {
 /// among `(α₀ + 2kπ, β₀ + mπ)` and `(α₀ + π + 2kπ, −β₀ + mπ)` built from the
 /// principal angles `(α₀, β₀)`, the one with least `(α − α_p)² + (β − β_p)²`;
 /// at a pole (`d ∥ v_x`) `α = α_p`. Cost: a few roundings and `atan2`s.
+/// **Accuracy**: `T(α, β)` reproduces `d` within `1e-14` in f64
+/// (`tangent.rs::tests::angles_invert_the_tangent_on_every_branch`).
+/// **Source**: the `(α, β)` parametrisation of seed 004 eqs 3–4 and 16.
 pub fn nearest_angles<T: Real>(d: &Vector3<T>, prev: (&T, &T)) -> Result<(T, T), QiError> {
     let (a0, b0) = principal_angles(d)?;
     let at_pole = d.y.is_zero() && d.z.is_zero();

@@ -140,6 +140,9 @@ impl<T: Real> RoundingModel<T> {
     /// `x / y`: `|X/Y − x/y| ≤ (e_x + |x/y| e_y)/(|y| − e_y)` with
     /// `|x/y| ≤ (1 + 2u)|z| + η`. The radius is `+∞` when the error interval
     /// of `y` contains 0.
+    /// **Method**: one rounded division plus a radius from the formula above.
+    /// **Source**: running error analysis, Higham, 2nd ed., §3.3; the enclosure
+    /// is tested in `running_error.rs::tests::running_radius_encloses_exact_chain`.
     pub fn div(&self, x: &Running<T>, y: &Running<T>) -> Running<T> {
         let z = x.value.clone() / &y.value;
         let two_u = self.u.clone().scale_by_pow2(1);
@@ -156,6 +159,9 @@ impl<T: Real> RoundingModel<T> {
     }
 
     /// `xⁿ` by binary powering (`⌊log₂ n⌋ + popcount(n) − 1` multiplications).
+    /// **Accuracy**: each multiplication propagates the radius as [`Self::mul`]
+    /// does, so the result's radius bounds the accumulated error.
+    /// **Source**: Higham, 2nd ed., §3.3 (running error analysis).
     pub fn powi(&self, x: &Running<T>, mut n: usize) -> Running<T> {
         let mut acc = Running::exact(T::one());
         let mut base = x.clone();

@@ -63,6 +63,16 @@ pub fn node_values_exact(beta2: &Rational) -> Vec<Rational> {
 /// // √3 − 2 = −0.26794919243112270647…
 /// assert!((pole_closed_form(&0.0_f64) + 0.2679491924311227).abs() < 6e-17);
 /// ```
+///
+/// ```
+/// use splinelab::sspline::beta2::pole_closed_form;
+/// // In MPFR at β2 = 0: the cubic's pole √3 − 2, to 256-bit rounding.
+/// use splinelab::nalgebra::ComplexField;
+/// use splinelab::scalar::{Mp, Real};
+/// type M = Mp<256>;
+/// let xi = pole_closed_form(&M::from_int(0));
+/// assert!((xi - (M::from_int(3).sqrt() - M::from_int(2))).to_f64().abs() < 1e-75);
+/// ```
 pub fn pole_closed_form<T: Real>(beta2: &T) -> T {
     let n = |k: i64| T::from_int(k);
     let root = ((beta2.clone() + n(4)) * (beta2.clone() + n(12))).sqrt();

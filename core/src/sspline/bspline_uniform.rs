@@ -59,6 +59,9 @@ pub fn cell_values<T: Real>(m: u32, u: &T) -> Vec<T> {
 /// [`cell_values`] into `a[0..m]`, without allocating (the recursion runs
 /// in place, `s` descending, so each step reads the previous order's
 /// `a[s]` and `a[s − 1]`). Same arithmetic, bit for bit.
+/// **Accuracy**: exact at rationals
+/// (`bspline_uniform.rs::tests::recursion_matches_truncated_powers_exactly_at_rationals`).
+/// **Source**: seed 000 eq 7; de Boor, *A Practical Guide to Splines*.
 pub fn cell_values_into<T: Real>(m: u32, u: &T, a: &mut [T]) {
     a[0] = T::one();
     for k in 2..=m as usize {
@@ -100,6 +103,9 @@ pub fn cell_derivatives_into<T: Real>(m: u32, d: u32, u: &T, a: &mut [T]) {
 /// returns `first` with `β_m(x − first − l) = N_{0,m}(u + m − 1 − l)`, and
 /// the exact (or once-rounded) cell position `u ∈ [0, 1)` (see
 /// [`centred_window`] for why `x + m/2` is never formed). `O(1)`.
+/// **Accuracy**: `u` exact or rounded once
+/// (`bspline_uniform.rs::tests::window_is_exact_to_rounding_near_powers_of_two`).
+/// **Source**: the centred B-spline of seed 000 eqs 7 and 31.
 pub fn centred_cell(m: u32, x: f64) -> (i64, f64) {
     let fl = x.floor();
     let t = x - fl;
@@ -124,6 +130,8 @@ pub fn centred_cell(m: u32, x: f64) -> (i64, f64) {
 /// the half for odd `m` in `[0, 1)` (`t − ½` exact, `t + ½` rounded once
 /// to `ulp(1)`), so the error in `u` is at most `u_T`, relative to the
 /// cell, whatever the size of `x`.
+/// Tested in `bspline_uniform.rs::tests::window_is_exact_to_rounding_near_powers_of_two`.
+/// **Source**: seed 000 eqs 7 and 31; de Boor, *A Practical Guide to Splines*.
 pub fn centred_window<T: Real>(m: u32, x: &T) -> BasisWindow<T> {
     let fl_x = x.clone().floor();
     let t = x.clone() - fl_x.clone();
@@ -150,6 +158,18 @@ pub fn centred_window<T: Real>(m: u32, x: &T) -> BasisWindow<T> {
 /// ```
 /// use splinelab::sspline::bspline_uniform::uniform_bspline;
 /// assert!((uniform_bspline(3, &1.5_f64) - 0.75).abs() < 1e-16);
+/// ```
+///
+/// ```
+/// // In MPFR against the exact rational truncated-power form: N_4(1/3) = 1/162.
+/// use rug::Rational;
+/// use splinelab::scalar::{Mp, Real};
+/// use splinelab::sspline::bspline_uniform::{uniform_bspline, uniform_bspline_exact};
+/// type M = Mp<128>;
+/// let x = Rational::from((1, 3));
+/// let exact = M::from_rational(&uniform_bspline_exact(4, &x));
+/// assert!((exact.clone() - M::from_int(1) / M::from_int(162)).to_f64().abs() < 1e-40);
+/// assert!((uniform_bspline(4, &M::from_rational(&x)) - exact).to_f64().abs() < 1e-40);
 /// ```
 pub fn uniform_bspline<T: Real>(m: u32, x: &T) -> T {
     if *x <= T::zero() || *x >= T::from_int(m as i64) {

@@ -81,6 +81,21 @@ impl CoefficientMethod {
 /// assert!((c[0] - 1.7320508075688772).abs() <= 2.3e-16);
 /// assert!((c[2] - 0.12435565298214105).abs() <= 1.4e-17);
 /// ```
+///
+/// ```
+/// // In MPFR: the cubic's c_i against eq 18, c_i = √3 (√3 − 2)^i.
+/// use splinelab::nalgebra::ComplexField;
+/// use splinelab::scalar::{Mp, Real};
+/// use splinelab::sspline::{coefficients, CoefficientMethod, SplineFamily};
+/// type M = Mp<256>;
+/// let c: Vec<M> = coefficients(&SplineFamily::Order(4), 4, CoefficientMethod::Production).unwrap();
+/// let s3 = M::from_int(3).sqrt();
+/// let mut want = s3.clone();
+/// for ci in &c {
+///     assert!(((ci.clone() - want.clone()) / want.clone()).to_f64().abs() < 1e-74);
+///     want = want * (s3.clone() - M::from_int(2));
+/// }
+/// ```
 pub fn coefficients<T: Real>(
     family: &SplineFamily,
     count: usize,

@@ -92,6 +92,9 @@ impl EndRule {
     /// Every `i ∈ [lo, hi]` with `fold(i).0 == k`, ascending. Cost
     /// `O(1 + (hi − lo)/ν)` except for the free ends (`k = 0` or `ν − 1`),
     /// which own every index beyond them.
+    /// **Method**: inverse of [`EndRule::fold`] by index arithmetic; exact
+    /// (integers only; `end_conditions.rs::tests::folds_and_preimages_agree`).
+    /// **Source**: seed 000 eqs 21–23 (end conditions).
     pub fn preimages(self, k: usize, len: usize, lo: i64, hi: i64) -> Vec<i64> {
         let (n, k) = (len as i64, k as i64);
         let mut out: Vec<i64> = match self {

@@ -29,10 +29,29 @@ pub fn polynomial<T: Real>(family: &SplineFamily) -> Result<Vec<T>, SsplineError
 /// see the verify studies). The roots are checked to be distinct and inside
 /// (−1, 0); anything else is an error, never a silent result.
 ///
+/// Tests: `euler_frobenius.rs::tests::published_poles` and
+/// `verify/tests/prefilter_every_order.rs`. **Source**: seed 000 eq 16; the
+/// poles as in Unser, Aldroubi & Eden (1993).
+///
 /// ```
 /// use splinelab::sspline::{SplineFamily, euler_frobenius::poles};
 /// let xi: Vec<f64> = poles(&SplineFamily::Order(4)).unwrap();
 /// assert!((xi[0] - (3f64.sqrt() - 2.0)).abs() < 1e-16);
+/// ```
+///
+/// ```
+/// // In MPFR: the quintic's two inner poles are roots, to 256-bit rounding,
+/// // of its Euler–Frobenius polynomial z⁴ + 26z³ + 66z² + 26z + 1 (the
+/// // samples 1, 26, 66, 26, 1 of 120 β₆), and lie in (−1, 0).
+/// use splinelab::scalar::{Mp, Real};
+/// use splinelab::sspline::{SplineFamily, euler_frobenius::poles};
+/// type M = Mp<256>;
+/// let xi: Vec<M> = poles(&SplineFamily::Order(6)).unwrap();
+/// assert_eq!(xi.len(), 2);
+/// for z in &xi {
+///     let p = [1, 26, 66, 26, 1].iter().fold(M::from_int(0), |acc, &a| acc * z.clone() + M::from_int(a));
+///     assert!(p.to_f64().abs() < 1e-70 && z.to_f64() < 0.0 && z.to_f64() > -1.0);
+/// }
 /// ```
 pub fn poles<T: Real>(family: &SplineFamily) -> Result<Vec<T>, SsplineError> {
     let a = polynomial::<T>(family)?;

@@ -38,6 +38,19 @@ pub fn node_values_exact(family: &SplineFamily) -> Result<Vec<Rational>, Sspline
 /// The node values correctly rounded to `T`; refused when one would not be
 /// a normal number of `T` (orders above about 170 in `f64`: `V_1 = 1/(m−1)!`
 /// underflows), since the poles would then be meaningless.
+///
+/// ```
+/// // In MPFR: the quartic's node values against the exact rationals.
+/// use splinelab::scalar::{Mp, Real};
+/// use splinelab::sspline::{SplineFamily, node_values::{node_values, node_values_exact}};
+/// type M = Mp<200>;
+/// let v: Vec<M> = node_values(&SplineFamily::Order(5)).unwrap();
+/// let e = node_values_exact(&SplineFamily::Order(5)).unwrap();
+/// assert_eq!(v.len(), e.len());
+/// for (a, b) in v.iter().zip(&e) {
+///     assert!((a.clone() - M::from_rational(b)).to_f64().abs() < 1e-58);
+/// }
+/// ```
 pub fn node_values<T: Real>(family: &SplineFamily) -> Result<Vec<T>, SsplineError> {
     let exact = node_values_exact(family)?;
     let v: Vec<T> = exact.iter().map(T::from_rational).collect();

@@ -156,6 +156,8 @@ fn around(c: usize, max: usize) -> Vec<usize> {
 /// point are identical (C⁰ exactly) and the difference vectors across every
 /// shared edge agree to a few units of roundoff of the coordinates (C¹).
 /// Errors for degree `< 3`.
+/// **Method**: average the shared control points and the difference vectors
+/// across each join.
 pub fn correct_continuity<T: Real>(grid: &PatchGrid<T>) -> Result<PatchGrid<T>, ContinuityError> {
     let n = grid.degree();
     // Below degree 3 the blocks of neighbouring joints overlap.
@@ -212,6 +214,10 @@ pub struct JoinDefects<T> {
 
 /// Measures [`JoinDefects`] at `samples` equally spaced parameters
 /// `k/(samples−1)` along every shared edge. **Cost** `O(n_u n_v · samples · n²)`.
+/// **Method**: evaluate both patches and their cross-boundary derivatives at
+/// the samples and take the largest gaps. **Accuracy**: a sampled maximum
+/// (used in `verify/tests/bv_deform.rs::continuity_correction_gives_c0_and_g1_joins`).
+/// **Source**: seed 001 §2.3, eqs 5–6.
 pub fn join_defects<T: Real>(
     grid: &PatchGrid<T>,
     samples: usize,

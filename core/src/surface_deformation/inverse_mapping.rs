@@ -71,6 +71,7 @@ pub struct SampleGrid<T: Real> {
 impl<T: Real> SampleGrid<T> {
     /// A grid from explicit parameters, validated by [`check_nodes`] (so `B̃`
     /// is nonsingular) and of equal length `n + 1 ≥ 2`.
+    /// **Method**: validation only; exact. **Source**: seed 001 eq 2 (the sample parameters).
     pub fn new(u: Vec<T>, v: Vec<T>) -> Result<Self, InverseMappingError> {
         check_nodes(&u)?;
         check_nodes(&v)?;
@@ -119,6 +120,8 @@ impl<T: Real> SampleGrid<T> {
 
 /// The samples `R̃ = B̃ P̃` of seed 001 eq 2: `R(u_a, v_b)` by evaluating the
 /// patch ([`Patch::eval`], independent of any solver). **Cost** `O(n⁴)`.
+/// **Accuracy**: that of [`Patch::eval`], `≤ γ_{4n+2} max |P_ij|` per
+/// coordinate (non-negative Bernstein weights; Farouki & Rajan 1987).
 pub fn sample<T: Real>(
     patch: &Patch<T>,
     grid: &SampleGrid<T>,
@@ -215,6 +218,10 @@ pub fn deform<T: Real>(
 /// flow at patch `(p, q)`'s samples. Everything is validated before anything
 /// is solved. The joins between patches are not corrected here (see
 /// [`continuity`](super::continuity)).
+/// **Method**: [`deform`] per patch, seed 001 eq 4. **Accuracy**: every
+/// deformed patch passes through its moved samples
+/// (`verify/tests/bv_deform.rs::deformed_patches_pass_through_the_moved_samples`,
+/// which runs this routine through verify's `push_surfaces`).
 pub fn deform_grid<T: Real>(
     surface: &PatchGrid<T>,
     grid: &SampleGrid<T>,

@@ -123,6 +123,7 @@ fn tensor_sum<T: Real>(a: &[T], b: &[T], net: impl Fn(usize, usize) -> Point3<T>
 
 impl<T: Real> Patch<T> {
     /// A patch from `(n+1)²` control points (row-major `P_ij`), all finite.
+    /// **Method**: validation only; exact. **Source**: seed 001 eq 1 (tensor Bézier patch).
     pub fn new(degree: usize, control: Vec<Point3<T>>) -> Result<Self, PatchError> {
         degree_at_least("a Bézier patch", 1, degree)?;
         // Saturates for absurd degrees: no vector holds usize::MAX points.
@@ -143,6 +144,7 @@ impl<T: Real> Patch<T> {
     /// The flat patch `P_ij = origin + (i/n) e_u + (j/n) e_v`. By the linear
     /// precision of the Bernstein basis (`Σ_i (i/n) B_i^n(u) = u`) it is the
     /// parallelogram `origin + u e_u + v e_v` exactly.
+    /// **Source**: seed 001 eq 1 (and §3, the flat initial surface).
     pub fn bilinear(
         degree: usize,
         origin: &Point3<T>,
@@ -186,6 +188,22 @@ impl<T: Real> Patch<T> {
     /// let p = Patch::bilinear(3, &z, &Vector3::new(2.0, 0.0, 0.0), &Vector3::new(0.0, 4.0, 0.0)).unwrap();
     /// assert_eq!(p.eval(&0.25, &0.5).unwrap(), Vector3::new(0.5, 2.0, 0.0));
     /// ```
+    ///
+    /// ```
+    /// // In MPFR: the flat patch is the parallelogram origin + u e_u + v e_v.
+    /// use nalgebra::Vector3;
+    /// use splinelab::surface_deformation::patch::Patch;
+    /// use splinelab::scalar::{Mp, Real};
+    /// type M = Mp<128>;
+    /// let v = |x, y, z| Vector3::new(M::from_int(x), M::from_int(y), M::from_int(z));
+    /// let p = Patch::bilinear(3, &v(1, 1, 1), &v(2, 0, 0), &v(0, 4, 0)).unwrap();
+    /// let (u, w) = (M::from_int(1) / M::from_int(3), M::from_int(2) / M::from_int(7));
+    /// let r = p.eval(&u, &w).unwrap();
+    /// let want = [M::from_int(1) + M::from_int(2) * u.clone(), M::from_int(1) + M::from_int(4) * w.clone(), M::from_int(1)];
+    /// for i in 0..3 {
+    ///     assert!((r[i].clone() - want[i].clone()).to_f64().abs() < 1e-36);
+    /// }
+    /// ```
     pub fn eval(&self, u: &T, v: &T) -> Result<Point3<T>, PatchError> {
         check_param("u", u)?;
         check_param("v", v)?;
@@ -215,6 +233,8 @@ impl<T: Real> Patch<T> {
 
     /// The unit normal `R_u × R_v / |R_u × R_v|`; a typed error where the
     /// cross product vanishes (a degenerate point, e.g. a collapsed edge).
+    /// **Method**: the partials of [`Self::derivatives`] (error `≤ n γ_{4n} max |ΔP|`),
+    /// then the cross product divided by its norm. **Source**: seed 001 eq 1.
     pub fn normal(&self, u: &T, v: &T) -> Result<Point3<T>, PatchError> {
         let (ru, rv) = self.derivatives(u, v)?;
         let c = ru.cross(&rv);
@@ -241,6 +261,7 @@ pub struct PatchGrid<T: Real> {
 
 impl<T: Real> PatchGrid<T> {
     /// A grid from its patches (row-major over `(p, q)`), all of one degree.
+    /// **Method**: validation only; exact. **Source**: seed 001 §3 (the patch grid).
     pub fn new(nu: usize, nv: usize, patches: Vec<Patch<T>>) -> Result<Self, PatchError> {
         if nu == 0 || nv == 0 {
             return Err(PatchError::EmptyGrid { nu, nv });
@@ -266,6 +287,8 @@ impl<T: Real> PatchGrid<T> {
     /// The plane `z = 0` tiled by `n_u × n_v` flat degree-`n` patches of size
     /// `size × size`, patch `(p, q)` covering `[p·size, (p+1)·size] × [q·size, (q+1)·size]`
     /// (the initial surface of seed 001 §3 with `n_u = n_v = 10`, `n = 3`).
+    /// **Method**: [`Patch::bilinear`] per patch (exact linear precision); the grid tiles the
+    /// plane (`patch.rs::tests::planar_grid_tiles_the_plane`).
     pub fn planar(nu: usize, nv: usize, degree: usize, size: &T) -> Result<Self, PatchError> {
         let (eu, ev) = (
             Point3::new(size.clone(), T::zero(), T::zero()),

@@ -48,6 +48,9 @@ impl NodeFamily {
     /// the left-hand side cancels catastrophically near `t = 0`, the
     /// right-hand side keeps every node to a few units of roundoff relative.
     /// Equispaced nodes are correctly rounded from the exact `j/n`.
+    /// Test: `vandermonde.rs::tests::chebyshev_nodes_match_the_cosine_definition_in_high_precision`.
+    /// **Source**: the Chebyshev nodes of the conditioning studies; the
+    /// identity as in Higham, 2nd ed., §1.7 (avoiding subtractive cancellation).
     pub fn nodes<T: Real>(self, n: usize) -> Result<Vec<T>, VandermondeError> {
         degree_at_least("a node family", 1, n)?;
         let mut nodes = Vec::new();
@@ -95,6 +98,17 @@ crate::named_enum!(NodeFamily, "node family", VandermondeError, |s: &str| {
 /// use splinelab::surface_deformation::vandermonde::bernstein_vandermonde;
 /// let a = bernstein_vandermonde(&[0.0f64, 0.5, 1.0]);
 /// assert_eq!(a[(1, 1)], 0.5);
+/// ```
+///
+/// ```
+/// use splinelab::surface_deformation::vandermonde::bernstein_vandermonde;
+/// // In MPFR, nodes 0, 1/3, 1: row 1 is (B_0^2, B_1^2, B_2^2)(1/3) = (4/9, 4/9, 1/9).
+/// use splinelab::scalar::{Mp, Real};
+/// type M = Mp<128>;
+/// let a = bernstein_vandermonde(&[M::from_int(0), M::from_int(1) / M::from_int(3), M::from_int(1)]);
+/// for (i, num) in [4, 4, 1].into_iter().enumerate() {
+///     assert!((a[(1, i)].clone() - M::from_int(num) / M::from_int(9)).to_f64().abs() < 1e-37);
+/// }
 /// ```
 pub fn bernstein_vandermonde<T: Real>(nodes: &[T]) -> DMatrix<T> {
     let n = nodes.len().saturating_sub(1);
