@@ -4,12 +4,13 @@
 //! comments). Every failure is a [`CliError::Input`] naming the file.
 
 use crate::error::CliError;
-use crate::input::{input_error, parse_json, read_bytes, read_text};
+use crate::input::{input_error, max_input_bytes, parse_json, read_bytes, read_text};
 use crate::npy_layout::{NpyFloat, validate};
 use ndarray::ArrayD;
 use ndarray_npy::{ReadNpyError, ReadNpyExt};
 use serde_json::Value;
 use splinelab_verify::check::UserFormat;
+use splinelab_verify::check::interp::{InterpInput, ScipyMode};
 use std::path::Path;
 
 /// An array read from a file, widened to f64 (exactly: f32 → f64 is exact).
@@ -196,6 +197,112 @@ fn npy_bytes<A: ndarray_npy::WritableElement>(
     let mut bytes = Vec::new();
     a.write_npy(&mut bytes).map_err(CliError::numerical)?;
     Ok(bytes)
+}
+
+/// Refuses what is not a regular file within the input size limit
+/// (`SPLINELAB_MAX_INPUT_BYTES`), before reading it.
+pub fn check_input_file(path: &Path) -> Result<(), CliError> {
+    let meta = std::fs::metadata(path).map_err(|e| input_error(path, e.to_string()))?;
+    if !meta.is_file() {
+        return Err(input_error(path, "not a regular file"));
+    }
+    let limit = max_input_bytes()?;
+    if meta.len() > limit {
+        return Err(input_error(
+            path,
+            format!(
+                "{} bytes, above the input limit of {limit} bytes (raise it with {}=BYTES)",
+                meta.len(),
+                crate::input::MAX_INPUT_ENV
+            ),
+        ));
+    }
+    Ok(())
+}
+
+/// Reads an array of samples (any shape, at least one sample per axis,
+/// within the input size limit), with the dtype it was stored in.
+pub fn read_samples(path: &Path) -> Result<(ArrayD<f64>, UserFormat), CliError> {
+    check_input_file(path)?;
+    let a = read_array(path)?;
+    if a.shape.is_empty() {
+        return Err(input_error(
+            path,
+            "a 0-dimensional array: give at least one axis",
+        ));
+    }
+    if a.data.is_empty() {
+        return Err(input_error(
+            path,
+            format!("no samples (shape {:?})", a.shape),
+        ));
+    }
+    if let Some(i) = a.data.iter().position(|x| !x.is_finite()) {
+        return Err(input_error(
+            path,
+            format!(
+                "sample {:?} is {} (every sample must be finite)",
+                unravel(i, &a.shape),
+                a.data[i]
+            ),
+        ));
+    }
+    let arr = ArrayD::from_shape_vec(a.shape.clone(), a.data)
+        .map_err(|e| input_error(path, e.to_string()))?;
+    Ok((arr, a.format))
+}
+
+/// The multi-index of flat C-order position `i` in `shape`.
+pub fn unravel(mut i: usize, shape: &[usize]) -> Vec<usize> {
+    let mut idx = vec![0; shape.len()];
+    for (k, &n) in shape.iter().enumerate().rev() {
+        idx[k] = i % n.max(1);
+        i /= n.max(1);
+    }
+    idx
+}
+
+/// The input of `check interp` from files: samples (1-D or 2-D), scipy's
+/// `map_coordinates` coordinates of shape `(dims, count)` (or `(count,)`
+/// for 1-D samples), made point-major, and the user's values; a coordinate
+/// shape that does not fit the samples is refused, naming its file.
+pub fn interp_input(
+    samples: &Path,
+    coords: &Path,
+    (user, format): (Vec<f64>, UserFormat),
+    degree: usize,
+    mode: impl Into<ScipyMode>,
+    max_ulps: Option<f64>,
+) -> Result<InterpInput, CliError> {
+    let samples_arr = read_array(samples)?;
+    let c = read_array(coords)?;
+    let dims = samples_arr.shape.len();
+    let count = match (dims, c.shape.as_slice()) {
+        (1, [k]) => *k,
+        (_, [rows, k]) if *rows == dims => *k,
+        _ => {
+            return Err(input_error(
+                coords,
+                format!(
+                    "expected shape ({dims}, count) for {dims}-D samples, got {:?}",
+                    c.shape
+                ),
+            ));
+        }
+    };
+    let data = &c.data;
+    Ok(InterpInput {
+        samples: samples_arr.data,
+        shape: samples_arr.shape,
+        points: (0..count)
+            .flat_map(|k| (0..dims).map(move |a| data[a * count + k]))
+            .collect(),
+        user,
+        format,
+        degree,
+        mode: mode.into(),
+        max_ulps,
+    })
 }
 
 #[cfg(test)]

@@ -6,6 +6,7 @@
 pub mod array_io;
 pub mod budget;
 pub mod chart;
+pub mod check_charts;
 pub mod cli;
 pub mod error;
 pub mod html;

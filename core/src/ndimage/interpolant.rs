@@ -90,6 +90,13 @@ impl<T: Real + Send + Sync> Interpolant<T> {
     /// [`Mode::nearest_index`]) and 1 (multilinear) need no prefilter: their
     /// coefficients are the samples, as in scipy.
     ///
+    ///
+    /// **Method**: the exact recursive prefilter along every axis ([`LineFilter`]), padded for
+    /// `nearest`/`grid-constant`. **Accuracy**: the interpolation condition holds to `O(u)`
+    /// relative up to degree 31 in f64 and to 1e-60 in 256-bit MPFR up to degree 99
+    /// (`verify/tests/engine_properties.rs::high_degrees_satisfy_the_interpolation_condition`);
+    /// scipy agreement in `verify/tests/engine_scipy.rs::map_coordinates_matches_scipy`.
+    ///
     /// ```
     /// use splinelab::prelude::*;
     /// let data = ndarray::array![[0.0, 1.0, 4.0], [1.0, 2.0, 5.0], [4.0, 5.0, 8.0]];
@@ -145,6 +152,11 @@ impl<T: Real + Send + Sync> Interpolant<T> {
     /// coefficients and leaves the point where it is. Degree `0..=199`.
     /// Cost: one copy of `coeffs` with `⌊(d + 1)/2⌋ + 2` values of padding
     /// per side (`d + 3` for `nearest`).
+    ///
+    ///
+    /// **Accuracy**: no rounding beyond the evaluation's (the coefficients are copied); scipy's
+    /// `prefilter=False` output reproduced within 16 ulps of max|value|
+    /// (`reports/tests/cli_engine.rs`, the `--coeffs` fixtures).
     ///
     /// ```
     /// use splinelab::prelude::*;
@@ -287,6 +299,13 @@ impl<T: Real + Send + Sync> Interpolant<T> {
     /// `d_a ≤` degree (`deriv.len() = ndim`). Derivatives of the spline
     /// itself (under `nearest`, of the edge-extended signal's spline: zero
     /// far outside, where it is constant).
+    ///
+    /// **Method**: the derivative of each axis' B-spline weights in closed form
+    /// ([`cell_derivatives_into`]), then the tensor sum. **Accuracy**: within 1e-9 relative of
+    /// 256-bit MPFR central differences
+    /// (`verify/tests/engine_properties.rs::derivatives_match_mpfr_finite_differences`).
+    /// **Source**: the B-spline derivative recurrence (de Boor, *A Practical Guide to Splines*,
+    /// ch. X); seed 000 eq 31 for the centred basis.
     pub fn eval_derivative(&self, x: &[f64], deriv: &[u32]) -> Result<T, NdimageError> {
         self.check(x, deriv)?;
         if deriv.len() != x.len() {
@@ -373,6 +392,11 @@ impl<T: Real + Send + Sync> Interpolant<T> {
 /// scipy's `map_coordinates(data, coordinates, order=degree, mode=…)`:
 /// `coordinates` has shape `(ndim, count)` (one row per axis, as in scipy);
 /// returns the `count` values. Builds an [`Interpolant`] and evaluates it.
+///
+///
+/// **Accuracy**: within 16 ulps of max|value| of scipy 1.17.1 in every mode, degrees 1–5
+/// (`verify/tests/engine_scipy.rs::map_coordinates_matches_scipy`), exact where scipy pads
+/// (see [`Mode`]).
 ///
 /// ```
 /// use splinelab::prelude::*;

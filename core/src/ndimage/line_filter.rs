@@ -59,6 +59,13 @@ impl<T: Real> LineFilter<T> {
     /// only), by `route`. Cost: one pole computation in MPFR (and for the
     /// truncated route one width choice, `O(n)` MPFR coefficients).
     ///
+    ///
+    /// **Accuracy**: exact route as [`RecursivePrefilter`] (`O(u/|V(−1)|)` relative); truncated
+    /// route within its certified bound
+    /// (`verify/tests/engine_properties.rs::truncated_route_stays_within_its_certified_bound`).
+    /// **Source**: Unser, Aldroubi and Eden (1993) for the recursion, seed 000 eq 10 for the
+    /// truncation.
+    ///
     /// ```
     /// use splinelab::sspline::SplineFamily;
     /// use splinelab::ndimage::{mode::Mode, line_filter::{LineFilter, Route}};
@@ -119,6 +126,13 @@ impl<T: Real> LineFilter<T> {
     /// f64), `max(max_abs, |cval|) · growth^axes` must stay below the
     /// largest finite value ([`Self::growth`]); MPFR's exponent range makes
     /// overflow unreachable. `O(p)`.
+    ///
+    /// **Method**: compares `max(max_abs, |cval|) · growth^axes` with the scalar's largest
+    /// value. **Accuracy**: a sufficient bound (never refuses data that cannot overflow by more
+    /// than the growth's slack; data just below the limit is exact,
+    /// `verify/tests/engine_properties.rs::data_that_could_overflow_is_refused_and_data_below_the_limit_is_exact`).
+    /// **Source**: the geometric-series bound of each first-order recursion `|c_k| ≤ max|s|/(1
+    /// − |z|)` (Unser, Aldroubi and Eden 1993).
     pub fn check_magnitude(&self, max_abs: f64, axes: usize) -> Result<(), NdimageError> {
         if T::BITS > 53 {
             return Ok(());
@@ -180,6 +194,13 @@ impl<T: Real> LineFilter<T> {
     /// The coefficients `D_{−pad} .. D_{ν+pad−1}` of the samples in
     /// `out[pad .. pad + ν]` (the rest of `out` is overwritten): the
     /// coefficients beyond the ends that evaluation near the ends reads.
+    ///
+    /// **Method**: the line padded by `P = max K + 2` extended samples each side and filtered
+    /// under the mirror rule (module documentation). **Accuracy**: the exact spline of the
+    /// extended signal to `2^{−2·BITS}` relative
+    /// (`verify/tests/engine_properties.rs::nearest_outside_the_grid_is_the_edge_extended_spline`).
+    /// **Source**: scipy's padding of `nearest`/`grid-constant` (`ni_interpolation.c`), with
+    /// the pad widened to the pole horizon.
     pub fn apply_padded(&self, out: &mut [T], pad: usize, scratch: &mut Vec<T>) {
         let len = out.len() - 2 * pad;
         if len == 0 {
@@ -248,6 +269,12 @@ impl<T: Real> LineFilter<T> {
     /// copy). The recursion of [`Self::apply`] one step at a time (the
     /// single line uses a two-step look-ahead instead), so both agree to a
     /// few ulps of `max|s|`, not bitwise; `4p + 1` flops per sample.
+    ///
+    ///
+    /// **Accuracy**: the doc example and
+    /// `verify/tests/engine_scipy.rs::spline_filter_matches_scipy` (strided axes run here).
+    /// **Source**: Unser, Aldroubi and Eden (1993), the causal/anti-causal recursion; initial
+    /// values as Thévenaz, Blu and Unser (2000).
     ///
     /// ```
     /// use splinelab::sspline::SplineFamily;

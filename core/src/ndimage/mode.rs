@@ -97,6 +97,11 @@ impl Mode {
     /// `None` where the extension is the constant (`grid-constant` outside).
     /// Cost `O(1)`.
     ///
+    ///
+    /// **Method**: the index modulo the mode's period (`2ν − 2`, `2ν`, `ν`) reflected into `[0,
+    /// ν)`. **Accuracy**: exact (integer arithmetic). **Source**: scipy's boundary extensions
+    /// (`ni_support.c`, `NI_ExtendLine`).
+    ///
     /// ```
     /// use splinelab::ndimage::mode::Mode;
     /// let idx = |m: Mode| (-3..7).map(|i| m.fold(i, 4)).collect::<Vec<_>>();
@@ -137,6 +142,8 @@ impl Mode {
     /// far reads only the constant outside, so the value is the same, and the
     /// cell index stays far from `i64` overflow). `f64` arithmetic on the
     /// period, exact when `x` is (`|x| < 2^52`).
+    ///
+    /// **Method**: the coordinate modulo the period, reflected into the fundamental interval.
     #[inline]
     pub fn fold_coordinate(self, x: f64, len: usize) -> f64 {
         /// Far beyond any padding (pads are at most a few thousand samples).

@@ -7,6 +7,7 @@
 use super::check_out::write_check_dir;
 use super::coeffs::family_from_args;
 use super::cond::BasisArg;
+pub use crate::array_io::interp_input;
 use crate::array_io::{read_1d, read_array};
 use crate::budget::{BudgetArgs, Estimate, Spinner, number_bytes, unit_seconds};
 use crate::error::CliError;
@@ -21,7 +22,7 @@ use splinelab_verify::check::bezier_eval::check_bezier_eval;
 use splinelab_verify::check::bspline_eval::{BSplineEvalInput, check_bspline_eval};
 use splinelab_verify::check::coeffs::check_coeffs;
 use splinelab_verify::check::cond::{CondInput, Norm, check_cond};
-use splinelab_verify::check::interp::{InterpInput, ScipyMode, check_interp_with_cval};
+use splinelab_verify::check::interp::{ScipyMode, check_interp_with_cval};
 use splinelab_verify::check::knot_insertion::check_knot_insertion;
 use splinelab_verify::check::outcome;
 use splinelab_verify::check::prefilter::{PrefilterInput, check_prefilter, family_of_degree};
@@ -368,49 +369,6 @@ fn prefilter(a: &PrefilterArgs) -> Result<Outcome, CliError> {
         max_ulps,
     })?;
     Ok(Outcome::Elements(Box::new(s)))
-}
-
-/// The input of `check interp` from files: samples (1-D or 2-D), scipy's
-/// `map_coordinates` coordinates of shape `(dims, count)` (or `(count,)`
-/// for 1-D samples), made point-major, and the user's values; a coordinate
-/// shape that does not fit the samples is refused, naming its file.
-pub fn interp_input(
-    samples: &Path,
-    coords: &Path,
-    (user, format): (Vec<f64>, UserFormat),
-    degree: usize,
-    mode: impl Into<ScipyMode>,
-    max_ulps: Option<f64>,
-) -> Result<InterpInput, CliError> {
-    let samples_arr = read_array(samples)?;
-    let c = read_array(coords)?;
-    let dims = samples_arr.shape.len();
-    let count = match (dims, c.shape.as_slice()) {
-        (1, [k]) => *k,
-        (_, [rows, k]) if *rows == dims => *k,
-        _ => {
-            return Err(input_error(
-                coords,
-                format!(
-                    "expected shape ({dims}, count) for {dims}-D samples, got {:?}",
-                    c.shape
-                ),
-            ));
-        }
-    };
-    let data = &c.data;
-    Ok(InterpInput {
-        samples: samples_arr.data,
-        shape: samples_arr.shape,
-        points: (0..count)
-            .flat_map(|k| (0..dims).map(move |a| data[a * count + k]))
-            .collect(),
-        user,
-        format,
-        degree,
-        mode: mode.into(),
-        max_ulps,
-    })
 }
 
 fn interp(a: &InterpArgs) -> Result<Outcome, CliError> {

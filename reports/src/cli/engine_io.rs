@@ -9,10 +9,11 @@
 //! decimal strings (the digits `BITS` carries) for `.json`.
 
 use super::prec::{Prec, parse_prec};
-use crate::array_io::{read_array, write_npy_f32, write_npy_f64};
+pub use crate::array_io::{check_input_file, read_samples, unravel};
+use crate::array_io::{write_npy_f32, write_npy_f64};
 use crate::budget::{BudgetArgs, Estimate, number_bytes, unit_seconds};
 use crate::error::CliError;
-use crate::input::{input_error, max_input_bytes};
+use crate::input::input_error;
 use crate::output::{path_text, write_atomic};
 use clap::Args;
 use ndarray::ArrayD;
@@ -236,69 +237,6 @@ pub fn output_kind(path: &Path) -> Result<OutputKind, CliError> {
             ),
         )),
     }
-}
-
-/// Refuses what is not a regular file within the input size limit
-/// (`SPLINELAB_MAX_INPUT_BYTES`), before reading it.
-pub fn check_input_file(path: &Path) -> Result<(), CliError> {
-    let meta = std::fs::metadata(path).map_err(|e| input_error(path, e.to_string()))?;
-    if !meta.is_file() {
-        return Err(input_error(path, "not a regular file"));
-    }
-    let limit = max_input_bytes()?;
-    if meta.len() > limit {
-        return Err(input_error(
-            path,
-            format!(
-                "{} bytes, above the input limit of {limit} bytes (raise it with {}=BYTES)",
-                meta.len(),
-                crate::input::MAX_INPUT_ENV
-            ),
-        ));
-    }
-    Ok(())
-}
-
-/// Reads an array of samples (any shape, at least one sample per axis,
-/// within the input size limit), with the dtype it was stored in.
-pub fn read_samples(path: &Path) -> Result<(ArrayD<f64>, UserFormat), CliError> {
-    check_input_file(path)?;
-    let a = read_array(path)?;
-    if a.shape.is_empty() {
-        return Err(input_error(
-            path,
-            "a 0-dimensional array: give at least one axis",
-        ));
-    }
-    if a.data.is_empty() {
-        return Err(input_error(
-            path,
-            format!("no samples (shape {:?})", a.shape),
-        ));
-    }
-    if let Some(i) = a.data.iter().position(|x| !x.is_finite()) {
-        return Err(input_error(
-            path,
-            format!(
-                "sample {:?} is {} (every sample must be finite)",
-                unravel(i, &a.shape),
-                a.data[i]
-            ),
-        ));
-    }
-    let arr = ArrayD::from_shape_vec(a.shape.clone(), a.data)
-        .map_err(|e| input_error(path, e.to_string()))?;
-    Ok((arr, a.format))
-}
-
-/// The multi-index of flat C-order position `i` in `shape`.
-pub fn unravel(mut i: usize, shape: &[usize]) -> Vec<usize> {
-    let mut idx = vec![0; shape.len()];
-    for (k, &n) in shape.iter().enumerate().rev() {
-        idx[k] = i % n.max(1);
-        i /= n.max(1);
-    }
-    idx
 }
 
 /// Refuses a degree the working type cannot represent meaningfully: the

@@ -7,9 +7,9 @@
 //! plus `cond` on closed forms.
 
 use super::{Figure, Profile, ReportError, Section};
+use crate::array_io::interp_input;
 use crate::array_io::read_1d;
-use crate::cli::check::interp_input;
-use crate::cli::check_out::{cond_chart, error_chart};
+use crate::check_charts::{cond_chart, error_chart};
 use crate::html::{num, paragraph, table};
 use crate::input::read_json;
 use serde_json::{Value, json};

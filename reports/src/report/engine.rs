@@ -5,7 +5,7 @@
 //! (judged from exact node values), and in-process prefilter throughput.
 
 use super::{Figure, Profile, ReportError, Section, TIME_BAND};
-use crate::cli::engine_io::read_samples;
+use crate::array_io::read_samples;
 use crate::error::CliError;
 use crate::html::{num, paragraph, table};
 use ndarray::{Array2, ArrayD};

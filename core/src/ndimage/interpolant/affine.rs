@@ -41,6 +41,13 @@ impl<T: Real + Copy + Send + Sync> Interpolant<T> {
     /// `matrix` is `ndim × out_shape.len()`, row-major. Method, cost and
     /// error in the module documentation.
     ///
+    ///
+    /// **Method**: the points of each block of output indices are formed by the affine map and
+    /// evaluated as [`Interpolant::eval_many`] does (no coordinate array). **Accuracy**: the
+    /// same values as pointwise [`Interpolant::eval`], bit for bit
+    /// (`affine.rs::tests::affine_points_equal_pointwise_evaluation_bit_for_bit`). **Source**:
+    /// scipy's `affine_transform` (`ni_interpolation.c`, `NI_GeometricTransform`).
+    ///
     /// ```
     /// use splinelab::prelude::*;
     /// use splinelab::ndimage::interpolant::PointRule;

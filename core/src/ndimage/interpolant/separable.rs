@@ -48,6 +48,14 @@ impl<T: Real + Copy + Send + Sync> Interpolant<T> {
     /// grid point (folding, padding and `cval` included) up to rounding;
     /// method, cost and error in the module documentation.
     ///
+    ///
+    /// **Method**: tensor-product resampling, one axis at a time: `(degree + 1)` weights per
+    /// output index and axis, applied along that axis. **Accuracy**: pointwise evaluation's up
+    /// to rounding (`separable.rs::tests::separable_grid_equals_pointwise_evaluation`,
+    /// `separable_derivatives_equal_pointwise_ones`). **Source**: the separability of
+    /// tensor-product B-splines (de Boor, *A Practical Guide to Splines*, ch. XVII); scipy's
+    /// `zoom`/`shift` conventions.
+    ///
     /// ```
     /// use splinelab::prelude::*;
     /// let data = ndarray::array![[0.0, 1.0, 4.0], [1.0, 2.0, 5.0], [4.0, 5.0, 8.0]];
