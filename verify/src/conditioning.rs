@@ -151,7 +151,7 @@ pub fn run_conditioning(degrees: &[usize]) -> Result<Vec<CondRow>, StudyError> {
     let cases: Vec<CondCase> = [Basis::Bernstein, Basis::Monomial]
         .into_iter()
         .flat_map(|basis| {
-            NodeFamily::all().into_iter().flat_map(move |nodes| {
+            NodeFamily::all().flat_map(move |nodes| {
                 degrees.iter().map(move |&degree| CondCase {
                     degree,
                     nodes,

@@ -400,7 +400,11 @@ mod tests {
                 let k = axis.first + slot as i64;
                 let mut old = get(k - n as i64) * axis.c[n].clone();
                 for j in (-(n as i64)..n as i64).rev() {
-                    old = old + get(k - j) * axis.c[j.unsigned_abs() as usize].clone();
+                    // The old owned-operand expression, spelled as it was.
+                    #[allow(clippy::assign_op_pattern)]
+                    {
+                        old = old + get(k - j) * axis.c[j.unsigned_abs() as usize].clone();
+                    }
                 }
                 assert_eq!(convolve_at(&axis, slot, get), old, "m={m} slot={slot}");
             }

@@ -211,7 +211,7 @@ mod tests {
             // The same points formed by hand, through eval_many (whose cubic
             // weights are the closed form, so compared with it, not eval).
             let mut pts = ndarray::Array2::<f64>::zeros((132, 3));
-            let mut outside = vec![false; 132];
+            let mut outside = [false; 132];
             for i in 0..11 {
                 for j in 0..12 {
                     for h in 0..3 {
