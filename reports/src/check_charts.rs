@@ -24,6 +24,12 @@ fn series_of(s: &CheckSummary, region: Option<Region>, any: bool) -> Vec<(f64, f
         .filter(|e| (any || e.region == region) && e.ulps.is_finite())
         .map(|e| (e.index as f64, e.ulps.max(ULPS_FLOOR)))
         .collect();
+    binned_max(&pts)
+}
+
+/// At most [`MAX_CHART_POINTS`] points: consecutive bins of `pts`, each
+/// drawn as its point of largest value (an error peak is never averaged away).
+fn binned_max(pts: &[(f64, f64)]) -> Vec<(f64, f64)> {
     let bin = pts.len().div_ceil(MAX_CHART_POINTS).max(1);
     pts.chunks(bin)
         .map(|c| {
@@ -110,14 +116,7 @@ pub fn bound_chart(s: &CheckSummary) -> Chart {
             .filter(|(_, v)| v.is_finite())
             .map(|(i, v)| (i, v.max(floor)))
             .collect();
-        let bin = pts.len().div_ceil(MAX_CHART_POINTS).max(1);
-        pts.chunks(bin)
-            .map(|c| {
-                c.iter()
-                    .copied()
-                    .fold((c[0].0, 0.0), |a, p| if p.1 > a.1 { p } else { a })
-            })
-            .collect()
+        binned_max(&pts)
     };
     let series = vec![
         Series::line(format!("{k} × stable bound"), pick(&|e| Some(k * e.bound?))),

@@ -27,11 +27,6 @@ fn fixture(name: &str) -> Result<ArrayD<f64>, ReportError> {
     Ok(read_samples(&path)?.0)
 }
 
-/// max |a − b| / (ε max|b|), verify's one ulps metric.
-fn ulps<'a>(a: impl Iterator<Item = &'a f64>, b: &'a ArrayD<f64>) -> f64 {
-    ulps_of_max(a, b)
-}
-
 fn num_err(e: NdimageError) -> CliError {
     CliError::numerical(e)
 }
@@ -55,17 +50,20 @@ fn scipy_worst() -> Result<[f64; 3], ReportError> {
             let f = line_filter::<f64>(d, mode, Route::Exact)?;
             let mut x1 = fixture("x1")?;
             spline_filter1d(&mut x1, 0, &f).map_err(num_err)?;
-            worst[0] = worst[0].max(ulps(x1.iter(), &fixture(&format!("f1_{mode}_{d}"))?));
+            worst[0] = worst[0].max(ulps_of_max(x1.iter(), &fixture(&format!("f1_{mode}_{d}"))?));
             if mode == Mode::Reflect {
                 continue;
             }
             let mut x2 = fixture("x2")?;
             spline_filter1d(&mut x2, 0, &f).map_err(num_err)?;
-            worst[0] = worst[0].max(ulps(x2.iter(), &fixture(&format!("g2_{mode}_{d}"))?));
+            worst[0] = worst[0].max(ulps_of_max(x2.iter(), &fixture(&format!("g2_{mode}_{d}"))?));
             for k in [2, 3] {
                 let mut x = fixture(&format!("x{k}"))?;
                 spline_filter(&mut x, &f).map_err(num_err)?;
-                worst[1] = worst[1].max(ulps(x.iter(), &fixture(&format!("f{k}_{mode}_{d}"))?));
+                worst[1] = worst[1].max(ulps_of_max(
+                    x.iter(),
+                    &fixture(&format!("f{k}_{mode}_{d}"))?,
+                ));
             }
         }
         for k in 1..=3 {
@@ -83,7 +81,7 @@ fn scipy_worst() -> Result<[f64; 3], ReportError> {
                 };
                 let got: Vec<f64> = map_coordinates(&x, p.t(), opts).map_err(num_err)?;
                 let want = fixture(&format!("m{k}_{mode}_{d}"))?;
-                worst[2] = worst[2].max(ulps(got.iter(), &want));
+                worst[2] = worst[2].max(ulps_of_max(got.iter(), &want));
             }
         }
     }
