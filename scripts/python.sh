@@ -33,7 +33,8 @@ if [ "$(cat "$stamp" 2>/dev/null)" != "${reqs[*]}" ]; then
 fi
 
 [ -f "$HOME/.cargo/env" ] && . "$HOME/.cargo/env"
+read -r -a features <<<"$(bash scripts/gmp_features.sh)"
 # The extension is built by maturin, not linked as a test binary.
 VIRTUAL_ENV="$PWD/.venv" PATH="$PWD/.venv/bin:$PATH" \
-  .venv/bin/maturin develop --release --quiet -m python/Cargo.toml >&2
+  .venv/bin/maturin develop --release --quiet -m python/Cargo.toml "${features[@]+"${features[@]}"}" >&2
 .venv/bin/python -c "import splinelab; print('splinelab python package', splinelab.__version__, 'ready in .venv')"

@@ -5,7 +5,6 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
-[ -f "$HOME/.cargo/env" ] && . "$HOME/.cargo/env"
 out=report
 args=()
 while [ $# -gt 0 ]; do
@@ -14,5 +13,5 @@ while [ $# -gt 0 ]; do
     *) args+=("$1"); shift ;;
   esac
 done
-cargo run --release --quiet -p splinelab-reports --bin splinelab -- report --out "$out" "${args[@]+"${args[@]}"}"
+bash scripts/splinelab.sh report --out "$out" "${args[@]+"${args[@]}"}"
 echo "open $out/index.html"

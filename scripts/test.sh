@@ -8,6 +8,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
 [ -f "$HOME/.cargo/env" ] && . "$HOME/.cargo/env"
-cargo test --release --workspace "$@"
+read -r -a features <<<"$(bash scripts/gmp_features.sh)"
+cargo test --release --workspace "${features[@]+"${features[@]}"}" "$@"
 bash scripts/python.sh
 .venv/bin/python -m pytest -q -p no:cacheprovider --doctest-modules python/splinelab python/tests
