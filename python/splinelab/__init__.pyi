@@ -139,6 +139,7 @@ def truncation_width(
     *,
     tol: float,
     criterion: Literal["uniform", "coeff", "knot"] = "uniform",
+    budget: float = 60.0,
 ) -> dict[str, Any]: ...
 def coefficients(
     degree: int | None = None,

@@ -8,7 +8,7 @@ import numpy as np
 
 from . import _splinelab as _ext
 from ._sspline import _family
-from ._validate import _int, _mode, _opt_float, _real_array
+from ._validate import _count, _degree_or_order, _mode, _opt_float, _real_array
 
 def _vector(x, what):
     a = _real_array(x, what)
@@ -28,15 +28,9 @@ def _list(x, what):
 
 
 def _check_prefilter(samples, coeffs, degree=None, order=None, mode="mirror", max_ulps=None, format=None):
-    d = _check_degree(degree, order)
+    d = _degree_or_order(degree, order)
     user, fmt = _values(coeffs, format)
     return _ext.check_prefilter(_list(samples, "samples"), user, fmt, d, _mode(mode), _opt_float(max_ulps, "max_ulps"))
-
-
-def _check_degree(degree, order):
-    if degree is not None and order is not None:
-        raise ValueError("give degree= or order= (= degree + 1), not both")
-    return _int(order, "order") - 1 if order is not None else _int(3 if degree is None else degree, "degree")
 
 
 def _check_interp(
@@ -53,7 +47,7 @@ def _check_interp(
     user, fmt = _values(values, format)
     return _ext.check_interp(
         np.ascontiguousarray(s, dtype=np.float64).ravel().tolist(), list(s.shape),
-        c.T.ravel().tolist(), user, fmt, _check_degree(degree, order), _mode(mode), _opt_float(cval, "cval"),
+        c.T.ravel().tolist(), user, fmt, _degree_or_order(degree, order), _mode(mode), _opt_float(cval, "cval"),
         _opt_float(max_ulps, "max_ulps"),
     )
 
@@ -77,7 +71,7 @@ def _check_coeffs(values, order=None, degree=None, tension=None, max_ulps=None, 
 def _check_bspline_eval(knots, coeffs, degree, x, values, extrapolate=True, max_ulps=None, format=None):
     user, fmt = _values(values, format)
     return _ext.check_bspline_eval(
-        _list(knots, "knots"), _list(coeffs, "coeffs"), _int(degree, "degree"), _list(x, "x"),
+        _list(knots, "knots"), _list(coeffs, "coeffs"), _count(degree, "degree"), _list(x, "x"),
         user, fmt, bool(extrapolate), _opt_float(max_ulps, "max_ulps"),
     )
 
@@ -92,7 +86,7 @@ def _spline(s, what):
         t, c, k = s
     except (TypeError, ValueError):
         raise TypeError(f"{what} must be a (t, c, k) triple") from None
-    return (_list(t, f"{what} t"), _list(c, f"{what} c"), _int(k, f"{what} k"))
+    return (_list(t, f"{what} t"), _list(c, f"{what} c"), _count(k, f"{what} k"))
 
 
 def _check_knot_insertion(before, after, max_ulps=None, format=None):

@@ -5,18 +5,18 @@ from __future__ import annotations
 import json
 
 from . import _splinelab as _ext
-from ._validate import _degree, _int, _opt_float
+from ._validate import _count, _degree, _degree_or_order, _int, _opt_float
+
+# numpy's largest number of dimensions (NPY_MAXDIMS in numpy 2).
+MAX_NDIM = 64
+
 
 def _family(degree, order):
     """The paper's B-spline order m from degree= or order= (m = degree + 1)."""
-    if degree is not None and order is not None:
-        raise ValueError("give degree= or order= (= degree + 1), not both")
-    if order is not None:
-        return _int(order, "order")
-    return _int(3 if degree is None else degree, "degree") + 1
+    return _degree_or_order(degree, order) + 1
 
 
-def truncation_width(degree=None, order=None, tension=None, *, tol, criterion="uniform"):
+def truncation_width(degree=None, order=None, tension=None, *, tol, criterion="uniform", budget=60.0):
     """The smallest truncation half-width ``n`` meeting ``tol`` (``splinelab width --json``).
 
     Here ``order`` is the papers' B-spline order ``m = degree + 1`` (give
@@ -30,6 +30,11 @@ def truncation_width(degree=None, order=None, tension=None, *, tol, criterion="u
     ``achieved``, ``criterion``, ``tol``, ``order``, ``tension``, ``family``,
     ``support_radius``, ``f64_saturation_n``.
 
+    ``budget`` (seconds, as the command line's ``--budget``): the search's
+    cost is estimated first (``splinelab_verify::cost::width_search``) and a
+    request estimated longer is refused with a ValueError giving the
+    estimate, before any work (degree 199 at ``tol=1e-10`` takes minutes).
+
     >>> import splinelab
     >>> w = splinelab.truncation_width(degree=3, tol=1e-10)
     >>> w['n'], w['bound'] < 1e-10
@@ -38,8 +43,9 @@ def truncation_width(degree=None, order=None, tension=None, *, tol, criterion="u
     m = _family(degree, order)
     t = None if tension is None else str(tension)
     tol = _opt_float(tol, "tol")
+    budget = _opt_float(budget, "budget")
     n, achieved, bound, crit, saturation, half_support, m, tension, family = _ext.truncation_width(
-        m, t, tol, str(criterion)
+        m, t, tol, str(criterion), budget
     )
     return {
         "order": m, "tension": tension, "family": family, "tol": tol, "criterion": crit, "n": n,
@@ -65,10 +71,10 @@ def coefficients(degree=None, order=None, tension=None, *, count=10, bits=None):
     """
     m = _family(degree, order)
     t = None if tension is None else str(tension)
-    count = _int(count, "count")
+    count = _count(count, "count")
     if bits is None:
         return _ext.coefficients_f64(m, t, count)
-    return json.loads(_ext.coefficients_decimal(m, t, count, _int(bits, "bits")))["c"]
+    return json.loads(_ext.coefficients_decimal(m, t, count, _count(bits, "bits")))["c"]
 
 
 def filter_bound(order, tol=None, ndim=1):
@@ -85,5 +91,5 @@ def filter_bound(order, tol=None, ndim=1):
     (18, 3.0)
     """
     n, b, amp = _ext.filter_bound(_degree(order), _opt_float(tol, "tol"))
-    d = _int(ndim, "ndim")
+    d = _int(ndim, "ndim", 1, MAX_NDIM)
     return {"half_width": n, "bound": b, "amplification": amp, "total": (amp + b) ** d - amp**d}

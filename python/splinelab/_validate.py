@@ -9,17 +9,40 @@ import numpy as np
 MAX_DEGREE = 199
 
 
-def _int(value, what):
+# The widest integer the extension takes (a Rust usize/u64): a larger or
+# negative Python int would otherwise surface as PyO3's OverflowError,
+# which names no argument.
+MAX_INDEX = 2**63 - 1
+
+
+def _int(value, what, lo=None, hi=None):
+    """``value`` as an int, refused (naming ``what``) outside ``lo..hi``."""
     if isinstance(value, bool) or not isinstance(value, numbers.Integral):
         raise TypeError(f"{what} must be an integer, got {type(value).__name__}")
-    return int(value)
+    v = int(value)
+    if (lo is not None and v < lo) or (hi is not None and v > hi):
+        lo_s = "" if lo is None else str(lo)
+        hi_s = "" if hi is None else str(hi)
+        raise ValueError(f"{what} {v} is outside {lo_s}..{hi_s}")
+    return v
+
+
+def _count(value, what):
+    """A non-negative size or count the extension takes as a usize."""
+    return _int(value, what, 0, MAX_INDEX)
 
 
 def _degree(order):
-    d = _int(order, "order (the spline degree)")
-    if not 0 <= d <= MAX_DEGREE:
-        raise ValueError(f"order (the spline degree) {d} is outside 0..{MAX_DEGREE}")
-    return d
+    return _int(order, "order (the spline degree)", 0, MAX_DEGREE)
+
+
+def _degree_or_order(degree, order, default=3):
+    """The spline degree from ``degree=`` or the papers' ``order=`` (= degree + 1)."""
+    if degree is not None and order is not None:
+        raise ValueError("give degree= or order= (= degree + 1), not both")
+    if order is not None:
+        return _int(order, "order (= degree + 1)", 1, MAX_DEGREE + 1) - 1
+    return _int(default if degree is None else degree, "degree", 0, MAX_DEGREE)
 
 
 def _opt_float(value, what):

@@ -10,8 +10,9 @@ use rug::Float;
 use serde_json::json;
 use splinelab::scalar::{Mp, Real, decimal_string};
 use splinelab::sspline::{
-    CoefficientMethod, Criterion, SplineFamily, coefficients, f64_saturation_width,
+    CoefficientMethod, Criterion, SplineFamily, check_tol, coefficients, f64_saturation_width,
 };
+use splinelab_verify::cost::{Estimate, width_search};
 
 /// Largest `count` (as `splinelab coeffs --count`).
 const MAX_COUNT: usize = 100_000;
@@ -39,11 +40,32 @@ fn count_ok(count: usize) -> PyResult<()> {
     }
 }
 
+/// Refuses, before any work, a request whose estimated run time passes
+/// `budget` seconds (the CLI's `--budget`), with the estimate and the value
+/// that would admit it.
+fn within_budget(e: &Estimate, budget: f64) -> PyResult<()> {
+    if !(budget.is_finite() && budget > 0.0) {
+        return Err(value_error(format!(
+            "budget={budget} is not a positive number of seconds"
+        )));
+    }
+    if e.seconds > budget {
+        return Err(value_error(format!(
+            "this request ({}) is estimated at {:.2e} s, over budget={budget} s: \
+             reduce it, or pass budget={:.0}",
+            e.what,
+            e.seconds,
+            (e.seconds * 2.0).ceil()
+        )));
+    }
+    Ok(())
+}
+
 /// The width choice: `(n, achieved, bound, criterion, f64 saturation n,
 /// half support, B-spline order, tension, family)`; splinelab/__init__.py
 /// names the fields as `splinelab width --json` does.
 #[pyfunction]
-#[pyo3(signature = (order, tension, tol, criterion))]
+#[pyo3(signature = (order, tension, tol, criterion, budget))]
 #[allow(clippy::type_complexity)]
 pub fn truncation_width(
     py: Python<'_>,
@@ -51,6 +73,7 @@ pub fn truncation_width(
     tension: Option<&str>,
     tol: f64,
     criterion: &str,
+    budget: f64,
 ) -> PyResult<(
     usize,
     f64,
@@ -64,11 +87,11 @@ pub fn truncation_width(
 )> {
     let family = family(order, tension)?;
     let criterion: Criterion = criterion.parse().map_err(value_error)?;
-    let (w, saturation) = py
-        .detach(|| {
-            let w = splinelab::sspline::truncation_width(&family, tol, criterion)?;
-            f64_saturation_width(&family).map(|s| (w, s))
-        })
+    check_tol(tol).map_err(value_error)?;
+    let saturation = f64_saturation_width(&family).map_err(value_error)?;
+    within_budget(&width_search(&family, saturation, tol), budget)?;
+    let w = py
+        .detach(|| splinelab::sspline::truncation_width(&family, tol, criterion))
         .map_err(value_error)?;
     Ok((
         w.n,

@@ -53,6 +53,18 @@ import splinelab
         (lambda: splinelab.truncation_width(order=300, tol=1e-3), ValueError, "order"),
         (lambda: splinelab.coefficients(degree=3, bits=5), ValueError, "bit"),
         (lambda: splinelab.coefficients(degree=3, count=0), ValueError, "count"),
+        # Integers beyond what the extension takes are refused naming the
+        # argument (PyO3 alone raises an OverflowError naming none).
+        (lambda: splinelab.coefficients(degree=3, count=-1), ValueError, "count -1 is outside 0.."),
+        (lambda: splinelab.coefficients(degree=3, count=10**20), ValueError, "count"),
+        (lambda: splinelab.coefficients(degree=3, count=3, bits=-1), ValueError, "bits"),
+        (lambda: splinelab.coefficients(degree=10**20, count=3), ValueError, "degree"),
+        (lambda: splinelab.filter_bound(3, 1e-10, ndim=10**20), ValueError, "ndim"),
+        (lambda: splinelab.check("prefilter", samples=[1.0], coeffs=[1.0], degree=-1), ValueError, "degree -1"),
+        # The width search is estimated before it starts (degree 199 at 1e-10
+        # takes minutes): refused up front, naming the budget.
+        (lambda: splinelab.truncation_width(degree=199, tol=1e-10), ValueError, "pass budget="),
+        (lambda: splinelab.truncation_width(degree=3, tol=1e-10, budget=0), ValueError, "budget=0"),
         (lambda: splinelab.check("nope"), ValueError, "kind"),
         (lambda: splinelab.check("prefilter", samples=[1.0, 2.0], coeffs=[1.0]), ValueError, "expected 2"),
         (lambda: splinelab.check("prefilter", samples=[1.0], coeffs=[1.0], degree=16), ValueError, "degree"),

@@ -40,38 +40,8 @@ impl Default for BudgetArgs {
     }
 }
 
-/// A cost estimate for one request.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Estimate {
-    /// Estimated run time, seconds.
-    pub seconds: f64,
-    /// Estimated peak memory of the large arrays, bytes.
-    pub bytes: f64,
-    /// What dominates, for the message (e.g. "degree-2000 de Casteljau at 10 parameters").
-    pub what: String,
-}
-
-/// Seconds of one work unit (about one MPFR multiply-add with its
-/// temporaries) at `bits` of precision (53 = f64). Fitted to
-/// `cond --degree 80` and `bezier-eval --method decasteljau` (degree 2000,
-/// 10 parameters) at f64, 64, 256 and 2048 bits: 2e-8 s in f64,
-/// `1e-6·(1 + (bits/64)^0.6)` s in MPFR (2 µs at 64 bits, 9 µs at 2048).
-pub fn unit_seconds(bits: u32) -> f64 {
-    if bits <= 53 {
-        2e-8
-    } else {
-        1e-6 * (1.0 + (bits as f64 / 64.0).powf(0.6))
-    }
-}
-
-/// Bytes of one stored number at `bits` (an MPFR value with its limbs).
-pub fn number_bytes(bits: u32) -> f64 {
-    if bits <= 53 {
-        8.0
-    } else {
-        48.0 + (bits as f64 / 8.0).ceil()
-    }
-}
+// The cost models live in verify (the Python package budgets with them too).
+pub use splinelab_verify::cost::{Estimate, number_bytes, unit_seconds};
 
 impl BudgetArgs {
     /// Refuses `e` beyond the budget; otherwise returns a spinner (hidden

@@ -9,6 +9,7 @@ pub mod bezier_eval;
 pub mod bv_solvers;
 pub mod check;
 pub mod conditioning;
+pub mod cost;
 pub mod curves;
 pub mod deform;
 pub mod exact;

@@ -45,7 +45,9 @@ pub mod width;
 pub use coefficients::{CoefficientMethod, coefficients};
 pub use family::{BasisWindow, SplineFamily};
 pub use truncation::{TruncatedBasis, TruncationAnalysis, TruncationErrors};
-pub use width::{Criterion, WidthChoice, WidthChooser, f64_saturation_width, truncation_width};
+pub use width::{
+    Criterion, WidthChoice, WidthChooser, check_tol, f64_saturation_width, truncation_width,
+};
 
 use crate::roots::RootsError;
 

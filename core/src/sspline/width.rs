@@ -62,7 +62,10 @@ pub fn truncation_width(
     WidthChooser::new(family, tol)?.choose(tol, criterion)
 }
 
-fn check_tol(tol: f64) -> Result<(), SsplineError> {
+/// Refuses a tolerance outside the open interval (0, 1) (NaN included):
+/// what every width search accepts, checked by callers that estimate the
+/// search's cost before starting it.
+pub fn check_tol(tol: f64) -> Result<(), SsplineError> {
     if tol > 0.0 && tol < 1.0 {
         Ok(())
     } else {

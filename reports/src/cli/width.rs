@@ -3,7 +3,7 @@
 
 use super::coeffs::family_from_args;
 use super::width_emit::{Dtype, Emit, Table, parse_dtype, parse_emit, parse_name};
-use crate::budget::{BudgetArgs, Estimate, unit_seconds};
+use crate::budget::BudgetArgs;
 use crate::error::CliError;
 use crate::outln;
 use crate::output::{emit, path_text, print_json, write_atomic};
@@ -13,6 +13,7 @@ use splinelab::sspline::width::certified_width;
 use splinelab::sspline::{
     Criterion, SplineFamily, WidthChoice, f64_saturation_width, truncation_width,
 };
+use splinelab_verify::cost::width_search;
 use std::path::PathBuf;
 
 /// Arguments of `splinelab width`.
@@ -56,23 +57,6 @@ fn parse_criterion(s: &str) -> Result<Criterion, String> {
     s.parse()
 }
 
-/// The cost of `width`: the tail analysis up to the width limit `n_max`
-/// (`O(n_max·K·p)` products at 320 bits, `K ≈ n_max + 64/log2(1/ρ)`, see
-/// `WidthChooser::choose`), with `log2(1/ρ) ≈ 54/n_sat` from the f64
-/// saturation width `n_sat`, and `n_max ≈ n_sat·log2(1/tol)/54`.
-pub fn estimate(family: &SplineFamily, n_sat: usize, tol: f64) -> Estimate {
-    let per_bit = n_sat.max(1) as f64 / 54.0;
-    let n_max = per_bit * (-tol.log2()).max(1.0) + 2.0;
-    let k = n_max + 64.0 * per_bit;
-    let m = family.spline_order() as f64;
-    let p = (m / 2.0).max(1.0);
-    Estimate {
-        seconds: (n_max * k * p + 114.0 * k * m) * unit_seconds(320),
-        bytes: 2.0 * k * p * crate::budget::number_bytes(320),
-        what: format!("width search to n ≈ {n_max:.0} for {family}"),
-    }
-}
-
 /// Runs `splinelab width`.
 pub fn run(args: &WidthArgs) -> Result<(), CliError> {
     let family = family_from_args(args.order, args.tension.as_deref())?;
@@ -85,7 +69,7 @@ pub fn run(args: &WidthArgs) -> Result<(), CliError> {
     let saturation = f64_saturation_width(&family).map_err(CliError::numerical)?;
     let _spinner = args
         .budget
-        .check(&estimate(&family, saturation, args.tol))?;
+        .check(&width_search(&family, saturation, args.tol))?;
     let w = truncation_width(&family, args.tol, args.criterion).map_err(CliError::numerical)?;
     if let Some(form) = args.emit {
         return emit_table(args, &family, &w, form);

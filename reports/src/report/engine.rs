@@ -6,6 +6,7 @@
 
 use super::{Figure, Profile, ReportError, Section, TIME_BAND};
 use crate::array_io::read_samples;
+use crate::chart::{Chart, Series, line_chart};
 use crate::error::CliError;
 use crate::html::{num, paragraph, table};
 use ndarray::{Array2, ArrayD};
@@ -179,6 +180,7 @@ struct Part {
     html: String,
     json: serde_json::Value,
     figures: Vec<Figure>,
+    charts: Vec<Chart>,
 }
 
 /// Agreement with scipy's committed outputs, in ulps of max|reference|.
@@ -223,6 +225,7 @@ fn scipy_part() -> Result<Part, ReportError> {
         html,
         json,
         figures,
+        charts: vec![],
     })
 }
 
@@ -271,6 +274,7 @@ fn truncation_part() -> Result<Part, ReportError> {
         html,
         json: json!(json_rows),
         figures,
+        charts: vec![],
     })
 }
 
@@ -326,6 +330,7 @@ fn residual_part(profile: &Profile) -> Result<Part, ReportError> {
         html,
         json: json!(json_rows),
         figures,
+        charts: vec![],
     })
 }
 
@@ -341,51 +346,125 @@ fn memcpy_seconds(elements: usize, repeats: usize) -> Result<f64, ReportError> {
     Ok(ns * 1e-9)
 }
 
-/// Throughput of the routes, each beside a plain copy of the same bytes.
-fn throughput_part(profile: &Profile) -> Result<Part, ReportError> {
-    let (n1, n2, reps) = *profile.pick(&(100_000, 256, 3), &(1_000_000, 1024, 5));
+/// One timed route at one size, beside a plain copy of the same bytes.
+struct RouteTime {
+    name: &'static str,
+    label: String,
+    seconds: f64,
+    copy: f64,
+    /// Samples filtered, or points evaluated.
+    samples: usize,
+    /// Bytes the copy moves: the array (filters) or the points' coordinates (evaluation).
+    copy_bytes: usize,
+}
+
+/// The four routes at a 1-D size `n1` and a 2-D size `n2 × n2`.
+fn route_times(n1: usize, n2: usize, reps: usize) -> Result<Vec<RouteTime>, ReportError> {
     let one = ArrayD::from_shape_vec(vec![n1], SplitMix64::new(1).signal(n1))
         .map_err(CliError::numerical)?;
     let two = ArrayD::from_shape_vec(vec![n2, n2], SplitMix64::new(2).signal(n2 * n2))
         .map_err(CliError::numerical)?;
     let points = n2 * n2;
-    let t1 = seconds(&one, reps)?;
-    let t2 = seconds(&two, reps)?;
-    let tb = block_seconds(one.as_slice().expect("standard layout"), reps)?;
-    let te = eval_seconds(&two, points, reps)?;
-    // The copy moves the array (filters) or the points' coordinates (evaluation).
-    let (c1, c2, ce) = (
-        memcpy_seconds(n1, reps)?,
-        memcpy_seconds(n2 * n2, reps)?,
-        memcpy_seconds(2 * points, reps)?,
-    );
-    let cases = [
-        ("filter1d_cubic", format!("1-D, {n1} samples"), t1, c1, n1),
-        ("filter2d_cubic", format!("2-D, {n2}×{n2}"), t2, c2, n2 * n2),
+    let threads = rayon::current_num_threads();
+    let timed = [
+        (
+            "filter1d_cubic",
+            format!("1-D, {n1} samples"),
+            seconds(&one, reps)?,
+            n1,
+            n1,
+        ),
+        (
+            "filter2d_cubic",
+            format!("2-D, {n2}×{n2}"),
+            seconds(&two, reps)?,
+            points,
+            points,
+        ),
         (
             "blocks1d_cubic",
-            format!(
-                "1-D, {n1} samples, certified blocks ({} threads)",
-                rayon::current_num_threads()
-            ),
-            tb,
-            c1,
+            format!("1-D, {n1} samples, certified blocks ({threads} threads)"),
+            block_seconds(one.as_slice().expect("standard layout"), reps)?,
+            n1,
             n1,
         ),
         (
             "eval2d_cubic",
             format!("evaluation, {points} points on {n2}×{n2}"),
-            te,
-            ce,
+            eval_seconds(&two, points, reps)?,
             points,
+            2 * points,
         ),
     ];
+    timed
+        .into_iter()
+        .map(|(name, label, seconds, samples, copied)| {
+            Ok(RouteTime {
+                name,
+                label,
+                seconds,
+                copy: memcpy_seconds(copied, reps)?,
+                samples,
+                copy_bytes: 8 * copied,
+            })
+        })
+        .collect()
+}
+
+/// Time / copy against the bytes moved, a line per route over the sizes
+/// measured, with the wall (a plain copy: ratio 1) drawn across.
+fn wall_chart(sizes: &[Vec<RouteTime>]) -> Chart {
+    let mut series: Vec<Series> = sizes[0]
+        .iter()
+        .enumerate()
+        .map(|(k, r)| {
+            let points = sizes
+                .iter()
+                .map(|at| (at[k].copy_bytes as f64 / 1e6, at[k].seconds / at[k].copy))
+                .collect();
+            Series::line_points(r.name, points)
+        })
+        .collect();
+    let mb: Vec<f64> = sizes
+        .iter()
+        .flatten()
+        .map(|r| r.copy_bytes as f64 / 1e6)
+        .collect();
+    let (lo, hi) = (
+        mb.iter().cloned().fold(f64::INFINITY, f64::min),
+        mb.iter().cloned().fold(0.0, f64::max),
+    );
+    series.push(Series::line(
+        "plain copy of the same bytes",
+        vec![(lo, 1.0), (hi, 1.0)],
+    ));
+    line_chart(
+        "engine_time_over_copy",
+        "Each route's time over a plain copy of the same bytes",
+        "MB copied (the array, or the points' coordinates)",
+        "time / copy",
+        true,
+        series,
+        "How far each route is from the memory wall at each size: 1 would be as fast as copying the bytes \
+         once; the certified blocks use every thread, the other routes as measured in the table.",
+    )
+    .with_log_x()
+}
+
+/// Throughput of the routes, each beside a plain copy of the same bytes.
+fn throughput_part(profile: &Profile) -> Result<Part, ReportError> {
+    let (n1, n2, reps) = *profile.pick(&(100_000, 256, 3), &(1_000_000, 1024, 5));
+    let sizes = [
+        route_times(n1 / 4, n2 / 2, reps)?,
+        route_times(n1, n2, reps)?,
+    ];
+    let cases = &sizes[1];
     let figures = cases
         .iter()
-        .map(|(name, _, t, _, _)| {
+        .map(|r| {
             Figure::cost(
-                format!("engine.throughput.{name}.seconds"),
-                *t,
+                format!("engine.throughput.{}.seconds", r.name),
+                r.seconds,
                 "s",
                 TIME_BAND,
             )
@@ -394,13 +473,13 @@ fn throughput_part(profile: &Profile) -> Result<Part, ReportError> {
         .collect();
     let rows: Vec<Vec<String>> = cases
         .iter()
-        .map(|(_, label, t, c, n)| {
+        .map(|r| {
             vec![
-                label.clone(),
-                num(*t),
-                num(*n as f64 / t / 1e6),
-                num(*c),
-                num(t / c),
+                r.label.clone(),
+                num(r.seconds),
+                num(r.samples as f64 / r.seconds / 1e6),
+                num(r.copy),
+                num(r.seconds / r.copy),
             ]
         })
         .collect();
@@ -422,13 +501,15 @@ fn throughput_part(profile: &Profile) -> Result<Part, ReportError> {
         ],
         &rows,
     );
+    let [t1, t2, tb, te] = [0, 1, 2, 3].map(|k| cases[k].seconds);
     let json = json!({"filter1d_seconds": t1, "n1": n1, "filter2d_seconds": t2, "n2": n2,
-        "blocks1d_seconds": tb, "eval2d_seconds": te, "eval2d_points": points,
-        "memcpy_seconds": {"n1": c1, "n2_squared": c2, "eval2d_points": ce}});
+        "blocks1d_seconds": tb, "eval2d_seconds": te, "eval2d_points": n2 * n2,
+        "memcpy_seconds": {"n1": cases[0].copy, "n2_squared": cases[1].copy, "eval2d_points": cases[3].copy}});
     Ok(Part {
         html,
         json,
         figures,
+        charts: vec![wall_chart(&sizes)],
     })
 }
 
@@ -448,16 +529,15 @@ pub fn section(profile: &Profile) -> Result<Section, ReportError> {
         "residual": residual.json,
         "throughput": throughput.json,
     });
-    let figures = [scipy, truncated, residual, throughput]
-        .into_iter()
-        .flat_map(|p| p.figures)
-        .collect();
+    let parts = [scipy, truncated, residual, throughput];
+    let charts = parts.iter().flat_map(|p| p.charts.clone()).collect();
+    let figures = parts.into_iter().flat_map(|p| p.figures).collect();
     Ok(Section {
         id: "engine",
         title: "The interpolation engine: scipy agreement, certified truncation, high degrees"
             .into(),
         html,
-        charts: vec![],
+        charts,
         summary,
         figures,
     })
