@@ -173,22 +173,18 @@ pub enum ChartError {
     Draw(String),
 }
 
-// Twelve distinguishable colours (tab10 plus two), so that the sweeps with
-// ten or more series (orders 2..24) do not reuse a colour.
-const PALETTE: [RGBColor; 12] = [
-    RGBColor(31, 119, 180),
-    RGBColor(255, 127, 14),
-    RGBColor(44, 160, 44),
-    RGBColor(214, 39, 40),
-    RGBColor(148, 103, 189),
-    RGBColor(140, 86, 75),
-    RGBColor(227, 119, 194),
-    RGBColor(127, 127, 127),
-    RGBColor(188, 189, 34),
-    RGBColor(23, 190, 207),
-    RGBColor(0, 0, 0),
-    RGBColor(120, 60, 0),
+// Twelve distinguishable colours (matplotlib's tab10, then black and brown),
+// so that the sweeps with ten or more series (orders 2..24) do not reuse one.
+const PALETTE: [u32; 12] = [
+    0x1f77b4, 0xff7f0e, 0x2ca02c, 0xd62728, 0x9467bd, 0x8c564b, 0xe377c2, 0x7f7f7f, 0xbcbd22,
+    0x17becf, 0x000000, 0x783c00,
 ];
+
+/// The `k`-th palette colour (cycling).
+fn palette(k: usize) -> RGBColor {
+    let [_, r, g, b] = PALETTE[k % PALETTE.len()].to_be_bytes();
+    RGBColor(r, g, b)
+}
 
 fn transform(v: f64, log: bool, name: &str) -> Result<f64, ChartError> {
     if !v.is_finite() {
@@ -391,7 +387,7 @@ impl Chart {
             })
             .draw()?;
         for (k, (s, pts)) in self.series.iter().zip(data).enumerate() {
-            let color = PALETTE[k % PALETTE.len()];
+            let color = palette(k);
             if s.style == Style::Band {
                 let shade = color.mix(0.15);
                 chart.draw_series(

@@ -89,13 +89,18 @@ fn mp256_newton_converges_quadratically() {
             assert!(w[1] <= 2.0 * w[0] + 2.0, "not quadratic: {logs:?}");
         }
     }
-    let near_two = run
-        .observed_orders
+    assert_quadratic_orders(&run.observed_orders);
+}
+
+/// Newton converges quadratically: at least three observed orders within
+/// 0.15 of 2.
+fn assert_quadratic_orders(orders: &[Option<f64>]) {
+    let near_two = orders
         .iter()
         .flatten()
         .filter(|p| (*p - 2.0).abs() < 0.15)
         .count();
-    assert!(near_two >= 3, "orders {:?}", run.observed_orders);
+    assert!(near_two >= 3, "orders {orders:?}");
 }
 
 /// One small Mp<1024> case: the paper-like 4 points, checked in Mp<1088>
@@ -113,13 +118,7 @@ fn mp1024_small_case_converges_to_2_pow_minus_1004() {
         check.max_end_error
     );
     assert!(run.log10_residuals.last().unwrap().unwrap() < -290.0);
-    let near_two = run
-        .observed_orders
-        .iter()
-        .flatten()
-        .filter(|p| (*p - 2.0).abs() < 0.15)
-        .count();
-    assert!(near_two >= 3, "orders {:?}", run.observed_orders);
+    assert_quadratic_orders(&run.observed_orders);
 }
 
 #[test]

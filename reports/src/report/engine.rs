@@ -183,6 +183,26 @@ struct Part {
     charts: Vec<Chart>,
 }
 
+/// What a part shows: a paragraph, then its table.
+struct Shown<'a> {
+    intro: &'a str,
+    title: &'a str,
+    headers: &'a [&'a str],
+    rows: Vec<Vec<String>>,
+}
+
+impl Part {
+    /// A part of a paragraph and a table, with its summary and figures (no chart).
+    fn tabled(shown: Shown, json: serde_json::Value, figures: Vec<Figure>) -> Part {
+        Part {
+            html: paragraph(shown.intro) + &table(shown.title, shown.headers, &shown.rows),
+            json,
+            figures,
+            charts: vec![],
+        }
+    }
+}
+
 /// Agreement with scipy's committed outputs, in ulps of max|reference|.
 fn scipy_part() -> Result<Part, ReportError> {
     let [f1d, fnd, map] = scipy_worst()?;
@@ -207,26 +227,23 @@ fn scipy_part() -> Result<Part, ReportError> {
             num(map),
         ],
     ];
-    let html = paragraph(
-        "The N-D engine (splinelab prefilter / interpolate, and the library's spline_filter, spline_filter1d, \
+    let json = json!({"spline_filter1d": f1d, "spline_filter": fnd, "map_coordinates": map});
+    Ok(Part::tabled(
+        Shown {
+            intro: "The N-D engine (splinelab prefilter / interpolate, and the library's spline_filter, spline_filter1d, \
          map_coordinates) against scipy 1.17.1's own outputs (committed fixtures), in ulps of the largest \
          reference value. scipy's reflect prefilter starts its recursion from a truncated sum and is off \
          (5e-9 for a cubic on 7 samples) on lines shorter than about 20 samples, so reflect is compared on \
          the 37-sample line only; map_coordinates differences up to ~70 ulps are scipy's own: for \
          nearest and grid-constant it pads 12 samples and filters the padded line instead of computing \
          the exact spline of the extended signal.",
-    ) + &table(
-        "Agreement with scipy.ndimage",
-        &["function", "degrees", "worst ulps of max|ref|"],
-        &rows,
-    );
-    let json = json!({"spline_filter1d": f1d, "spline_filter": fnd, "map_coordinates": map});
-    Ok(Part {
-        html,
+            title: "Agreement with scipy.ndimage",
+            headers: &["function", "degrees", "worst ulps of max|ref|"],
+            rows,
+        },
         json,
         figures,
-        charts: vec![],
-    })
+    ))
 }
 
 /// The truncated route against the exact one and its certified bound.
@@ -255,27 +272,24 @@ fn truncation_part() -> Result<Part, ReportError> {
             }
         }
     }
-    let html = paragraph(
-        "Truncated prefilter (certified width for a tolerance) against the exact one, 2000 samples in [−1, 1), \
+    Ok(Part::tabled(
+        Shown {
+            intro: "Truncated prefilter (certified width for a tolerance) against the exact one, 2000 samples in [−1, 1), \
              mirror: the error must stay below the certified bound (ratio ≤ 1).",
-    ) + &table(
-        "Truncated vs exact",
-        &[
-            "degree",
-            "tol",
-            "half-width n",
-            "bound",
-            "max error / max|s|",
-            "error / bound",
-        ],
-        &rows,
-    );
-    Ok(Part {
-        html,
-        json: json!(json_rows),
+            title: "Truncated vs exact",
+            headers: &[
+                "degree",
+                "tol",
+                "half-width n",
+                "bound",
+                "max error / max|s|",
+                "error / bound",
+            ],
+            rows,
+        },
+        json!(json_rows),
         figures,
-        charts: vec![],
-    })
+    ))
 }
 
 /// The interpolation residual at high degree, in MPFR and in f64.
@@ -313,25 +327,22 @@ fn residual_part(profile: &Profile) -> Result<Part, ReportError> {
         json_rows
             .push(json!({"degree": degree, "mp256_relative": r256, "f64_eps_of_max_d": f64_res}));
     }
-    let html = paragraph(
-        "Interpolation residual max_j |Σ D_i β(j−i) − s_j| / max|s| at high degree, 48 samples, mirror, judged \
+    Ok(Part::tabled(
+        Shown {
+            intro: "Interpolation residual max_j |Σ D_i β(j−i) − s_j| / max|s| at high degree, 48 samples, mirror, judged \
              in 512-bit MPFR from the exact node values; f64 in units of ε·max|D| (above degree 31 f64 is refused \
              as ill-conditioned).",
-    ) + &table(
-        "Interpolation residual",
-        &[
-            "degree",
-            "256-bit relative residual",
-            "f64 residual / (ε·max|D|)",
-        ],
-        &rows,
-    );
-    Ok(Part {
-        html,
-        json: json!(json_rows),
+            title: "Interpolation residual",
+            headers: &[
+                "degree",
+                "256-bit relative residual",
+                "f64 residual / (ε·max|D|)",
+            ],
+            rows,
+        },
+        json!(json_rows),
         figures,
-        charts: vec![],
-    })
+    ))
 }
 
 /// Median seconds of a plain copy of `elements` f64 into a reused buffer:
@@ -483,34 +494,30 @@ fn throughput_part(profile: &Profile) -> Result<Part, ReportError> {
             ]
         })
         .collect();
-    let html = paragraph(
-        "In-process throughput of the cubic mirror prefilter, sequential per line and in certified blocks \
+    let [t1, t2, tb, te] = [0, 1, 2, 3].map(|k| cases[k].seconds);
+    let json = json!({"filter1d_seconds": t1, "n1": n1, "filter2d_seconds": t2, "n2": n2,
+        "blocks1d_seconds": tb, "eval2d_seconds": te, "eval2d_points": n2 * n2,
+        "memcpy_seconds": {"n1": cases[0].copy, "n2_squared": cases[1].copy, "eval2d_points": cases[3].copy}});
+    let shown = Shown {
+        intro: "In-process throughput of the cubic mirror prefilter, sequential per line and in certified blocks \
          (tolerance 1e-15), and of batch evaluation of the 2-D interpolant at scattered points (median wall \
          time, all threads; Msamples/s counts points for the evaluation), each beside a plain copy of the \
          same bytes on the same machine in the same run (the array for the filters, the points' coordinates \
          for the evaluation; one thread): time / copy says how far each route is from the memory wall. \
          Ratios to scipy: benches/peers/scipy_ratio.py.",
-    ) + &table(
-        "Prefilter and evaluation throughput",
-        &[
+        title: "Prefilter and evaluation throughput",
+        headers: &[
             "case",
             "seconds",
             "Msamples/s",
             "copy of the same bytes (s)",
             "time / copy",
         ],
-        &rows,
-    );
-    let [t1, t2, tb, te] = [0, 1, 2, 3].map(|k| cases[k].seconds);
-    let json = json!({"filter1d_seconds": t1, "n1": n1, "filter2d_seconds": t2, "n2": n2,
-        "blocks1d_seconds": tb, "eval2d_seconds": te, "eval2d_points": n2 * n2,
-        "memcpy_seconds": {"n1": cases[0].copy, "n2_squared": cases[1].copy, "eval2d_points": cases[3].copy}});
-    Ok(Part {
-        html,
-        json,
-        figures,
-        charts: vec![wall_chart(&sizes)],
-    })
+        rows,
+    };
+    let mut part = Part::tabled(shown, json, figures);
+    part.charts.push(wall_chart(&sizes));
+    Ok(part)
 }
 
 /// Runs the engine studies and presents them.
