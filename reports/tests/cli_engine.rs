@@ -60,6 +60,30 @@ fn ok(args: &[&str]) -> String {
     String::from_utf8(o.stdout).unwrap()
 }
 
+/// Runs `cmd --input X <degree flag> --mode M --cval CVAL <rest…> --output
+/// out` (the shape of every scipy-fixture run) and reads what it wrote.
+fn engine_run(
+    cmd: &str,
+    input: &Path,
+    degree: [&str; 2],
+    mode: &str,
+    rest: &[&str],
+    out: &Path,
+) -> ArrayD<f64> {
+    let mut args = vec![
+        cmd,
+        "--input",
+        input.to_str().unwrap(),
+        degree[0],
+        degree[1],
+    ];
+    args.extend(["--mode", mode, "--cval", CVAL]);
+    args.extend(rest);
+    args.extend(["--output", out.to_str().unwrap()]);
+    ok(&args);
+    read_f64(out)
+}
+
 /// max |a − b| / (ε max|b|).
 fn ulps(a: &ArrayD<f64>, b: &ArrayD<f64>) -> f64 {
     assert_eq!(a.shape(), b.shape());
@@ -70,7 +94,6 @@ fn ulps(a: &ArrayD<f64>, b: &ArrayD<f64>) -> f64 {
 fn prefilter_matches_scipy_fixtures() {
     let dir = tmpdir("pf");
     let out = dir.join("c.npy");
-    let o = out.to_str().unwrap();
     let mut worst = 0.0f64;
     // (fixture, input, axis): reflect only on the 37-sample line, where
     // scipy's reflect rule is right (it is wrong on short lines).
@@ -85,29 +108,17 @@ fn prefilter_matches_scipy_fixtures() {
                 continue;
             }
             for d in 2..=5 {
-                let x = fixture(input);
                 let ds = d.to_string();
-                let mut args = vec![
+                let rest = axis.map_or(vec![], |a| vec!["--axis", a]);
+                let got = engine_run(
                     "prefilter",
-                    "--input",
-                    x.to_str().unwrap(),
-                    "--degree",
-                    &ds,
-                    "--mode",
+                    &fixture(input),
+                    ["--degree", &ds],
                     mode,
-                    "--cval",
-                    CVAL,
-                    "--output",
-                    o,
-                ];
-                if let Some(a) = axis {
-                    args.extend(["--axis", a]);
-                }
-                ok(&args);
-                let u = ulps(
-                    &read_f64(&out),
-                    &read_f64(&fixture(&format!("{fx}_{mode}_{d}"))),
+                    &rest,
+                    &out,
                 );
+                let u = ulps(&got, &read_f64(&fixture(&format!("{fx}_{mode}_{d}"))));
                 assert!(u <= ULPS, "{fx} {mode} {d}: {u:.1} ulps");
                 worst = worst.max(u);
             }
@@ -121,7 +132,6 @@ fn prefilter_matches_scipy_fixtures() {
 fn interpolate_matches_scipy_map_coordinates() {
     let dir = tmpdir("ip");
     let out = dir.join("v.npy");
-    let o = out.to_str().unwrap();
     let mut worst = 0.0f64;
     for mode in MODES {
         for k in 1..=3 {
@@ -138,22 +148,8 @@ fn interpolate_matches_scipy_map_coordinates() {
                 } else {
                     ["--order", &m]
                 };
-                ok(&[
-                    "interpolate",
-                    "--input",
-                    x.to_str().unwrap(),
-                    by[0],
-                    by[1],
-                    "--mode",
-                    mode,
-                    "--cval",
-                    CVAL,
-                    "--at",
-                    p.to_str().unwrap(),
-                    "--output",
-                    o,
-                ]);
-                let got = read_f64(&out);
+                let at = ["--at", p.to_str().unwrap()];
+                let got = engine_run("interpolate", &x, by, mode, &at, &out);
                 let want = read_f64(&fixture(&format!("m{k}_{mode}_{d}")));
                 let u = ulps(&got, &want);
                 assert!(u <= MAP_ULPS, "m{k} {mode} {d}: {u:.1} ulps");
@@ -181,26 +177,11 @@ fn interpolate_given_coefficients_and_degree_0_match_scipy() {
             let (x, q) = (fixture(&format!("x{k}")), fixture(&format!("q{k}")));
             for d in 0..=5u32 {
                 let ds = d.to_string();
-                let mut args = vec![
-                    "interpolate",
-                    "--input",
-                    x.to_str().unwrap(),
-                    "--degree",
-                    &ds,
-                    "--mode",
-                    mode,
-                    "--cval",
-                    CVAL,
-                    "--at",
-                    q.to_str().unwrap(),
-                    "--output",
-                    o,
-                ];
+                let mut rest = vec!["--at", q.to_str().unwrap()];
                 if d > 0 {
-                    args.push("--coeffs");
+                    rest.push("--coeffs");
                 }
-                ok(&args);
-                let got = read_f64(&out);
+                let got = engine_run("interpolate", &x, ["--degree", &ds], mode, &rest, &out);
                 let want = read_f64(&fixture(&format!("n{k}_{mode}_{d}")));
                 if d == 0 {
                     assert_eq!(got, want, "n{k} {mode} degree 0");
