@@ -9,9 +9,15 @@
 //! | [`Mode::Nearest`] | `nearest` | `a a a a │ a b c d │ d d d d` | free ([`EndRule::Free`]) |
 //! | [`Mode::GridConstant`] | `grid-constant` | `k k k k │ a b c d │ k k k k` (`k = cval`) | — |
 //!
-//! scipy's `wrap` is refused with an error naming `grid-wrap`: scipy
-//! filters it with the mirror rule and wraps points with period `ν − 1`
-//! (the first and last samples overlap), so it is not `grid-wrap`. The interpolation condition is imposed on the whole extended
+//! scipy's `wrap` is not a `Mode`: it is not one spline of an extended
+//! signal (scipy filters it with the mirror rule, then wraps points with
+//! period `ν − 1`, the first and last samples overlapping), so parsing
+//! `"wrap"` is refused here with an error naming `grid-wrap`. The Python
+//! drop-in (`map_coordinates`, the resampling functions) and `splinelab
+//! check interp` compute scipy's `wrap` as scipy does: the [`Mode::Mirror`]
+//! spline, evaluated at points folded with period `ν − 1`.
+//!
+//! For every `Mode` the interpolation condition is imposed on the whole extended
 //! signal, so each mode defines one exact spline on all of ℝ. Evaluation
 //! outside `[0, ν − 1]` follows scipy's `map_coordinates`: the symmetric and
 //! periodic modes fold the point (the spline has the same symmetry), and
