@@ -13,6 +13,7 @@
 //! amplification (`1/|V(−1)|`) and `b` the per-axis bound (≈ `D A^{D−1} b`).
 
 use super::NdimageError;
+use super::block_filter::BlockPrefilter;
 use super::line_filter::LineFilter;
 use super::mode::Mode;
 use crate::scalar::Real;
@@ -20,8 +21,8 @@ use ndarray::{Array, ArrayBase, ArrayViewMut3, Axis, Data, DataMut, Dimension, Z
 use rayon::prelude::*;
 
 /// Refuses samples that `filter` could overflow along `axes` axes
-/// ([`LineFilter::check_magnitude`]). One pass, after [`check_finite`].
-pub(crate) fn check_range<T: Real, S: Data<Elem = T>, D: Dimension>(
+/// ([`LineFilter::check_magnitude`]). One pass on the pool, after [`check_finite`].
+pub(crate) fn check_range<T: Real + Send + Sync, S: Data<Elem = T>, D: Dimension>(
     a: &ArrayBase<S, D>,
     filter: &LineFilter<T>,
     axes: usize,
@@ -29,27 +30,91 @@ pub(crate) fn check_range<T: Real, S: Data<Elem = T>, D: Dimension>(
     if T::BITS > 53 {
         return Ok(());
     }
-    let max = a.iter().fold(0.0f64, |m, x| m.max(x.to_f64().abs()));
+    let max = match a.as_slice_memory_order() {
+        Some(s) => scan(s).1,
+        None => a.iter().fold(0.0f64, |m, x| m.max(x.to_f64().abs())),
+    };
     filter.check_magnitude(max, axes)
 }
 
 /// The first non-finite element (in logical order), as an error.
-pub(crate) fn check_finite<T: Real, S: Data<Elem = T>, D: Dimension>(
+pub(crate) fn check_finite<T: Real + Send + Sync, S: Data<Elem = T>, D: Dimension>(
     a: &ArrayBase<S, D>,
 ) -> Result<(), NdimageError> {
     if a.is_empty() {
         return Err(NdimageError::Empty);
     }
     if let Some(s) = a.as_slice_memory_order() {
-        // Fast path: one vectorisable pass; the position only on failure.
-        if s.iter().fold(true, |ok, x| ok & x.is_finite()) {
+        // Fast path: one vectorised pass on the pool; the position only on failure.
+        if scan(s).0 {
             return Ok(());
         }
     }
+    first_non_finite(a)
+}
+
+/// [`check_finite`] and [`check_range`] in one pass over the samples.
+fn check_samples<T: Real + Send + Sync, S: Data<Elem = T>, D: Dimension>(
+    a: &ArrayBase<S, D>,
+    filter: &LineFilter<T>,
+    axes: usize,
+) -> Result<(), NdimageError> {
+    if a.is_empty() {
+        return Err(NdimageError::Empty);
+    }
+    let Some(s) = a.as_slice_memory_order() else {
+        check_finite(a)?;
+        return check_range(a, filter, axes);
+    };
+    match scan(s) {
+        (true, max) => filter.check_magnitude(max, axes),
+        (false, _) => first_non_finite(a),
+    }
+}
+
+/// The error naming the first non-finite element of `a` in logical order
+/// (`Ok` if there is none). Serial: runs only on failure.
+fn first_non_finite<T: Real, S: Data<Elem = T>, D: Dimension>(
+    a: &ArrayBase<S, D>,
+) -> Result<(), NdimageError> {
     match a.iter().position(|x| !x.is_finite()) {
         Some(i) => Err(NdimageError::NonFinite(i)),
         None => Ok(()),
     }
+}
+
+/// Values per task of the scans and copies: 256 KiB of `f64` (the pool's
+/// overhead per task is then well below the time to stream it).
+const SCAN_BLOCK: usize = 1 << 15;
+
+/// Whether every value of `s` is finite, and `max|s|` (0 for scalars of
+/// more than 53 bits, which cannot overflow): one pass on the pool.
+fn scan<T: Real + Send + Sync>(s: &[T]) -> (bool, f64) {
+    s.par_chunks(SCAN_BLOCK)
+        .map(scan_block)
+        .reduce(|| (true, 0.0), |a, b| (a.0 & b.0, a.1.max(b.1)))
+}
+
+/// [`scan`] of one block (branch-free, so it vectorises).
+fn scan_block<T: Real>(s: &[T]) -> (bool, f64) {
+    s.iter().fold((true, 0.0f64), |(ok, m), x| {
+        let x_abs = if T::BITS > 53 { 0.0 } else { x.to_f64().abs() };
+        (ok & x.is_finite(), m.max(x_abs))
+    })
+}
+
+/// Copies `src` into `dst` on the pool, scanning each block ([`scan`])
+/// while it is in L1: the copy, the finiteness and the magnitude check in
+/// one pass (and the first touch of `dst`'s pages on the thread that
+/// will filter them).
+fn copy_scan<T: Real + Send + Sync>(src: &[T], dst: &mut [T]) -> (bool, f64) {
+    dst.par_chunks_mut(SCAN_BLOCK)
+        .zip(src.par_chunks(SCAN_BLOCK))
+        .map(|(d, s)| {
+            d.clone_from_slice(s);
+            scan_block(d)
+        })
+        .reduce(|| (true, 0.0), |a, b| (a.0 & b.0, a.1.max(b.1)))
 }
 
 fn check_axis<D: Dimension>(dim: &D, axis: usize) -> Result<(), NdimageError> {
@@ -89,14 +154,39 @@ where
     D: Dimension,
 {
     check_axis(&a.raw_dim(), axis)?;
-    check_finite(a)?;
-    check_range(a, filter, 1)?;
-    filter_axis_unchecked(a, axis, filter);
+    check_samples(a, filter, 1)?;
+    filter_axis_unchecked(a, axis, filter)
+}
+
+/// [`spline_filter1d`] on checked input. A single long line under
+/// [`Route::Truncated`](super::line_filter::Route::Truncated) runs in
+/// certified blocks on the pool ([`BlockPrefilter::apply_line_into`]);
+/// everything else by lines.
+fn filter_axis_unchecked<T, S, D>(
+    a: &mut ArrayBase<S, D>,
+    axis: usize,
+    filter: &LineFilter<T>,
+) -> Result<(), NdimageError>
+where
+    T: Real + Send + Sync,
+    S: DataMut<Elem = T>,
+    D: Dimension,
+{
+    let blocks = BlockPrefilter::from_line_filter(filter).filter(|b| b.pays_off(a.len()));
+    if let (Some(b), true) = (blocks, a.len() == a.shape()[axis])
+        && let Some(line) = a.as_slice_memory_order_mut()
+    {
+        // One line, in place: the blocks read a copy of the samples.
+        let s: Vec<T> = line.par_iter().cloned().collect();
+        return b.apply_line_into(&s, line);
+    }
+    filter_lines(a, axis, filter);
     Ok(())
 }
 
-/// [`spline_filter1d`] on checked input.
-fn filter_axis_unchecked<T, S, D>(a: &mut ArrayBase<S, D>, axis: usize, filter: &LineFilter<T>)
+/// The lines of `axis` filtered in parallel (many at once where the
+/// layout allows).
+fn filter_lines<T, S, D>(a: &mut ArrayBase<S, D>, axis: usize, filter: &LineFilter<T>)
 where
     T: Real + Send + Sync,
     S: DataMut<Elem = T>,
@@ -232,12 +322,75 @@ where
     S: DataMut<Elem = T>,
     D: Dimension,
 {
-    check_finite(a)?;
-    check_range(a, filter, a.ndim())?;
-    for axis in 0..a.ndim() {
-        filter_axis_unchecked(a, axis, filter);
+    check_samples(a, filter, a.ndim())?;
+    (0..a.ndim()).try_for_each(|axis| filter_axis_unchecked(a, axis, filter))
+}
+
+/// `src` copied into `out` and filtered along `axes` in turn (every axis:
+/// [`spline_filter`]; one: [`spline_filter1d`]): the copy, the finiteness
+/// and the magnitude checks are one pass on the pool (the first touch of
+/// `out`'s pages included), so no step runs on one thread. `filter` `None`:
+/// the copy only (degrees 0 and 1).
+///
+/// **Method**, **accuracy** and **source**: those of [`spline_filter`]
+/// (scipy agreement in `verify/tests/engine_scipy.rs::spline_filter_matches_scipy`;
+/// equal to the in-place call in
+/// `verify/tests/engine_properties.rs::filtering_a_copy_equals_filtering_in_place`).
+///
+/// ```
+/// use splinelab::prelude::*;
+/// use splinelab::ndimage::nd_prefilter::spline_filter_from;
+/// let f = LineFilter::<f64>::new(&SplineFamily::Order(4), Mode::Mirror, 0.0, Route::Exact).unwrap();
+/// let a = ndarray::array![[1.0, 2.0, 0.0], [3.0, 1.0, 5.0]];
+/// let mut out = ndarray::Array2::zeros((2, 3));
+/// spline_filter_from(&a, &mut out, &[0, 1], Some(&f)).unwrap();
+/// let mut b = a.clone();
+/// spline_filter(&mut b, &f).unwrap();
+/// assert_eq!(out, b);
+/// ```
+pub fn spline_filter_from<T, S1, S2, D>(
+    src: &ArrayBase<S1, D>,
+    out: &mut ArrayBase<S2, D>,
+    axes: &[usize],
+    filter: Option<&LineFilter<T>>,
+) -> Result<(), NdimageError>
+where
+    T: Real + Send + Sync,
+    S1: Data<Elem = T>,
+    S2: DataMut<Elem = T>,
+    D: Dimension,
+{
+    if src.shape() != out.shape() {
+        return Err(NdimageError::BufferLength {
+            expected: src.len(),
+            got: out.len(),
+        });
     }
-    Ok(())
+    for &axis in axes {
+        check_axis(&out.raw_dim(), axis)?;
+    }
+    if src.is_empty() {
+        return Err(NdimageError::Empty);
+    }
+    let scanned = match (src.as_slice(), out.as_slice_mut()) {
+        (Some(s), Some(d)) => Some(copy_scan(s, d)),
+        _ => {
+            Zip::from(&mut *out)
+                .and(src)
+                .par_for_each(|d, s| *d = s.clone());
+            None
+        }
+    };
+    let Some(filter) = filter else {
+        return Ok(());
+    };
+    match scanned {
+        Some((true, max)) => filter.check_magnitude(max, axes.len())?,
+        Some((false, _)) => first_non_finite(src)?,
+        None => check_samples(src, filter, axes.len())?,
+    }
+    axes.iter()
+        .try_for_each(|&axis| filter_axis_unchecked(out, axis, filter))
 }
 
 /// The coefficients of `a` along every axis including `pad` coefficients
