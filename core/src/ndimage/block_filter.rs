@@ -20,6 +20,7 @@
 use super::NdimageError;
 use super::line_filter::{LineFilter, Route};
 use super::mode::Mode;
+use super::nd_prefilter::scan_block;
 use crate::scalar::Real;
 use crate::sspline::SplineFamily;
 use crate::sspline::width::certified_width;
@@ -186,15 +187,11 @@ impl<T: Real + Send + Sync> BlockPrefilter<T> {
                 for (g, group) in chunk.chunks_mut(sub * GROUP).enumerate() {
                     let a = b * block + g * sub * GROUP;
                     let own = &s[a..a + group.len()];
-                    // MPFR cannot overflow (LineFilter::check_magnitude): no max.
-                    let (finite, m) = own.iter().fold((true, max), |(ok, m), x| {
-                        let x_abs = if T::BITS > 53 { 0.0 } else { x.to_f64().abs() };
-                        (ok & x.is_finite(), m.max(x_abs))
-                    });
+                    let (finite, m) = scan_block(own);
                     if !finite {
                         return None;
                     }
-                    max = m;
+                    max = max.max(m);
                     self.filter_group(s, a as i64, sub, group, buf);
                 }
                 Some(max)
