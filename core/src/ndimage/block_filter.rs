@@ -20,7 +20,7 @@
 use super::NdimageError;
 use super::line_filter::{LineFilter, Route};
 use super::mode::Mode;
-use super::nd_prefilter::scan_block;
+use super::nd_prefilter::{Stash, scan_block};
 use crate::scalar::Real;
 use crate::sspline::SplineFamily;
 use crate::sspline::width::certified_width;
@@ -178,24 +178,11 @@ impl<T: Real + Send + Sync> BlockPrefilter<T> {
         // magnitude for the overflow check) while they are on their way to
         // L2 (a separate pass over `s` first cost a fifth of the time at
         // 10⁶ samples); the position is searched only on failure.
+        let stash = Stash::default();
         let max = out
             .par_chunks_mut(block)
             .enumerate()
-            .map_init(Vec::new, |buf, (b, chunk)| {
-                let sub = chunk.len().div_ceil(GROUP).min(WINDOW);
-                let mut max = 0.0f64;
-                for (g, group) in chunk.chunks_mut(sub * GROUP).enumerate() {
-                    let a = b * block + g * sub * GROUP;
-                    let own = &s[a..a + group.len()];
-                    let (finite, m) = scan_block(own);
-                    if !finite {
-                        return None;
-                    }
-                    max = max.max(m);
-                    self.filter_group(s, a as i64, sub, group, buf);
-                }
-                Some(max)
-            })
+            .map(|(b, chunk)| stash.with(|buf| self.filter_chunk(s, b * block, chunk, buf)))
             .try_reduce(|| 0.0, |a, b| Some(a.max(b)));
         match max {
             Some(max) => self.filter.check_magnitude(max, 1),
@@ -204,6 +191,30 @@ impl<T: Real + Send + Sync> BlockPrefilter<T> {
                 Err(NdimageError::NonFinite(i))
             }
         }
+    }
+
+    /// One task of [`Self::apply_into`]: the block `chunk` of `out`
+    /// (starting at sample `start`) in groups of [`GROUP`] windows; `max|s|`
+    /// over the block, `None` if a sample is not finite.
+    fn filter_chunk(
+        &self,
+        s: &[T],
+        start: usize,
+        chunk: &mut [T],
+        buf: &mut Vec<Row<T>>,
+    ) -> Option<f64> {
+        let sub = chunk.len().div_ceil(GROUP).min(WINDOW);
+        let mut max = 0.0f64;
+        for (g, group) in chunk.chunks_mut(sub * GROUP).enumerate() {
+            let a = start + g * sub * GROUP;
+            let (finite, m) = scan_block(&s[a..a + group.len()]);
+            if !finite {
+                return None;
+            }
+            max = max.max(m);
+            self.filter_group(s, a as i64, sub, group, buf);
+        }
+        Some(max)
     }
 
     /// Up to [`GROUP`] consecutive blocks of `out` (the first starting at

@@ -19,6 +19,7 @@ use super::mode::Mode;
 use crate::scalar::Real;
 use ndarray::{Array, ArrayBase, ArrayViewMut3, Axis, Data, DataMut, Dimension, Zip};
 use rayon::prelude::*;
+use std::sync::Mutex;
 
 /// Refuses samples that `filter` could overflow along `axes` axes
 /// ([`LineFilter::check_magnitude`]). One pass on the pool, after [`check_finite`].
@@ -248,9 +249,9 @@ where
 {
     let n = a.shape()[a.ndim() - 1];
     let data = a.as_slice_mut().expect("standard layout");
-    data.par_chunks_mut(n * GROUP).for_each_init(
-        || (Vec::with_capacity(n * GROUP), Vec::new()),
-        |(buf, scratch), lines| {
+    let stash = Stash::default();
+    data.par_chunks_mut(n * GROUP).for_each(|lines| {
+        stash.with(|(buf, scratch): &mut (Vec<T>, Vec<T>)| {
             if lines.len() < n * GROUP {
                 for line in lines.chunks_mut(n) {
                     filter.apply(line, scratch);
@@ -267,8 +268,31 @@ where
                     lines[j * n + i] = x.clone();
                 }
             }
-        },
-    );
+        })
+    });
+}
+
+/// Work buffers shared by the tasks of one pass, each task taking one
+/// and putting it back: a fresh multi-megabyte `Vec` per task is a fresh
+/// mapping whose pages the kernel zeroes (perf: `clear_page` was 38% of
+/// spline_filter 4096² on one thread).
+pub(crate) struct Stash<B>(Mutex<Vec<B>>);
+
+impl<B> Default for Stash<B> {
+    fn default() -> Self {
+        Stash(Mutex::new(Vec::new()))
+    }
+}
+
+impl<B: Default> Stash<B> {
+    /// `f` on a buffer (new, or left by an earlier task).
+    pub(crate) fn with<R>(&self, f: impl FnOnce(&mut B) -> R) -> R {
+        let lock = || self.0.lock().unwrap_or_else(|p| p.into_inner());
+        let mut buf = lock().pop().unwrap_or_default();
+        let r = f(&mut buf);
+        lock().push(buf);
+        r
+    }
 }
 
 /// Lines per group of [`filter_last_axis`]: two AVX registers of `f64`.
@@ -304,28 +328,42 @@ where
     let inner: usize = shape[axis + 1..].iter().product();
     let data = a.as_slice_mut().expect("standard layout");
     let mut v = ArrayViewMut3::from_shape((outer, n, inner), data).expect("shape");
+    let stash = Stash::default();
     v.axis_chunks_iter_mut(Axis(2), strip_width::<T>(n))
         .into_par_iter()
         .for_each(|mut strip| {
-            let w = strip.shape()[2];
-            let (mut buf, mut scratch) = (Vec::with_capacity(n * w), Vec::new());
-            for mut block in strip.outer_iter_mut() {
-                buf.clear();
-                for row in block.rows() {
-                    match row.as_slice() {
-                        Some(r) => buf.extend_from_slice(r),
-                        None => buf.extend(row.iter().cloned()),
-                    }
-                }
-                filter.apply_lines(&mut buf, w, &mut scratch);
-                for (mut row, src) in block.rows_mut().into_iter().zip(buf.chunks(w)) {
-                    match row.as_slice_mut() {
-                        Some(r) => r.clone_from_slice(src),
-                        None => row.iter_mut().zip(src).for_each(|(d, s)| *d = s.clone()),
-                    }
-                }
-            }
+            stash.with(|(buf, scratch): &mut (Vec<T>, Vec<T>)| {
+                filter_strip(&mut strip, filter, buf, scratch)
+            })
         });
+}
+
+/// One strip of [`filter_strided_axis`] (`outer × n × w`): each `n × w`
+/// block copied into `buf` (row `i` = sample `i` of the `w` lines),
+/// filtered and copied back.
+fn filter_strip<T: Real>(
+    strip: &mut ArrayViewMut3<'_, T>,
+    filter: &LineFilter<T>,
+    buf: &mut Vec<T>,
+    scratch: &mut Vec<T>,
+) {
+    let w = strip.shape()[2];
+    for mut block in strip.outer_iter_mut() {
+        buf.clear();
+        for row in block.rows() {
+            match row.as_slice() {
+                Some(r) => buf.extend_from_slice(r),
+                None => buf.extend(row.iter().cloned()),
+            }
+        }
+        filter.apply_lines(buf, w, scratch);
+        for (mut row, src) in block.rows_mut().into_iter().zip(buf.chunks(w)) {
+            match row.as_slice_mut() {
+                Some(r) => r.clone_from_slice(src),
+                None => row.iter_mut().zip(src).for_each(|(d, s)| *d = s.clone()),
+            }
+        }
+    }
 }
 
 /// Replaces `a` by its coefficients along every axis (scipy's
