@@ -44,13 +44,14 @@ def _same_layout(a, b):
 _FLOATS = (np.dtype(np.float64), np.dtype(np.float32))
 
 
-def _filter(input, axes, order, output, mode, tol, threads, exact_edges=False):
+def _filter(input, axes, order, output, mode, tol, threads, exact_edges=False, convolution=False):
     """scipy's spline_filter(1d) for every dtype it takes: float64/float32
     results straight from the engine; integer and boolean results computed
     in float64 and converted as scipy's filter converts them (truncated),
     after each axis as scipy does (it filters axis by axis into ``output``);
     complex input filtered part by part (same filter). ``output=None``: the
-    input's dtype."""
+    input's dtype. ``convolution``: with ``tol``, the local truncated
+    convolution (what chunked filtering needs) instead of the fast route."""
     a = _dt.input_array(input)
     cplx = a.dtype.kind == "c"
     dtype, target = _dt.output_dtype(output, a.dtype, _dt.default_output(a.dtype, cplx), cplx)
@@ -59,6 +60,7 @@ def _filter(input, axes, order, output, mode, tol, threads, exact_edges=False):
     d = _degree(order)
     rule = _filter_mode(mode, bool(exact_edges))
     tol, threads = _opt_float(tol, "tol"), _threads(threads)
+    spec = (d, rule, 0.0, tol, threads, bool(convolution))
     if d < 2:
         # scipy: output[...] = input (numpy's conversion), no filter.
         out = target if target is not None else np.empty(a.shape, dtype)
@@ -68,14 +70,14 @@ def _filter(input, axes, order, output, mode, tol, threads, exact_edges=False):
     if cplx:
         part = _dt.real_dtype(dtype)
         out = np.empty(a.shape, dtype)
-        out.real = _filter_float(a.real, part, None, (axes, d, rule, 0.0, tol, threads))
-        out.imag = _filter_float(a.imag, part, None, (axes, d, rule, 0.0, tol, threads))
+        out.real = _filter_float(a.real, part, None, (axes, *spec))
+        out.imag = _filter_float(a.imag, part, None, (axes, *spec))
         return _dt.deliver(out, target, a.shape)
     if dtype in _FLOATS:
-        return _filter_float(a, dtype, target, (axes, d, rule, 0.0, tol, threads))
+        return _filter_float(a, dtype, target, (axes, *spec))
     work = _dt.compute_dtype(dtype)
     for axis in axes:
-        a = _dt.store_truncated(_filter_float(a, work, None, ([axis], d, rule, 0.0, tol, threads)), dtype)
+        a = _dt.store_truncated(_filter_float(a, work, None, ([axis], *spec)), dtype)
     return _dt.deliver(a, target, a.shape)
 
 
@@ -143,9 +145,13 @@ def spline_filter1d(
         give the exact coefficients of the signal extended by its end
         samples / by zeros (scipy has no such filter; its map_coordinates
         approximates them by padding 12 samples).
-    tol : None (exact recursive filter) or float in (0, 1): the truncated
-        convolution of the certified width; ``|result - exact| <= bound *
-        max|input|`` with ``bound = truncation_width(degree=order, tol=tol)['bound'] < tol``.
+    tol : None (exact recursive filter) or float in (0, 1): certified to
+        ``|result - exact| <= bound * max|input|`` with ``bound =
+        truncation_width(degree=order, tol=tol)['bound'] < tol``, by the
+        fastest route that keeps it: one long line in blocks overlapping by
+        the certified width, their recursions side by side in vector lanes
+        and on every thread; lines of an N-D array (and short lines) by the
+        exact recursion (difference 0). Never slower than ``tol=None``.
     threads : None (one per core) or the number of threads.
 
     Returns the coefficients (a new array, or ``output``).

@@ -102,7 +102,9 @@ def _map(darr, axes, order, mode, tol, output, threads, route):
     block_tol = tol if route == "truncated" else None
 
     def block(x):
-        return _filter(x, axes, order, dtype, mode, block_tol, threads)
+        # The truncated route needs the local convolution: a coefficient then
+        # reads only samples within `n` (the module documentation).
+        return _filter(x, axes, order, dtype, mode, block_tol, threads, convolution=True)
 
     return darr.map_overlap(block, depth=depths, boundary=boundary, dtype=dtype, meta=np.array((), dtype=dtype))
 

@@ -10,7 +10,7 @@ use std::sync::{Arc, Mutex, OnceLock};
 
 const CAPACITY: usize = 64;
 
-type Key = (TypeId, u32, Mode, u64, Option<u64>);
+type Key = (TypeId, u32, Mode, u64, Option<(bool, u64)>);
 type Filters = HashMap<Key, Arc<dyn Any + Send + Sync>>;
 
 static FILTERS: OnceLock<Mutex<Filters>> = OnceLock::new();
@@ -28,7 +28,8 @@ where
 {
     let tol = match route {
         Route::Exact => None,
-        Route::Truncated { tol } => Some(tol.to_bits()),
+        Route::Truncated { tol } => Some((false, tol.to_bits())),
+        Route::Convolution { tol } => Some((true, tol.to_bits())),
     };
     let key = (TypeId::of::<T>(), degree, mode, cval.to_bits(), tol);
     let filters = FILTERS.get_or_init(|| Mutex::new(HashMap::new()));

@@ -9,8 +9,11 @@
 //! then filtered in place. A single line (1-D) is copied and filtered with
 //! [`LineFilter::apply`]; the exact route is checked afterwards by its
 //! first coefficient (the recursions spread any NaN/inf there), the
-//! truncated one while copying, in L1-sized blocks. Other shapes are copied
-//! and handed to the engine's N-D filter (which checks once per call).
+//! convolution while copying, in L1-sized blocks; a long line under `tol`
+//! runs in certified blocks on the pool (`BlockPrefilter`), reading the
+//! input and writing the output directly. Other shapes are copied and
+//! filtered by the engine (`spline_filter_from`: copy and checks one pass
+//! on the pool).
 
 use crate::cache;
 use crate::error::value_error;
@@ -19,10 +22,12 @@ use ndarray::{ArrayViewD, ArrayViewMutD};
 use numpy::{Element, PyReadonlyArrayDyn, PyReadwriteArrayDyn};
 use pyo3::prelude::*;
 use splinelab::ndimage::NdimageError;
+use splinelab::ndimage::nd_prefilter::spline_filter_from;
 use splinelab::prelude::*;
 use std::sync::Arc;
 
-/// How to filter: degree, mode, `cval` and route (`tol` → truncated).
+/// How to filter: degree, mode, `cval` and route (`tol` → truncated, or
+/// with `convolution` the local truncated convolution chunked filtering needs).
 struct Spec {
     degree: u32,
     mode: Mode,
@@ -31,11 +36,18 @@ struct Spec {
 }
 
 impl Spec {
-    fn new(degree: u32, mode: &str, cval: f64, tol: Option<f64>) -> PyResult<Spec> {
+    fn new(
+        degree: u32,
+        mode: &str,
+        cval: f64,
+        tol: Option<f64>,
+        convolution: bool,
+    ) -> PyResult<Spec> {
         let mode: Mode = mode.parse().map_err(value_error)?;
-        let route = match tol {
-            Some(tol) => Route::Truncated { tol },
-            None => Route::Exact,
+        let route = match (tol, convolution) {
+            (Some(tol), true) => Route::Convolution { tol },
+            (Some(tol), false) => Route::Truncated { tol },
+            (None, _) => Route::Exact,
         };
         Ok(Spec {
             degree,
@@ -60,6 +72,10 @@ impl Spec {
         cache::line_filter(self.degree, self.mode, self.cval, self.route, build).map(Some)
     }
 }
+
+/// Lines shorter than this run on the calling thread even under `tol`
+/// (below it no block route pays off for any degree's overlap).
+const SERIAL_BELOW: usize = 1 << 12;
 
 /// Values per block of [`copy_checked`]: 32 KiB of f64, an L1 data cache.
 const BLOCK: usize = 4096;
@@ -109,8 +125,13 @@ fn filter_into<T: Real + Copy + Send + Sync + 'static>(
     let (Some(s), Some(f), Some(d)) = (line, &filter, out.as_slice_mut()) else {
         return filter_nd(src, out, axes, filter.as_deref());
     };
+    // One long line under `tol`: certified blocks on the pool, read from
+    // the input and written into the output (no separate copy).
+    if let Some(b) = BlockPrefilter::from_line_filter(f).filter(|b| b.pays_off(s.len())) {
+        return b.apply_line_into(s, d);
+    }
     // One line: the same call the engine makes for a single lane.
-    if f.half_width().is_some() {
+    if f.is_convolution() {
         let max = copy_checked(s, d)?;
         f.check_magnitude(max, 1)?;
         f.apply(d, &mut Vec::new());
@@ -141,7 +162,8 @@ fn filter_into<T: Real + Copy + Send + Sync + 'static>(
     })
 }
 
-/// The general case: copy (strided), then the engine's N-D filter.
+/// The general case: the engine's N-D filter, after its copy of `src`
+/// (copy and checks in one pass on the pool) when given.
 fn filter_nd<T: Real + Send + Sync>(
     src: Option<ArrayViewD<'_, T>>,
     out: &mut ArrayViewMutD<'_, T>,
@@ -149,7 +171,7 @@ fn filter_nd<T: Real + Send + Sync>(
     filter: Option<&LineFilter<T>>,
 ) -> Result<(), NdimageError> {
     if let Some(s) = src {
-        out.assign(&s);
+        return spline_filter_from(&s, out, axes, filter);
     }
     let Some(f) = filter else {
         return Ok(());
@@ -183,10 +205,12 @@ where
     if src.as_ref().is_some_and(|s| s.shape() != out.shape()) {
         return Err(value_error("input and output shapes differ"));
     }
-    // One line is filtered by one thread whatever `threads` says: run it on
-    // the calling thread rather than hand it to a pool thread and wait.
+    // One line is filtered by one thread whatever `threads` says, except
+    // in certified blocks (`tol`): run it on the calling thread rather than
+    // hand it to a pool thread and wait.
+    let serial = matches!(spec.route, Route::Exact) || out.len() < SERIAL_BELOW;
     let threads = match threads {
-        Some(n) if n > 0 && one_line(out.shape(), out.len(), &axes) => None,
+        Some(n) if n > 0 && serial && one_line(out.shape(), out.len(), &axes) => None,
         t => t,
     };
     py.detach(|| run_with(threads, || filter_into(src, &mut out, &axes, &spec)))?
@@ -198,7 +222,7 @@ macro_rules! filter_fn {
     ($name:ident, $t:ty, $doc:literal) => {
         #[doc = $doc]
         #[pyfunction]
-        #[pyo3(signature = (input, output, axes, degree, mode, cval, tol, threads))]
+        #[pyo3(signature = (input, output, axes, degree, mode, cval, tol, threads, convolution=false))]
         #[allow(clippy::too_many_arguments)]
         pub fn $name<'py>(
             py: Python<'py>,
@@ -210,13 +234,14 @@ macro_rules! filter_fn {
             cval: f64,
             tol: Option<f64>,
             threads: Option<usize>,
+            convolution: bool,
         ) -> PyResult<()> {
             filter_generic(
                 py,
                 input,
                 output,
                 axes,
-                Spec::new(degree, mode, cval, tol)?,
+                Spec::new(degree, mode, cval, tol, convolution)?,
                 threads,
             )
         }
@@ -240,7 +265,7 @@ filter_fn!(
 #[pyfunction]
 #[pyo3(signature = (degree, tol))]
 pub fn filter_bound(degree: u32, tol: Option<f64>) -> PyResult<(Option<usize>, f64, f64)> {
-    let spec = Spec::new(degree, "mirror", 0.0, tol)?;
+    let spec = Spec::new(degree, "mirror", 0.0, tol, false)?;
     match spec.line_filter::<f64>().map_err(value_error)? {
         Some(f) => Ok((f.half_width(), f.bound(), f.recursive().amplification())),
         None => Ok((tol.map(|_| 0), 0.0, 1.0)),

@@ -5,7 +5,8 @@
 //!
 //! Usage: `engine_peer KIND DEGREE N REPS` with KIND one of `filter1d`,
 //! `blocks1d` (1-D, blocks overlapping by the width of 1e-15, a quarter of
-//! the signal per thread and at least 2^15 samples per block), `filter2d`
+//! the signal per thread and at least 2^15 samples per block), `tol1d` (1-D,
+//! the `tol=1e-12` route: `BlockPrefilter::apply_line_into`), `filter2d`
 //! (N × N), `filter3d` (N × N × N), `eval2d` (10⁶ points on an N × N
 //! cubic interpolant, mirror). Threads: `RAYON_NUM_THREADS`.
 
@@ -40,7 +41,9 @@ fn time(reps: usize, mut f: impl FnMut()) -> f64 {
 fn main() {
     let args: Vec<String> = std::env::args().collect();
     if args.len() != 5 {
-        eprintln!("usage: engine_peer filter1d|blocks1d|filter2d|filter3d|eval2d DEGREE N REPS");
+        eprintln!(
+            "usage: engine_peer filter1d|blocks1d|tol1d|filter2d|filter3d|eval2d DEGREE N REPS"
+        );
         std::process::exit(2);
     }
     let (kind, degree, n, reps) = (
@@ -68,6 +71,18 @@ fn main() {
             let mut out = vec![0.0; n];
             time(reps, || {
                 b.apply_into(black_box(&s), &mut out, block).unwrap();
+                black_box(&out);
+            })
+        }
+        "tol1d" => {
+            // The `tol=1e-12` route of one line (what Python's spline_filter1d runs).
+            let s: Vec<f64> = (0..n).map(value).collect();
+            let tol = Route::Truncated { tol: 1e-12 };
+            let f = LineFilter::<f64>::new(&family, Mode::Mirror, 0.0, tol).expect("filter");
+            let b = BlockPrefilter::from_line_filter(&f).expect("blocks");
+            let mut out = vec![0.0; n];
+            time(reps, || {
+                b.apply_line_into(black_box(&s), &mut out).unwrap();
                 black_box(&out);
             })
         }

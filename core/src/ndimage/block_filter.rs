@@ -20,6 +20,7 @@
 use super::NdimageError;
 use super::line_filter::{LineFilter, Route};
 use super::mode::Mode;
+use super::nd_prefilter::{Stash, scan_block};
 use crate::scalar::Real;
 use crate::sspline::SplineFamily;
 use crate::sspline::width::certified_width;
@@ -63,6 +64,63 @@ impl<T: Real + Send + Sync> BlockPrefilter<T> {
             overlap,
             bound,
         })
+    }
+
+    /// The blocks of `filter`'s route: overlap its certified half-width,
+    /// its bound; `None` for the exact route (no width). Costs a clone of
+    /// the poles, no MPFR (the filter already holds them).
+    ///
+    /// ```
+    /// use splinelab::prelude::*;
+    /// let f = LineFilter::<f64>::new(&SplineFamily::Order(4), Mode::Mirror, 0.0, Route::Truncated { tol: 1e-12 }).unwrap();
+    /// let b = BlockPrefilter::from_line_filter(&f).unwrap();
+    /// assert_eq!((b.overlap(), b.bound()), (f.half_width().unwrap(), f.bound()));
+    /// ```
+    pub fn from_line_filter(filter: &LineFilter<T>) -> Option<Self> {
+        Some(BlockPrefilter {
+            filter: filter.clone(),
+            overlap: filter.half_width()?,
+            bound: filter.bound(),
+        })
+    }
+
+    /// Whether blocks beat the sequential exact filter on a line of `len`
+    /// samples: at least [`GROUP`] windows whose blocks are 16 overlaps
+    /// long (extra work `2W/B ≤ 1/8`); shorter lines run the exact
+    /// recursion, which is within the bound too (difference 0).
+    pub fn pays_off(&self, len: usize) -> bool {
+        len >= self.min_block()
+    }
+
+    /// The smallest block [`Self::apply_line_into`] hands to one task.
+    fn min_block(&self) -> usize {
+        GROUP * 16 * (self.overlap + self.filter.exact_pad()).max(8)
+    }
+
+    /// [`Self::apply_into`] in [`TASKS`] blocks (enough for four per thread
+    /// on sixteen cores, so a slow thread does not hold the others up), none
+    /// below [`Self::pays_off`]'s size. The blocks depend on the length
+    /// only, so the result is the same bits whatever the thread count.
+    ///
+    /// **Method**, **accuracy** and **source**: as [`Self::apply_into`]
+    /// (tested in `verify/tests/engine_properties.rs::truncated_route_stays_within_its_certified_bound`,
+    /// against MPFR in `verify/tests/engine_properties.rs::truncated_blocks_match_mpfr_within_the_bound`).
+    ///
+    /// ```
+    /// use splinelab::prelude::*;
+    /// let f = BlockPrefilter::<f64>::new(&SplineFamily::Order(4), Mode::Mirror, 0.0, 1e-12).unwrap();
+    /// let s: Vec<f64> = (0..100_000).map(|i| (i as f64 * 0.01).sin()).collect();
+    /// let mut out = vec![0.0; s.len()];
+    /// f.apply_line_into(&s, &mut out).unwrap();
+    /// let exact = LineFilter::<f64>::new(&SplineFamily::Order(4), Mode::Mirror, 0.0, Route::Exact).unwrap();
+    /// let mut want = s.clone();
+    /// exact.apply(&mut want, &mut Vec::new());
+    /// let diff = out.iter().zip(&want).fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
+    /// assert!(diff <= f.bound() + 1e-14);
+    /// ```
+    pub fn apply_line_into(&self, s: &[T], out: &mut [T]) -> Result<(), NdimageError> {
+        let block = s.len().div_ceil(TASKS).max(self.min_block());
+        self.apply_into(s, out, block)
     }
 
     /// The overlap `W` on each side of a block.
@@ -116,29 +174,47 @@ impl<T: Real + Send + Sync> BlockPrefilter<T> {
             return Err(NdimageError::Empty);
         }
         let block = block.max(1);
-        // Each group checks its own samples while they are on their way to
+        // Each group checks its own samples (finite, and their largest
+        // magnitude for the overflow check) while they are on their way to
         // L2 (a separate pass over `s` first cost a fifth of the time at
         // 10⁶ samples); the position is searched only on failure.
-        let finite =
-            out.par_chunks_mut(block)
-                .enumerate()
-                .try_for_each_init(Vec::new, |buf, (b, chunk)| {
-                    let sub = chunk.len().div_ceil(GROUP).min(WINDOW);
-                    for (g, group) in chunk.chunks_mut(sub * GROUP).enumerate() {
-                        let a = b * block + g * sub * GROUP;
-                        let own = &s[a..a + group.len()];
-                        if !own.iter().fold(true, |ok, x| ok & x.is_finite()) {
-                            return Err(());
-                        }
-                        self.filter_group(s, a as i64, sub, group, buf);
-                    }
-                    Ok(())
-                });
-        if finite.is_err() {
-            let i = s.iter().position(|x| !x.is_finite()).unwrap_or(0);
-            return Err(NdimageError::NonFinite(i));
+        let stash = Stash::default();
+        let max = out
+            .par_chunks_mut(block)
+            .enumerate()
+            .map(|(b, chunk)| stash.with(|buf| self.filter_chunk(s, b * block, chunk, buf)))
+            .try_reduce(|| 0.0, |a, b| Some(a.max(b)));
+        match max {
+            Some(max) => self.filter.check_magnitude(max, 1),
+            None => {
+                let i = s.iter().position(|x| !x.is_finite()).unwrap_or(0);
+                Err(NdimageError::NonFinite(i))
+            }
         }
-        Ok(())
+    }
+
+    /// One task of [`Self::apply_into`]: the block `chunk` of `out`
+    /// (starting at sample `start`) in groups of [`GROUP`] windows; `max|s|`
+    /// over the block, `None` if a sample is not finite.
+    fn filter_chunk(
+        &self,
+        s: &[T],
+        start: usize,
+        chunk: &mut [T],
+        buf: &mut Vec<Row<T>>,
+    ) -> Option<f64> {
+        let sub = chunk.len().div_ceil(GROUP).min(WINDOW);
+        let mut max = 0.0f64;
+        for (g, group) in chunk.chunks_mut(sub * GROUP).enumerate() {
+            let a = start + g * sub * GROUP;
+            let (finite, m) = scan_block(&s[a..a + group.len()]);
+            if !finite {
+                return None;
+            }
+            max = max.max(m);
+            self.filter_group(s, a as i64, sub, group, buf);
+        }
+        Some(max)
     }
 
     /// Up to [`GROUP`] consecutive blocks of `out` (the first starting at
@@ -284,6 +360,9 @@ fn anticausal_start<T: Real>(buf: &mut [Row<T>], z: &T) -> Row<T> {
 /// recursion of one block is a chain of dependent multiply-adds; eight
 /// independent chains side by side fill the vector units instead.
 const GROUP: usize = 8;
+
+/// Blocks of [`BlockPrefilter::apply_line_into`] on a long line.
+pub const TASKS: usize = 64;
 
 /// Largest window, in samples: eight windows and their overlaps
 /// (`8 × 8 × 4096` bytes in `f64`) stay in L2 across the passes.

@@ -3,7 +3,7 @@
 //! `j`, the samples extended by the mode. The kernel the N-D engine runs on
 //! every line of every axis.
 //!
-//! Two routes ([`Route`]):
+//! Three routes ([`Route`]):
 //!
 //! - **exact**: the recursive filter of [`RecursivePrefilter`] (a causal and
 //!   an anti-causal first-order recursion per pole). Initial values: the
@@ -18,10 +18,16 @@
 //!   with the true extension to distance `2P`, so the neglected influence is
 //!   below `2^{−2·BITS}` relatively (scipy pads by 12, which leaves
 //!   `ρ^{24} ≈ 1.6·10^{−9}` for quintics).
-//! - **truncated**: the S-spline convolution `D_k = Σ_{|j|≤n} c_{|j|} s_{k−j}`
+//! - **truncated** (`tol=`): certified to `Σ_{|j|>n} |c_j| · max|s|` of the
+//!   exact result, computed the fastest way that keeps it: here (one line
+//!   at a time, or lines side by side) the exact recursion itself; one long
+//!   line in certified blocks (`block_filter`, chosen by the N-D and Python
+//!   entry points).
+//! - **convolution**: the S-spline convolution `D_k = Σ_{|j|≤n} c_{|j|} s_{k−j}`
 //!   (seed 000 eq 10, 20) of half-width `n`, over the extended samples;
 //!   against the exact result its error is at most
-//!   `Σ_{|j|>n} |c_j| · max|s|`, the width chooser's guaranteed bound.
+//!   `Σ_{|j|>n} |c_j| · max|s|`, the width chooser's guaranteed bound. Local
+//!   (`D_k` reads `n` samples each side), as chunked filtering needs.
 
 use super::NdimageError;
 use super::mode::Mode;
@@ -35,10 +41,26 @@ use crate::sspline::width::certified_width;
 pub enum Route {
     /// The exact recursive filter.
     Exact,
-    /// The truncated convolution of the width certified for `tol`: the
-    /// coefficient error is at most `tol · max|s|` per filtered axis
-    /// (smallest `n` whose tail bound `Σ_{|j|>n}|c_j|` is below `tol`).
+    /// Coefficients within `bound · max|s|` of the exact ones per filtered
+    /// axis (`bound = Σ_{|j|>W}|c_j| < tol`, `W` the width certified for
+    /// `tol`), by the fastest route that keeps that bound: lines filtered
+    /// side by side (every N-D axis, short lines) run the exact recursion
+    /// (difference 0); one long line runs in certified blocks of overlap
+    /// `W` whose recursions advance in vector lanes and on every thread
+    /// ([`BlockPrefilter`](super::block_filter::BlockPrefilter), chosen by
+    /// [`spline_filter1d`](super::nd_prefilter::spline_filter1d) and the
+    /// Python package). Never slower than [`Route::Exact`].
     Truncated {
+        /// The tolerance, `0 < tol < 1`.
+        tol: f64,
+    },
+    /// The truncated convolution itself, `D_k = Σ_{|j|≤W} c_j s_{k−j}`
+    /// (seed 000 eq 10) with `W` certified for `tol`: `2W + 1` taps per
+    /// sample, slower than the recursion, but local — `D_k` reads only
+    /// `s_{k−W} .. s_{k+W}`, which chunked filtering (the dask route) needs
+    /// for a chunk to agree with the whole array. Error against the exact
+    /// result at most `Σ_{|j|>W}|c_j| · max|s|`.
+    Convolution {
         /// The tolerance, `0 < tol < 1`.
         tol: f64,
     },
@@ -49,6 +71,7 @@ pub enum Route {
 pub struct LineFilter<T> {
     recursive: RecursivePrefilter<T>,
     convolution: Option<ConvolutionPrefilter<T>>,
+    width: Option<usize>,
     bound: f64,
     mode: Mode,
     cval: T,
@@ -57,11 +80,12 @@ pub struct LineFilter<T> {
 impl<T: Real> LineFilter<T> {
     /// The filter of `family` under `mode` (`cval` used by `grid-constant`
     /// only), by `route`. Cost: one pole computation in MPFR (and for the
-    /// truncated route one width choice, `O(n)` MPFR coefficients).
+    /// truncated and convolution routes one width choice, `O(n)` MPFR
+    /// coefficients).
     ///
     ///
     /// **Accuracy**: exact route as [`RecursivePrefilter`] (`O(u/|V(−1)|)` relative); truncated
-    /// route within its certified bound
+    /// and convolution routes within their certified bound
     /// (`verify/tests/engine_properties.rs::truncated_route_stays_within_its_certified_bound`).
     /// **Source**: Unser, Aldroubi and Eden (1993) for the recursion, seed 000 eq 10 for the
     /// truncation.
@@ -82,16 +106,21 @@ impl<T: Real> LineFilter<T> {
         route: Route,
     ) -> Result<Self, NdimageError> {
         let recursive = RecursivePrefilter::new(family)?;
-        let (convolution, bound) = match route {
-            Route::Exact => (None, 0.0),
+        let (convolution, width, bound) = match route {
+            Route::Exact => (None, None, 0.0),
             Route::Truncated { tol } => {
                 let (n, bound) = certified_width(family, tol)?;
-                (Some(ConvolutionPrefilter::new(family, n)?), bound)
+                (None, Some(n), bound)
+            }
+            Route::Convolution { tol } => {
+                let (n, bound) = certified_width(family, tol)?;
+                (Some(ConvolutionPrefilter::new(family, n)?), Some(n), bound)
             }
         };
         Ok(LineFilter {
             recursive,
             convolution,
+            width,
             bound,
             mode,
             cval: T::from_f64_exact(cval),
@@ -151,13 +180,20 @@ impl<T: Real> LineFilter<T> {
         Err(NdimageError::Overflow { max, growth, limit })
     }
 
-    /// The truncation half-width, `None` for the exact route.
+    /// The certified half-width `W` of `tol` (the convolution's half-width,
+    /// the blocks' overlap), `None` for the exact route.
     pub fn half_width(&self) -> Option<usize> {
-        self.convolution.as_ref().map(|c| c.half_width())
+        self.width
     }
 
-    /// For the truncated route, `Σ_{|j|>n} |c_j|` (0 for the exact route):
-    /// `|D_truncated − D_exact| ≤ bound · max|s|` on one line.
+    /// Whether this is [`Route::Convolution`] (local: `D_k` reads only
+    /// `s_{k−W} .. s_{k+W}`).
+    pub fn is_convolution(&self) -> bool {
+        self.convolution.is_some()
+    }
+
+    /// For the truncated and convolution routes, `Σ_{|j|>W} |c_j|` (0 for
+    /// the exact route): `|D − D_exact| ≤ bound · max|s|` on one line.
     pub fn bound(&self) -> f64 {
         self.bound
     }
@@ -186,7 +222,8 @@ impl<T: Real> LineFilter<T> {
     /// (`scratch` is reused between calls). Cost: exact `9p + 1` flops per
     /// sample plus `O(pK)` (the two-step look-ahead of the causal and
     /// anti-causal passes spends 5 more flops per pole to halve the dependency
-    /// chain); truncated `2n + 1` flops per sample.
+    /// chain); the truncated route runs the exact recursion (difference 0,
+    /// within its bound); the convolution `2n + 1` flops per sample.
     pub fn apply(&self, line: &mut [T], scratch: &mut Vec<T>) {
         self.apply_padded(line, 0, scratch);
     }

@@ -13,15 +13,17 @@
 //! amplification (`1/|V(−1)|`) and `b` the per-axis bound (≈ `D A^{D−1} b`).
 
 use super::NdimageError;
+use super::block_filter::BlockPrefilter;
 use super::line_filter::LineFilter;
 use super::mode::Mode;
 use crate::scalar::Real;
 use ndarray::{Array, ArrayBase, ArrayViewMut3, Axis, Data, DataMut, Dimension, Zip};
 use rayon::prelude::*;
+use std::sync::Mutex;
 
 /// Refuses samples that `filter` could overflow along `axes` axes
-/// ([`LineFilter::check_magnitude`]). One pass, after [`check_finite`].
-pub(crate) fn check_range<T: Real, S: Data<Elem = T>, D: Dimension>(
+/// ([`LineFilter::check_magnitude`]). One pass on the pool, after [`check_finite`].
+pub(crate) fn check_range<T: Real + Send + Sync, S: Data<Elem = T>, D: Dimension>(
     a: &ArrayBase<S, D>,
     filter: &LineFilter<T>,
     axes: usize,
@@ -29,27 +31,112 @@ pub(crate) fn check_range<T: Real, S: Data<Elem = T>, D: Dimension>(
     if T::BITS > 53 {
         return Ok(());
     }
-    let max = a.iter().fold(0.0f64, |m, x| m.max(x.to_f64().abs()));
+    let max = match a.as_slice_memory_order() {
+        Some(s) => scan(s).1,
+        None => a.iter().fold(0.0f64, |m, x| m.max(x.to_f64().abs())),
+    };
     filter.check_magnitude(max, axes)
 }
 
 /// The first non-finite element (in logical order), as an error.
-pub(crate) fn check_finite<T: Real, S: Data<Elem = T>, D: Dimension>(
+pub(crate) fn check_finite<T: Real + Send + Sync, S: Data<Elem = T>, D: Dimension>(
     a: &ArrayBase<S, D>,
 ) -> Result<(), NdimageError> {
     if a.is_empty() {
         return Err(NdimageError::Empty);
     }
     if let Some(s) = a.as_slice_memory_order() {
-        // Fast path: one vectorisable pass; the position only on failure.
-        if s.iter().fold(true, |ok, x| ok & x.is_finite()) {
+        // Fast path: one vectorised pass on the pool; the position only on failure.
+        if scan(s).0 {
             return Ok(());
         }
     }
+    first_non_finite(a)
+}
+
+/// [`check_finite`] and [`check_range`] in one pass over the samples.
+fn check_samples<T: Real + Send + Sync, S: Data<Elem = T>, D: Dimension>(
+    a: &ArrayBase<S, D>,
+    filter: &LineFilter<T>,
+    axes: usize,
+) -> Result<(), NdimageError> {
+    if a.is_empty() {
+        return Err(NdimageError::Empty);
+    }
+    let Some(s) = a.as_slice_memory_order() else {
+        check_finite(a)?;
+        return check_range(a, filter, axes);
+    };
+    match scan(s) {
+        (true, max) => filter.check_magnitude(max, axes),
+        (false, _) => first_non_finite(a),
+    }
+}
+
+/// The error naming the first non-finite element of `a` in logical order
+/// (`Ok` if there is none). Serial: runs only on failure.
+fn first_non_finite<T: Real, S: Data<Elem = T>, D: Dimension>(
+    a: &ArrayBase<S, D>,
+) -> Result<(), NdimageError> {
     match a.iter().position(|x| !x.is_finite()) {
         Some(i) => Err(NdimageError::NonFinite(i)),
         None => Ok(()),
     }
+}
+
+/// Values per task of the scans and copies: 256 KiB of `f64` (the pool's
+/// overhead per task is then well below the time to stream it).
+const SCAN_BLOCK: usize = 1 << 15;
+
+/// Whether every value of `s` is finite, and `max|s|` (0 for scalars of
+/// more than 53 bits, which cannot overflow): one pass on the pool.
+fn scan<T: Real + Send + Sync>(s: &[T]) -> (bool, f64) {
+    s.par_chunks(SCAN_BLOCK)
+        .map(scan_block)
+        .reduce(|| (true, 0.0), |a, b| (a.0 & b.0, a.1.max(b.1)))
+}
+
+/// [`scan`] of one block. For f32/f64, eight independent lanes of
+/// `|x| ≤ MAX` (false for NaN and ±∞) and of a comparison maximum, so the
+/// loop vectorises: a fold through `f64::max` (NaN-aware, a serial chain)
+/// cost as much as the prefilter's recursion itself.
+pub(crate) fn scan_block<T: Real>(s: &[T]) -> (bool, f64) {
+    if T::BITS > 53 {
+        return (s.iter().all(|x| x.is_finite()), 0.0);
+    }
+    let (mut ok, mut max) = ([true; LANES], [0.0f64; LANES]);
+    let mut chunks = s.chunks_exact(LANES);
+    for c in &mut chunks {
+        for ((ok, m), x) in ok.iter_mut().zip(max.iter_mut()).zip(c) {
+            let a = x.to_f64().abs();
+            *ok &= a <= f64::MAX;
+            *m = if a > *m { a } else { *m };
+        }
+    }
+    for x in chunks.remainder() {
+        let a = x.to_f64().abs();
+        ok[0] &= a <= f64::MAX;
+        max[0] = if a > max[0] { a } else { max[0] };
+    }
+    let m = max.iter().fold(0.0f64, |m, &x| if x > m { x } else { m });
+    (ok.iter().all(|&b| b), m)
+}
+
+/// Independent accumulators of [`scan_block`]: two AVX registers of f64.
+const LANES: usize = 8;
+
+/// Copies `src` into `dst` on the pool, scanning each block ([`scan`])
+/// while it is in L1: the copy, the finiteness and the magnitude check in
+/// one pass (and the first touch of `dst`'s pages on the thread that
+/// will filter them).
+fn copy_scan<T: Real + Send + Sync>(src: &[T], dst: &mut [T]) -> (bool, f64) {
+    dst.par_chunks_mut(SCAN_BLOCK)
+        .zip(src.par_chunks(SCAN_BLOCK))
+        .map(|(d, s)| {
+            d.clone_from_slice(s);
+            scan_block(d)
+        })
+        .reduce(|| (true, 0.0), |a, b| (a.0 & b.0, a.1.max(b.1)))
 }
 
 fn check_axis<D: Dimension>(dim: &D, axis: usize) -> Result<(), NdimageError> {
@@ -89,14 +176,39 @@ where
     D: Dimension,
 {
     check_axis(&a.raw_dim(), axis)?;
-    check_finite(a)?;
-    check_range(a, filter, 1)?;
-    filter_axis_unchecked(a, axis, filter);
+    check_samples(a, filter, 1)?;
+    filter_axis_unchecked(a, axis, filter)
+}
+
+/// [`spline_filter1d`] on checked input. A single long line under
+/// [`Route::Truncated`](super::line_filter::Route::Truncated) runs in
+/// certified blocks on the pool ([`BlockPrefilter::apply_line_into`]);
+/// everything else by lines.
+fn filter_axis_unchecked<T, S, D>(
+    a: &mut ArrayBase<S, D>,
+    axis: usize,
+    filter: &LineFilter<T>,
+) -> Result<(), NdimageError>
+where
+    T: Real + Send + Sync,
+    S: DataMut<Elem = T>,
+    D: Dimension,
+{
+    let blocks = BlockPrefilter::from_line_filter(filter).filter(|b| b.pays_off(a.len()));
+    if let (Some(b), true) = (blocks, a.len() == a.shape()[axis])
+        && let Some(line) = a.as_slice_memory_order_mut()
+    {
+        // One line, in place: the blocks read a copy of the samples.
+        let s: Vec<T> = line.par_iter().cloned().collect();
+        return b.apply_line_into(&s, line);
+    }
+    filter_lines(a, axis, filter);
     Ok(())
 }
 
-/// [`spline_filter1d`] on checked input.
-fn filter_axis_unchecked<T, S, D>(a: &mut ArrayBase<S, D>, axis: usize, filter: &LineFilter<T>)
+/// The lines of `axis` filtered in parallel (many at once where the
+/// layout allows).
+fn filter_lines<T, S, D>(a: &mut ArrayBase<S, D>, axis: usize, filter: &LineFilter<T>)
 where
     T: Real + Send + Sync,
     S: DataMut<Elem = T>,
@@ -137,9 +249,9 @@ where
 {
     let n = a.shape()[a.ndim() - 1];
     let data = a.as_slice_mut().expect("standard layout");
-    data.par_chunks_mut(n * GROUP).for_each_init(
-        || (Vec::with_capacity(n * GROUP), Vec::new()),
-        |(buf, scratch), lines| {
+    let stash = Stash::default();
+    data.par_chunks_mut(n * GROUP).for_each(|lines| {
+        stash.with(|(buf, scratch): &mut (Vec<T>, Vec<T>)| {
             if lines.len() < n * GROUP {
                 for line in lines.chunks_mut(n) {
                     filter.apply(line, scratch);
@@ -156,8 +268,31 @@ where
                     lines[j * n + i] = x.clone();
                 }
             }
-        },
-    );
+        })
+    });
+}
+
+/// Work buffers shared by the tasks of one pass, each task taking one
+/// and putting it back: a fresh multi-megabyte `Vec` per task is a fresh
+/// mapping whose pages the kernel zeroes (perf: `clear_page` was 38% of
+/// spline_filter 4096² on one thread).
+pub(crate) struct Stash<B>(Mutex<Vec<B>>);
+
+impl<B> Default for Stash<B> {
+    fn default() -> Self {
+        Stash(Mutex::new(Vec::new()))
+    }
+}
+
+impl<B: Default> Stash<B> {
+    /// `f` on a buffer (new, or left by an earlier task).
+    pub(crate) fn with<R>(&self, f: impl FnOnce(&mut B) -> R) -> R {
+        let lock = || self.0.lock().unwrap_or_else(|p| p.into_inner());
+        let mut buf = lock().pop().unwrap_or_default();
+        let r = f(&mut buf);
+        lock().push(buf);
+        r
+    }
 }
 
 /// Lines per group of [`filter_last_axis`]: two AVX registers of `f64`.
@@ -193,28 +328,42 @@ where
     let inner: usize = shape[axis + 1..].iter().product();
     let data = a.as_slice_mut().expect("standard layout");
     let mut v = ArrayViewMut3::from_shape((outer, n, inner), data).expect("shape");
+    let stash = Stash::default();
     v.axis_chunks_iter_mut(Axis(2), strip_width::<T>(n))
         .into_par_iter()
         .for_each(|mut strip| {
-            let w = strip.shape()[2];
-            let (mut buf, mut scratch) = (Vec::with_capacity(n * w), Vec::new());
-            for mut block in strip.outer_iter_mut() {
-                buf.clear();
-                for row in block.rows() {
-                    match row.as_slice() {
-                        Some(r) => buf.extend_from_slice(r),
-                        None => buf.extend(row.iter().cloned()),
-                    }
-                }
-                filter.apply_lines(&mut buf, w, &mut scratch);
-                for (mut row, src) in block.rows_mut().into_iter().zip(buf.chunks(w)) {
-                    match row.as_slice_mut() {
-                        Some(r) => r.clone_from_slice(src),
-                        None => row.iter_mut().zip(src).for_each(|(d, s)| *d = s.clone()),
-                    }
-                }
-            }
+            stash.with(|(buf, scratch): &mut (Vec<T>, Vec<T>)| {
+                filter_strip(&mut strip, filter, buf, scratch)
+            })
         });
+}
+
+/// One strip of [`filter_strided_axis`] (`outer × n × w`): each `n × w`
+/// block copied into `buf` (row `i` = sample `i` of the `w` lines),
+/// filtered and copied back.
+fn filter_strip<T: Real>(
+    strip: &mut ArrayViewMut3<'_, T>,
+    filter: &LineFilter<T>,
+    buf: &mut Vec<T>,
+    scratch: &mut Vec<T>,
+) {
+    let w = strip.shape()[2];
+    for mut block in strip.outer_iter_mut() {
+        buf.clear();
+        for row in block.rows() {
+            match row.as_slice() {
+                Some(r) => buf.extend_from_slice(r),
+                None => buf.extend(row.iter().cloned()),
+            }
+        }
+        filter.apply_lines(buf, w, scratch);
+        for (mut row, src) in block.rows_mut().into_iter().zip(buf.chunks(w)) {
+            match row.as_slice_mut() {
+                Some(r) => r.clone_from_slice(src),
+                None => row.iter_mut().zip(src).for_each(|(d, s)| *d = s.clone()),
+            }
+        }
+    }
 }
 
 /// Replaces `a` by its coefficients along every axis (scipy's
@@ -232,12 +381,75 @@ where
     S: DataMut<Elem = T>,
     D: Dimension,
 {
-    check_finite(a)?;
-    check_range(a, filter, a.ndim())?;
-    for axis in 0..a.ndim() {
-        filter_axis_unchecked(a, axis, filter);
+    check_samples(a, filter, a.ndim())?;
+    (0..a.ndim()).try_for_each(|axis| filter_axis_unchecked(a, axis, filter))
+}
+
+/// `src` copied into `out` and filtered along `axes` in turn (every axis:
+/// [`spline_filter`]; one: [`spline_filter1d`]): the copy, the finiteness
+/// and the magnitude checks are one pass on the pool (the first touch of
+/// `out`'s pages included), so no step runs on one thread. `filter` `None`:
+/// the copy only (degrees 0 and 1).
+///
+/// **Method**, **accuracy** and **source**: those of [`spline_filter`]
+/// (scipy agreement in `verify/tests/engine_scipy.rs::spline_filter_matches_scipy`;
+/// equal to the in-place call in
+/// `verify/tests/engine_properties.rs::filtering_a_copy_equals_filtering_in_place`).
+///
+/// ```
+/// use splinelab::prelude::*;
+/// use splinelab::ndimage::nd_prefilter::spline_filter_from;
+/// let f = LineFilter::<f64>::new(&SplineFamily::Order(4), Mode::Mirror, 0.0, Route::Exact).unwrap();
+/// let a = ndarray::array![[1.0, 2.0, 0.0], [3.0, 1.0, 5.0]];
+/// let mut out = ndarray::Array2::zeros((2, 3));
+/// spline_filter_from(&a, &mut out, &[0, 1], Some(&f)).unwrap();
+/// let mut b = a.clone();
+/// spline_filter(&mut b, &f).unwrap();
+/// assert_eq!(out, b);
+/// ```
+pub fn spline_filter_from<T, S1, S2, D>(
+    src: &ArrayBase<S1, D>,
+    out: &mut ArrayBase<S2, D>,
+    axes: &[usize],
+    filter: Option<&LineFilter<T>>,
+) -> Result<(), NdimageError>
+where
+    T: Real + Send + Sync,
+    S1: Data<Elem = T>,
+    S2: DataMut<Elem = T>,
+    D: Dimension,
+{
+    if src.shape() != out.shape() {
+        return Err(NdimageError::BufferLength {
+            expected: src.len(),
+            got: out.len(),
+        });
     }
-    Ok(())
+    for &axis in axes {
+        check_axis(&out.raw_dim(), axis)?;
+    }
+    if src.is_empty() {
+        return Err(NdimageError::Empty);
+    }
+    let scanned = match (src.as_slice(), out.as_slice_mut()) {
+        (Some(s), Some(d)) => Some(copy_scan(s, d)),
+        _ => {
+            Zip::from(&mut *out)
+                .and(src)
+                .par_for_each(|d, s| *d = s.clone());
+            None
+        }
+    };
+    let Some(filter) = filter else {
+        return Ok(());
+    };
+    match scanned {
+        Some((true, max)) => filter.check_magnitude(max, axes.len())?,
+        Some((false, _)) => first_non_finite(src)?,
+        None => check_samples(src, filter, axes.len())?,
+    }
+    axes.iter()
+        .try_for_each(|&axis| filter_axis_unchecked(out, axis, filter))
 }
 
 /// The coefficients of `a` along every axis including `pad` coefficients

@@ -253,14 +253,15 @@ pub fn check_conditioning<T: Real>(plan: &Plan) -> Result<f64, CliError> {
 }
 
 /// Units of one prefilter pass along one axis per sample: `4p + 1` for the
-/// recursion (`p` poles), `2n + 1` for a truncated width `n`, estimated as
+/// recursion (`p` poles; the truncated route runs it too, or its blocks),
+/// `2n + 1` for a convolution of width `n`, estimated as
 /// `n ≈ 7.25·m·log2(1/tol)/54` (the cubic's f64 saturation width is 29 at
 /// `2^{−54}`, growing about linearly with the order `m`), plus copying.
 fn per_sample_units(family: &SplineFamily, route: Route) -> f64 {
     let m = family.spline_order() as f64;
     match route {
-        Route::Exact => 2.0 * m + 4.0,
-        Route::Truncated { tol } => 2.0 * 7.25 * m * (-tol.log2()).max(1.0) / 54.0 + 4.0,
+        Route::Exact | Route::Truncated { .. } => 2.0 * m + 4.0,
+        Route::Convolution { tol } => 2.0 * 7.25 * m * (-tol.log2()).max(1.0) / 54.0 + 4.0,
     }
 }
 

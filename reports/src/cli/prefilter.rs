@@ -108,7 +108,7 @@ fn report(plan: &Plan, args: &PrefilterArgs, axes: usize, out: &Outcome) -> Resu
             let total = (a + out.bound).powi(axes as i32) - a.powi(axes as i32);
             outln!(
                 text,
-                "route            truncated to half-width n = {n} (certified for --tol)"
+                "route            truncated to half-width n = {n} (certified for --tol: a long line in blocks overlapping by n, else the exact recursion)"
             );
             outln!(
                 text,

@@ -101,7 +101,7 @@ struct Truncation {
 /// `max|D_truncated − D_exact| / max|s|` on a 2000-sample signal, mirror.
 fn truncation(degree: u32, tol: f64, s: &[f64]) -> Result<Truncation, ReportError> {
     let exact = line_filter::<f64>(degree, Mode::Mirror, Route::Exact)?;
-    let trunc = line_filter::<f64>(degree, Mode::Mirror, Route::Truncated { tol })?;
+    let trunc = line_filter::<f64>(degree, Mode::Mirror, Route::Convolution { tol })?;
     let (mut a, mut b) = (s.to_vec(), s.to_vec());
     exact.apply(&mut a, &mut Vec::new());
     trunc.apply(&mut b, &mut Vec::new());
