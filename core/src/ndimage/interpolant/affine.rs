@@ -122,26 +122,33 @@ impl PointSource for AffinePoints<'_> {
         self.row_sums(&index, &mut row);
         for (j, cv) in take_cval.iter_mut().enumerate() {
             let last = index[k - 1] as f64;
-            let mut outside = false;
-            for h in 0..n {
-                let mut t = row[h] + last * self.matrix[h * k + k - 1];
-                t += self.shift;
-                if !t.is_finite() {
-                    return Err(NdimageError::NonFiniteCoordinate((start + j) * n + h));
-                }
-                match self.rule {
-                    PointRule::Fold => {}
-                    PointRule::CvalOutside => {
-                        outside |= t < 0.0 || t > (self.shape[h] - 1) as f64;
-                    }
-                    PointRule::WrapPeriodNMinus1 => t = wrap_period_n_minus_1(t, self.shape[h]),
-                }
-                xs[j * n + h] = t;
+            let x = &mut xs[j * n..(j + 1) * n];
+            for (h, xh) in x.iter_mut().enumerate() {
+                let t = row[h] + last * self.matrix[h * k + k - 1];
+                *xh = t + self.shift;
             }
-            *cv = outside;
+            *cv = match self.rule {
+                PointRule::Fold => false,
+                PointRule::CvalOutside => x
+                    .iter()
+                    .zip(self.shape)
+                    .any(|(&t, &len)| t < 0.0 || t > (len - 1) as f64),
+                PointRule::WrapPeriodNMinus1 => {
+                    for (t, &len) in x.iter_mut().zip(self.shape) {
+                        *t = wrap_period_n_minus_1(*t, len);
+                    }
+                    false
+                }
+            };
             if step(&mut index, self.out_shape) < k - 1 {
                 self.row_sums(&index, &mut row);
             }
+        }
+        // One pass for the rare overflow to infinity (finite matrix and
+        // offset, huge indices); the position only then.
+        if !xs.iter().fold(true, |ok, t| ok & t.is_finite()) {
+            let at = xs.iter().position(|t| !t.is_finite()).unwrap_or(0);
+            return Err(NdimageError::NonFiniteCoordinate(start * n + at));
         }
         Ok(())
     }

@@ -57,11 +57,28 @@ pub(super) fn bspline_weights<const M: usize>(u: f64) -> [f64; M] {
     a
 }
 
-/// The weights of one point on every axis, and the flat offset of the
-/// first coefficient it reads.
-struct Located<T, const D: usize, const M: usize> {
-    base: usize,
-    w: [[T; M]; D],
+/// [`centred_cell`] for order `M`, the same `(first, u)`, without a call
+/// to libm's `floor` (not inlined on the x86-64 baseline): below `2^52` in
+/// magnitude `⌊x⌋` is the truncation `x as i64`, less one where that
+/// exceeds `x`; beyond, `centred_cell` itself.
+#[inline(always)]
+fn cell_of<const M: usize>(x: f64) -> (i64, f64) {
+    const EXACT: f64 = (1u64 << 52) as f64;
+    if !(x.abs() < EXACT) {
+        return centred_cell(M as u32, x);
+    }
+    let i = x as i64;
+    let i = if (i as f64) > x { i - 1 } else { i };
+    let t = x - i as f64;
+    let half = (M / 2) as i64;
+    let (fl, u) = if M % 2 == 0 {
+        (i + half, t)
+    } else if t >= 0.5 {
+        (i + half + 1, t - 0.5)
+    } else {
+        (i + half, t + 0.5)
+    };
+    (fl - M as i64 + 1, u)
 }
 
 impl<T: Real + Send + Sync> Interpolant<T> {
@@ -111,29 +128,31 @@ impl<T: Real + Send + Sync> Interpolant<T> {
         let c = self.coeffs.as_slice().expect("standard layout");
         let mut xs = [0.0; BATCH * 3];
         let mut take_cval = [false; BATCH];
-        let mut located: [Option<Located<T, D, M>>; BATCH] = std::array::from_fn(|_| None);
+        // Weights and first offsets of a batch, written in place (no
+        // per-point initialisation or move).
+        let mut ws: [[[T; M]; D]; BATCH] =
+            std::array::from_fn(|_| std::array::from_fn(|_| std::array::from_fn(|_| T::zero())));
+        let mut bases = [None; BATCH];
         let mut fallback = None;
         for (b, batch) in out.chunks_mut(BATCH).enumerate() {
             let n = batch.len();
             src.fill(start + b * BATCH, &mut xs[..n * D], &mut take_cval[..n])?;
             for (j, o) in batch.iter_mut().enumerate() {
-                located[j] = None;
+                bases[j] = None;
                 if take_cval[j] {
                     *o = self.cval.clone();
                     continue;
                 }
                 let x: &[f64; D] = xs[j * D..(j + 1) * D].try_into().expect("D coordinates");
-                match self.locate_fixed::<D, M>(x) {
-                    Some(at) => {
-                        self.prefetch_fixed::<D, M>(c, at.base);
-                        located[j] = Some(at);
-                    }
+                bases[j] = self.locate_fixed::<D, M>(x, &mut ws[j]);
+                match bases[j] {
+                    Some(base) => self.prefetch_fixed::<D, M>(c, base),
                     None => *o = self.eval_slow(x, &mut fallback),
                 }
             }
-            for (o, at) in batch.iter_mut().zip(&located) {
-                if let Some(at) = at {
-                    *o = sum_fixed::<T, D, M>(c, at.base, &at.w, &self.strides);
+            for ((o, base), w) in batch.iter_mut().zip(&bases).zip(&ws) {
+                if let Some(base) = *base {
+                    *o = sum_fixed::<T, D, M>(c, base, w, &self.strides);
                 }
             }
         }
@@ -148,16 +167,16 @@ impl<T: Real + Send + Sync> Interpolant<T> {
         self.eval_in(x, &zero[..x.len()], &mut sc)
     }
 
-    /// Cell, weights and first flat offset of `x` (folded by the mode
-    /// unless inside `[0, n − 1]`), or `None` when its window leaves the
-    /// padded coefficients.
+    /// The weights of `x` on every axis into `w` and the flat offset of its
+    /// first coefficient (folded by the mode unless inside `[0, n − 1]`), or
+    /// `None` when its window leaves the padded coefficients.
     #[inline(always)]
     fn locate_fixed<const D: usize, const M: usize>(
         &self,
         x: &[f64; D],
-    ) -> Option<Located<T, D, M>> {
+        w: &mut [[T; M]; D],
+    ) -> Option<usize> {
         let mut base = 0;
-        let mut w: [[T; M]; D] = std::array::from_fn(|_| std::array::from_fn(|_| T::zero()));
         for a in 0..D {
             let n = self.shape[a];
             let xa = if x[a] >= 0.0 && x[a] <= (n - 1) as f64 {
@@ -165,7 +184,7 @@ impl<T: Real + Send + Sync> Interpolant<T> {
             } else {
                 self.coordinate(x[a], a)
             };
-            let (first, u) = centred_cell(M as u32, xa);
+            let (first, u) = cell_of::<M>(xa);
             let i0 = first + self.pad as i64;
             if i0 < 0 || i0 as usize + M > n + 2 * self.pad {
                 return None;
@@ -180,7 +199,7 @@ impl<T: Real + Send + Sync> Interpolant<T> {
                 }
             }
         }
-        Some(Located { base, w })
+        Some(base)
     }
 
     /// Prefetch the `M^{D−1}` rows of a located point.
