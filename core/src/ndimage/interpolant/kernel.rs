@@ -64,14 +64,14 @@ pub(super) fn bspline_weights<const M: usize>(u: f64) -> [f64; M] {
 #[inline(always)]
 fn cell_of<const M: usize>(x: f64) -> (i64, f64) {
     const EXACT: f64 = (1u64 << 52) as f64;
-    if !(x.abs() < EXACT) {
+    if x.abs() >= EXACT || x.is_nan() {
         return centred_cell(M as u32, x);
     }
     let i = x as i64;
     let i = if (i as f64) > x { i - 1 } else { i };
     let t = x - i as f64;
     let half = (M / 2) as i64;
-    let (fl, u) = if M % 2 == 0 {
+    let (fl, u) = if M.is_multiple_of(2) {
         (i + half, t)
     } else if t >= 0.5 {
         (i + half + 1, t - 0.5)
