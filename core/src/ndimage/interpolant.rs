@@ -25,6 +25,8 @@ use crate::sspline::bspline_uniform::{cell_derivatives_into, centred_cell};
 use crate::sspline::{MAX_ORDER, SplineFamily};
 use ndarray::{ArrayBase, ArrayD, ArrayView2, ArrayViewD, Data, Dimension, Slice};
 
+#[cfg(test)]
+mod accuracy;
 mod affine;
 mod batch;
 mod kernel;
