@@ -451,13 +451,19 @@ class _Grid(_Points):
     evaluated separably by the engine (``degree + 1`` multiply-adds per
     output sample and axis); values flat in C order."""
 
-    def outside(self, shape):
-        mask = np.zeros([len(x) for x in self.flat], dtype=bool)
-        for axis, (x, n) in enumerate(zip(self.flat, shape)):
-            view = [1] * len(shape)
-            view[axis] = -1
-            mask |= ((x < 0) | (x > n - 1)).reshape(view)
-        return mask.reshape(-1)
+    def run(self, a, d, mode, cv, tol, prefilter, threads, deriv, cval_outside=False):
+        """As :meth:`_Points.run`; ``cval`` written in place into the slabs
+        of output indices outside ``[0, n - 1]`` on some axis (no mask of
+        the whole output, no second output array)."""
+        values = self.evaluate(a, d, mode, cv, tol, prefilter, threads, deriv)
+        if cval_outside:
+            fill = 0.0 if deriv and any(deriv) else cv
+            grid = values.reshape([len(x) for x in self.flat])
+            for axis, (x, n) in enumerate(zip(self.flat, a.shape)):
+                outside = np.flatnonzero((np.asarray(x) < 0) | (np.asarray(x) > n - 1))
+                if outside.size:
+                    grid[(slice(None),) * axis + (outside,)] = fill
+        return values
 
     def evaluate(self, a, d, mode, cv, tol, prefilter, threads, deriv):
         run = _ext.resample_f64 if a.dtype == np.float64 else _ext.resample_f32

@@ -19,16 +19,21 @@
 use super::NdimageError;
 use super::line_filter::{LineFilter, Route};
 use super::mode::Mode;
-use super::nd_prefilter::{padded_coefficients, padded_extension};
+use super::nd_prefilter::{check_finite, padded_coefficients, spline_filter};
 use crate::scalar::Real;
 use crate::sspline::bspline_uniform::{cell_derivatives_into, centred_cell};
 use crate::sspline::{MAX_ORDER, SplineFamily};
 use ndarray::{ArrayBase, ArrayD, ArrayView2, ArrayViewD, Data, Dimension, Slice};
 
+#[cfg(test)]
+mod accuracy;
 mod affine;
 mod batch;
+mod kernel;
+mod padding;
 mod separable;
 pub use affine::PointRule;
+use padding::extend_padded;
 
 /// How to build an [`Interpolant`].
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -128,8 +133,20 @@ impl<T: Real + Send + Sync> Interpolant<T> {
             // working precision: the spline is constant there.
             pad += filter.exact_pad() + filter.half_width().unwrap_or(0);
         }
-        let coeffs = padded_coefficients(data, &filter, pad)?.into_dyn();
-        let coeffs = coeffs.as_standard_layout().into_owned();
+        let coeffs = match opts.mode {
+            // The symmetric modes' padded coefficients are the coefficients
+            // extended by the mode (what `LineFilter::apply_padded` does):
+            // the whole-array prefilter, then one pass of copies.
+            Mode::Mirror | Mode::Reflect | Mode::GridWrap => {
+                let mut c = data.as_standard_layout().into_owned();
+                spline_filter(&mut c, &filter)?;
+                extend_padded(&c, opts.mode, &T::zero(), pad)
+            }
+            Mode::Nearest | Mode::GridConstant => {
+                let c = padded_coefficients(data, &filter, pad)?.into_dyn();
+                c.as_standard_layout().into_owned()
+            }
+        };
         let strides = coeffs.strides().iter().map(|&s| s as usize).collect();
         Ok(Interpolant {
             shape: data.shape().to_vec(),
@@ -190,8 +207,8 @@ impl<T: Real + Send + Sync> Interpolant<T> {
         } else {
             order as usize / 2 + 2
         };
-        let padded = padded_extension(coeffs, mode, cval, pad)?.into_dyn();
-        let padded = padded.as_standard_layout().into_owned();
+        check_finite(coeffs)?;
+        let padded = extend_padded(coeffs, mode, &T::from_f64_exact(cval), pad);
         Ok(Interpolant {
             shape: coeffs.shape().to_vec(),
             strides: padded.strides().iter().map(|&s| s as usize).collect(),

@@ -171,7 +171,10 @@ impl Mode {
                 let r = if x >= -p - 0.5 && x <= p - 0.5 {
                     x
                 } else {
-                    (x + 0.5).rem_euclid(p) - 0.5
+                    // `x mod p` is exact; `x + 0.5` is not beyond 2^52
+                    // (it would shift the fold by half a sample).
+                    let r = x.rem_euclid(p);
+                    if r >= p - 0.5 { r - p } else { r }
                 };
                 let r = if r < -0.5 { -1.0 - r } else { r };
                 if r <= n - 0.5 { r } else { p - 1.0 - r }
@@ -179,7 +182,11 @@ impl Mode {
             Mode::GridWrap if x >= -0.5 && x <= n - 0.5 => x,
             Mode::GridWrap if x < -0.5 && x >= -0.5 - n => x + n,
             Mode::GridWrap if x > n - 0.5 && x <= 2.0 * n - 0.5 => x - n,
-            Mode::GridWrap => (x + 0.5).rem_euclid(n) - 0.5,
+            Mode::GridWrap => {
+                // Exact, as for `reflect` (no `x + 0.5`).
+                let r = x.rem_euclid(n);
+                if r >= n - 0.5 { r - n } else { r }
+            }
             Mode::Nearest => x.clamp(0.0, n - 1.0),
             Mode::GridConstant => x.clamp(-FAR_CONSTANT, n + FAR_CONSTANT),
         }

@@ -1,26 +1,25 @@
 //! Affine resampling of an [`Interpolant`] without a coordinate array
 //! ([`Interpolant::resample_affine`]): scipy.ndimage's `affine_transform`
 //! and `rotate` (`NI_GeometricTransform` with a matrix). The point of each
-//! output index `o` is generated where it is evaluated, in blocks of 2048
-//! outputs in parallel, and evaluated by [`Interpolant::eval_many`] (batched,
-//! prefetched): no `ndim × count` array of coordinates in memory; under
-//! [`PointRule::CvalOutside`] only the points inside the grid are evaluated.
+//! output index `o` is generated where it is evaluated, 32 at a time, in
+//! chunks of 2048 outputs in parallel, and evaluated as
+//! [`Interpolant::eval_many`] evaluates (batched, prefetched, the fixed-size
+//! kernels of `kernel.rs`): no `ndim × count` array of coordinates in
+//! memory; under [`PointRule::CvalOutside`] the points outside the grid
+//! take `cval` without evaluation.
 //!
 //! **Points** as scipy forms them, to the bit: `x_h = offset_h + o_0 M_{h0}
 //! + o_1 M_{h1} + …` added in that order from `offset_h`, then `+ shift`
 //! (scipy's 12-sample pre-padding for `nearest` / `grid-constant`), then
-//! [`PointRule`]. **Cost** `ndim × out_ndim` multiply-adds per point plus
+//! [`PointRule`]. **Cost** one multiply-add per point and input axis (the
+//! sum of the other output axes' terms is kept along a row) plus
 //! the evaluation (`(degree + 1)^ndim` multiply-adds). **Error**: that of
 //! [`Interpolant::eval`].
 
 use super::Interpolant;
+use super::batch::PointSource;
 use crate::ndimage::NdimageError;
 use crate::scalar::Real;
-use ndarray::Array2;
-use rayon::prelude::*;
-
-/// Outputs per parallel task.
-const BLOCK: usize = 2048;
 
 /// What happens to a point before the interpolant folds it by its mode.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -84,65 +83,88 @@ impl<T: Real + Copy + Send + Sync> Interpolant<T> {
         if let Some(i) = matrix.iter().chain(offset).position(|v| !v.is_finite()) {
             return Err(NdimageError::NonFiniteCoordinate(i));
         }
-        out.par_chunks_mut(BLOCK)
-            .enumerate()
-            .try_for_each(|(b, block)| {
-                // Only the points that are evaluated (CvalOutside: the
-                // inside ones), packed; the others take cval.
-                let mut points = Array2::<f64>::zeros((block.len(), n));
-                let mut slot = Vec::with_capacity(block.len());
-                let mut index = unflatten(b * BLOCK, out_shape);
-                let mut x = vec![0.0; n];
-                for (p, y) in block.iter_mut().enumerate() {
-                    if self.point(matrix, offset, &index, shift, rule, &mut x) {
-                        *y = self.cval;
-                    } else {
-                        points
-                            .row_mut(slot.len())
-                            .as_slice_mut()
-                            .expect("C order")
-                            .copy_from_slice(&x);
-                        slot.push(p);
-                    }
-                    step(&mut index, out_shape);
-                }
-                let mut values = vec![T::zero(); slot.len()];
-                self.eval_many(points.slice(ndarray::s![..slot.len(), ..]), &mut values)?;
-                for (&p, v) in slot.iter().zip(values) {
-                    block[p] = v;
-                }
-                Ok(())
-            })
+        let src = AffinePoints {
+            matrix,
+            offset,
+            out_shape,
+            shift,
+            rule,
+            shape: &self.shape,
+        };
+        self.eval_source(&src, out)
     }
+}
 
-    /// scipy's point of output index `o` into `x`; whether it is outside
-    /// the grid under [`PointRule::CvalOutside`].
-    fn point(
+/// The points of [`Interpolant::resample_affine`], generated batch by batch.
+struct AffinePoints<'a> {
+    matrix: &'a [f64],
+    offset: &'a [f64],
+    out_shape: &'a [usize],
+    shift: f64,
+    rule: PointRule,
+    /// The input's shape.
+    shape: &'a [usize],
+}
+
+impl PointSource for AffinePoints<'_> {
+    /// Along the last output axis only its term changes: the sum of the
+    /// others (`offset_h + o_0 M_{h0} + …`, scipy's order) is kept per row,
+    /// so each point costs one multiply-add per input axis, same bits.
+    fn fill(
         &self,
-        matrix: &[f64],
-        offset: &[f64],
-        o: &[usize],
-        shift: f64,
-        rule: PointRule,
-        x: &mut [f64],
-    ) -> bool {
-        let k = o.len();
-        let mut outside = false;
-        for (h, xh) in x.iter_mut().enumerate() {
-            let mut t = offset[h];
-            for (l, &ol) in o.iter().enumerate() {
-                t += ol as f64 * matrix[h * k + l];
+        start: usize,
+        xs: &mut [f64],
+        take_cval: &mut [bool],
+    ) -> Result<(), NdimageError> {
+        let (n, k) = (self.shape.len(), self.out_shape.len());
+        let mut index = unflatten(start, self.out_shape);
+        let mut row = vec![0.0; n];
+        self.row_sums(&index, &mut row);
+        for (j, cv) in take_cval.iter_mut().enumerate() {
+            let last = index[k - 1] as f64;
+            let x = &mut xs[j * n..(j + 1) * n];
+            for (h, xh) in x.iter_mut().enumerate() {
+                let t = row[h] + last * self.matrix[h * k + k - 1];
+                *xh = t + self.shift;
             }
-            t += shift;
-            let last = self.shape[h] as f64 - 1.0;
-            match rule {
-                PointRule::Fold => {}
-                PointRule::CvalOutside => outside |= t < 0.0 || t > last,
-                PointRule::WrapPeriodNMinus1 => t = wrap_period_n_minus_1(t, self.shape[h]),
+            *cv = match self.rule {
+                PointRule::Fold => false,
+                PointRule::CvalOutside => x
+                    .iter()
+                    .zip(self.shape)
+                    .any(|(&t, &len)| t < 0.0 || t > (len - 1) as f64),
+                PointRule::WrapPeriodNMinus1 => {
+                    for (t, &len) in x.iter_mut().zip(self.shape) {
+                        *t = wrap_period_n_minus_1(*t, len);
+                    }
+                    false
+                }
+            };
+            if step(&mut index, self.out_shape) < k - 1 {
+                self.row_sums(&index, &mut row);
             }
-            *xh = t;
         }
-        outside
+        // One pass for the rare overflow to infinity (finite matrix and
+        // offset, huge indices); the position only then.
+        if !xs.iter().fold(true, |ok, t| ok & t.is_finite()) {
+            let at = xs.iter().position(|t| !t.is_finite()).unwrap_or(0);
+            return Err(NdimageError::NonFiniteCoordinate(start * n + at));
+        }
+        Ok(())
+    }
+}
+
+impl AffinePoints<'_> {
+    /// `offset_h + o_0 M_{h0} + … + o_{k−2} M_{h,k−2}` for every input axis
+    /// `h`, added in scipy's order (all but the last output axis).
+    fn row_sums(&self, o: &[usize], row: &mut [f64]) {
+        let k = o.len();
+        for (h, t) in row.iter_mut().enumerate() {
+            *t = self.offset[h];
+            for (l, &ol) in o[..k - 1].iter().enumerate() {
+                *t += ol as f64 * self.matrix[h * k + l];
+            }
+        }
     }
 }
 
@@ -171,15 +193,17 @@ fn unflatten(mut flat: usize, shape: &[usize]) -> Vec<usize> {
     index
 }
 
-/// The next multi-index in C order.
-fn step(index: &mut [usize], shape: &[usize]) {
-    for (i, &n) in index.iter_mut().zip(shape).rev() {
+/// The next multi-index in C order; returns the axis that advanced
+/// (`shape.len() − 1` unless the last one wrapped; 0 at the end too).
+fn step(index: &mut [usize], shape: &[usize]) -> usize {
+    for (a, (i, &n)) in index.iter_mut().zip(shape).enumerate().rev() {
         *i += 1;
         if *i < n {
-            return;
+            return a;
         }
         *i = 0;
     }
+    0
 }
 
 #[cfg(test)]

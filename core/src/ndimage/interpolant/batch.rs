@@ -19,9 +19,44 @@ use ndarray::{ArrayView2, s};
 use rayon::prelude::*;
 
 /// Points per parallel task (one work space each).
-const CHUNK: usize = 2048;
+pub(super) const CHUNK: usize = 2048;
 /// Points located (and prefetched) before their sums are formed.
-const BATCH: usize = 32;
+pub(super) const BATCH: usize = 32;
+
+/// Where the points of a batch evaluation come from: an array of points
+/// ([`Interpolant::eval_many`]) or points generated where they are
+/// evaluated ([`Interpolant::resample_affine`]).
+pub(super) trait PointSource: Sync {
+    /// The coordinates of points `start..start + take_cval.len()` into
+    /// `xs` (`ndim` per point, in order), and whether each takes `cval`
+    /// without evaluation; an error for a non-finite coordinate.
+    fn fill(
+        &self,
+        start: usize,
+        xs: &mut [f64],
+        take_cval: &mut [bool],
+    ) -> Result<(), NdimageError>;
+}
+
+/// The rows of a `(count, ndim)` array (any strides), checked finite beforehand.
+struct Rows<'a>(ArrayView2<'a, f64>);
+
+impl PointSource for Rows<'_> {
+    fn fill(
+        &self,
+        start: usize,
+        xs: &mut [f64],
+        take_cval: &mut [bool],
+    ) -> Result<(), NdimageError> {
+        let n = take_cval.len();
+        let rows = self.0.slice(s![start..start + n, ..]);
+        for (x, p) in xs.iter_mut().zip(rows.iter()) {
+            *x = *p;
+        }
+        take_cval.fill(false);
+        Ok(())
+    }
+}
 
 impl<T: Real + Send + Sync> Interpolant<T> {
     /// `out[k] = f(points[k, ..])` for `points` of shape `(count, ndim)`
@@ -29,7 +64,9 @@ impl<T: Real + Send + Sync> Interpolant<T> {
     /// per chunk: no allocation per point. Every coordinate must be finite
     /// (else the error names the first flat index). Cost per point as
     /// [`Interpolant::eval`]; the coefficient rows of 32 points are
-    /// prefetched before they are summed (module documentation).
+    /// prefetched before they are summed (module documentation); 1 to 3
+    /// dimensions of degree 1 to 5 in `f64`/`f32` by fixed-size kernels
+    /// (`kernel.rs`).
     pub fn eval_many(
         &self,
         points: ArrayView2<'_, f64>,
@@ -50,18 +87,37 @@ impl<T: Real + Send + Sync> Interpolant<T> {
         if let Some(k) = points.iter().position(|c| !c.is_finite()) {
             return Err(NdimageError::NonFiniteCoordinate(k));
         }
-        out.par_chunks_mut(CHUNK)
-            .enumerate()
-            .for_each(|(c, chunk)| {
-                let lo = c * CHUNK;
-                self.eval_chunk(points.slice(s![lo..lo + chunk.len(), ..]), chunk);
-            });
-        Ok(())
+        self.eval_source(&Rows(points), out)
     }
 
-    /// [`Self::eval_many`] on one chunk, sequentially, in batches.
-    fn eval_chunk(&self, points: ArrayView2<'_, f64>, out: &mut [T]) {
-        let zero = vec![0; self.ndim()];
+    /// The points of `src` into `out` (one per element), in parallel over
+    /// chunks of [`CHUNK`] points.
+    pub(super) fn eval_source<S: PointSource>(
+        &self,
+        src: &S,
+        out: &mut [T],
+    ) -> Result<(), NdimageError> {
+        out.par_chunks_mut(CHUNK)
+            .enumerate()
+            .try_for_each(|(c, chunk)| {
+                if self.has_kernel() {
+                    self.eval_kernel(src, c * CHUNK, chunk)
+                } else {
+                    self.eval_chunk(src, c * CHUNK, chunk)
+                }
+            })
+    }
+
+    /// The points `start..start + out.len()` of `src` on the general path,
+    /// sequentially, in batches.
+    fn eval_chunk<S: PointSource>(
+        &self,
+        src: &S,
+        start: usize,
+        out: &mut [T],
+    ) -> Result<(), NdimageError> {
+        let n = self.ndim();
+        let zero = vec![0; n];
         let (mut w, mut off, mut inside) = self.scratch();
         let mut sc = Scratch {
             w: &mut w,
@@ -69,19 +125,28 @@ impl<T: Real + Send + Sync> Interpolant<T> {
             inside: &mut inside,
         };
         let k = sc.w.len();
-        let mut x = vec![0.0; self.ndim()];
+        let mut xs = vec![0.0; BATCH * n];
+        let mut take_cval = [false; BATCH];
         let mut ws = vec![T::zero(); BATCH * k];
         let mut bases = [None; BATCH];
         let c = self.coeffs.as_slice().expect("standard layout");
         for (b, batch) in out.chunks_mut(BATCH).enumerate() {
+            src.fill(
+                start + b * BATCH,
+                &mut xs[..batch.len() * n],
+                &mut take_cval[..batch.len()],
+            )?;
             for (j, o) in batch.iter_mut().enumerate() {
-                for (xa, p) in x.iter_mut().zip(points.row(b * BATCH + j)) {
-                    *xa = *p;
+                bases[j] = None;
+                if take_cval[j] {
+                    *o = self.cval.clone();
+                    continue;
                 }
-                bases[j] = self.locate(&x, &mut ws[j * k..(j + 1) * k]);
+                let x = &xs[j * n..(j + 1) * n];
+                bases[j] = self.locate(x, &mut ws[j * k..(j + 1) * k]);
                 match bases[j] {
                     Some(base) => self.prefetch_rows(c, base),
-                    None => *o = self.eval_in(&x, &zero, &mut sc),
+                    None => *o = self.eval_in(x, &zero, &mut sc),
                 }
             }
             for (j, o) in batch.iter_mut().enumerate() {
@@ -90,6 +155,7 @@ impl<T: Real + Send + Sync> Interpolant<T> {
                 }
             }
         }
+        Ok(())
     }
 
     /// Prefetch the rows a located point reads (1 to 3 dimensions; beyond,
@@ -215,7 +281,7 @@ impl<T: Real + Send + Sync> Interpolant<T> {
 /// none at all off x86_64. Addresses are formed with wrapping arithmetic and
 /// never dereferenced here.
 #[inline(always)]
-fn prefetch<T>(c: &[T], at: usize, len: usize) {
+pub(super) fn prefetch<T>(c: &[T], at: usize, len: usize) {
     #[cfg(target_arch = "x86_64")]
     {
         use std::arch::x86_64::{_MM_HINT_T0, _mm_prefetch};
@@ -241,7 +307,7 @@ fn prefetch<T>(c: &[T], at: usize, len: usize) {
 /// each weight is within a few ulps); other orders by de Boor–Cox
 /// ([`cell_derivatives_into`] with `d = 0`). `O(1)` resp. `O(m²)`. The
 /// closed form runs in `f64`, so it serves scalars of at most 53 bits.
-fn window_weights_into<T: Real>(m: u32, u: f64, w: &mut [T]) {
+pub(super) fn window_weights_into<T: Real>(m: u32, u: f64, w: &mut [T]) {
     if m == 4 && T::BITS <= 53 {
         let v = 1.0 - u;
         let (u2, v2) = (u * u, v * v);
