@@ -7,6 +7,7 @@ use nalgebra::SVector;
 use splinelab::bernstein::bezier::Bezier;
 use splinelab::curves::CurveError;
 use splinelab::curves::flatten::{Polyline, segment_distance};
+use splinelab::param_curve::ParamCurve;
 use splinelab::scalar::prelude::*;
 
 /// Bisection steps of [`greedy_reference_segments`] per chord (the step is
@@ -93,6 +94,45 @@ pub fn deviation_in_mpfr<T: Real, const D: usize>(
         for i in 0..=samples + 1 {
             let s = M::from_int(i as i64) / M::from_int(samples as i64 + 1);
             let t = t0.clone() + (t1.clone() - t0.clone()) * s;
+            worst = worst.max(segment_distance(&exact.eval(&t)?, &a, &b));
+        }
+    }
+    Ok(worst.to_f64() * (1.0 + f64::EPSILON))
+}
+
+/// The largest distance from a curve of any type to an f64 polyline, judged
+/// in 256-bit MPFR: `exact` is the curve rebuilt in `Mp<256>` from the same
+/// f64 data (lifted exactly), evaluated by its own `eval` at the vertices'
+/// parameters and `samples` interior points of every chord's parameter
+/// interval; each point's distance to its own chord (vertices lifted
+/// exactly) is taken in MPFR. Returned as f64, rounded up.
+///
+/// What it judges is the f64 data's curve, not the f64 code's rounding:
+/// where the type computes derived data (Catmull–Rom's chord-length knots),
+/// the MPFR curve uses the exact values, a difference of a few ulps of the
+/// coordinates.
+pub fn deviation_of_curve_in_mpfr<C, const D: usize>(
+    exact: &C,
+    poly: &Polyline<f64, D>,
+    samples: usize,
+) -> Result<f64, C::Error>
+where
+    C: ParamCurve<Mp<256>, D>,
+{
+    type M = Mp<256>;
+    let lift = |p: &SVector<f64, D>| p.map(M::from_f64_exact);
+    let (lo, hi) = exact.domain();
+    let mut worst = M::zero();
+    for j in 0..poly.segments() {
+        let (t0, t1) = (
+            M::from_f64_exact(poly.params[j]),
+            M::from_f64_exact(poly.params[j + 1]),
+        );
+        let (a, b) = (lift(&poly.points[j]), lift(&poly.points[j + 1]));
+        for i in 0..=samples + 1 {
+            let s = M::from_int(i as i64) / M::from_int(samples as i64 + 1);
+            // Clamped: the f64 vertex parameters may round past the exact ends.
+            let t = (t0.clone() + (t1.clone() - t0.clone()) * s).clamp(lo.clone(), hi.clone());
             worst = worst.max(segment_distance(&exact.eval(&t)?, &a, &b));
         }
     }
