@@ -221,8 +221,9 @@ fn gauss<T: Real, const D: usize, C: ParamCurveDeriv<T, D> + ?Sized>(
     Ok(sum * h)
 }
 
-/// `L(t0, t1)`: [`adaptive`] between the curve's breakpoints inside
-/// `(t0, t1)` (where the speed may have a kink that halving would chase).
+/// `L(t0, t1)`: adaptive halving (module doc, [`refine`]) between the
+/// curve's breakpoints inside `(t0, t1)` (where the speed may have a kink
+/// that halving would chase).
 fn integrate<T: Real, const D: usize, C: ParamCurveDeriv<T, D> + ?Sized>(
     curve: &C,
     rule: &GaussLegendre<T>,
@@ -235,24 +236,12 @@ fn integrate<T: Real, const D: usize, C: ParamCurveDeriv<T, D> + ?Sized>(
     cuts.push(t1.clone());
     let mut sum = T::zero();
     for w in cuts.windows(2) {
-        sum += adaptive(curve, rule, &w[0], &w[1], rate)?;
+        if w[1] > w[0] {
+            let whole = gauss(curve, rule, &w[0], &w[1])?;
+            sum += refine(curve, rule, &w[0], &w[1], whole, rate, 0)?;
+        }
     }
     Ok(sum)
-}
-
-/// Adaptive halving on `[t0, t1]` (module doc).
-fn adaptive<T: Real, const D: usize, C: ParamCurveDeriv<T, D> + ?Sized>(
-    curve: &C,
-    rule: &GaussLegendre<T>,
-    t0: &T,
-    t1: &T,
-    rate: &T,
-) -> Result<T, ArclenError<C::Error>> {
-    if t1 <= t0 {
-        return Ok(T::zero());
-    }
-    let whole = gauss(curve, rule, t0, t1)?;
-    refine(curve, rule, t0, t1, whole, rate, 0)
 }
 
 /// The halves of `[t0, t1]` against `whole`, the rule on all of it.

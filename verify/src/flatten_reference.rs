@@ -5,6 +5,9 @@
 
 use nalgebra::SVector;
 use splinelab::bernstein::bezier::Bezier;
+use splinelab::bspline::de_boor::BSplineError;
+use splinelab::bspline::knots::KnotVector;
+use splinelab::bspline::nurbs::NurbsCurve;
 use splinelab::curves::CurveError;
 use splinelab::curves::flatten::{Polyline, segment_distance};
 use splinelab::param_curve::ParamCurve;
@@ -120,7 +123,7 @@ where
     C: ParamCurve<Mp<256>, D>,
 {
     type M = Mp<256>;
-    let lift = |p: &SVector<f64, D>| p.map(M::from_f64_exact);
+    let lift = lift256::<D>;
     let (lo, hi) = exact.domain();
     let mut worst = M::zero();
     for j in 0..poly.segments() {
@@ -137,4 +140,39 @@ where
         }
     }
     Ok(worst.to_f64() * (1.0 + f64::EPSILON))
+}
+
+/// An f64 point lifted to `Mp<256>` (exactly).
+pub fn lift256<const D: usize>(p: &SVector<f64, D>) -> SVector<Mp<256>, D> {
+    p.map(Mp::<256>::from_f64_exact)
+}
+
+/// The same NURBS curve in `Mp<256>`: its homogeneous points, weights and
+/// knots lifted exactly, so that the twin is the f64 curve's exact value.
+pub fn nurbs_twin<const D: usize>(
+    curve: &NurbsCurve<f64, D>,
+) -> Result<NurbsCurve<Mp<256>, D>, BSplineError> {
+    let lift = |x: &f64| Mp::<256>::from_f64_exact(*x);
+    let h = curve.homogeneous();
+    NurbsCurve::from_homogeneous(
+        h.order(),
+        h.points().iter().map(lift256).collect(),
+        curve.weights().iter().map(lift).collect(),
+        KnotVector::new(h.knots().as_slice().iter().map(lift).collect())?,
+    )
+}
+
+/// The NURBS curve of order `order` with affine points `points`, weights and
+/// knots (f64; the homogeneous points `w_j Q_j` rounded once), and its
+/// [`nurbs_twin`].
+pub fn nurbs_with_twin<const D: usize>(
+    order: usize,
+    points: &[SVector<f64, D>],
+    weights: &[f64],
+    knots: &[f64],
+) -> Result<(NurbsCurve<f64, D>, NurbsCurve<Mp<256>, D>), BSplineError> {
+    let knots = KnotVector::new(knots.to_vec())?;
+    let curve = NurbsCurve::new(order, points.to_vec(), weights.to_vec(), knots)?;
+    let twin = nurbs_twin(&curve)?;
+    Ok((curve, twin))
 }

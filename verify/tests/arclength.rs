@@ -13,16 +13,13 @@ use splinelab::bspline::knots::KnotVector;
 use splinelab::bspline::nurbs::NurbsCurve;
 use splinelab::curves::catmull_rom::{CatmullRom, Spacing};
 use splinelab::scalar::prelude::*;
+use splinelab_verify::flatten_reference::{lift256, nurbs_with_twin};
 
 type M = Mp<256>;
 const BITS: u32 = 256;
 
 fn v(x: f64, y: f64) -> Vector2<f64> {
     Vector2::new(x, y)
-}
-
-fn lift(p: &Vector2<f64>) -> Vector2<M> {
-    p.map(M::from_f64_exact)
 }
 
 /// `|got − want| ≤ tol`, `want` in MPFR.
@@ -98,9 +95,9 @@ fn the_parabola_has_its_closed_form_length() {
         close(c.arclen(&acc).unwrap(), &exact, acc, "parabola f64");
     }
     let m = Bezier::new(vec![
-        lift(&v(0.0, 0.0)),
-        lift(&v(0.5, 0.0)),
-        lift(&v(1.0, 1.0)),
+        lift256(&v(0.0, 0.0)),
+        lift256(&v(0.5, 0.0)),
+        lift256(&v(1.0, 1.0)),
     ])
     .unwrap();
     let got = m.arclen(&M::from_f64_exact(1e-70)).unwrap().to_float();
@@ -136,7 +133,7 @@ where
 fn curves_without_a_closed_form_match_mpfr() {
     let pts = [v(0.0, 0.0), v(1.0, 2.5), v(3.0, -1.0), v(4.0, 1.0)];
     let bezier = Bezier::new(pts.to_vec()).unwrap();
-    let exact = Bezier::new(pts.iter().map(lift).collect()).unwrap();
+    let exact = Bezier::new(pts.iter().map(lift256).collect()).unwrap();
     against_mpfr("cubic Bézier", &bezier, &exact);
 
     // A centripetal Catmull–Rom spline: C¹ only, so the speed has kinks at
@@ -150,37 +147,22 @@ fn curves_without_a_closed_form_match_mpfr() {
         v(6.5, 1.0),
     ];
     let c = CatmullRom::new(cr.to_vec(), Spacing::Centripetal, false).unwrap();
-    let exact =
-        CatmullRom::new(cr.iter().map(lift).collect(), Spacing::Centripetal, false).unwrap();
+    let exact = CatmullRom::new(
+        cr.iter().map(lift256).collect(),
+        Spacing::Centripetal,
+        false,
+    )
+    .unwrap();
     // The knots differ by f64 rounding: compare at that scale.
     let reference = exact.arclen(&M::from_f64_exact(1e-30)).unwrap().to_float();
     close(c.arclen(&1e-12).unwrap(), &reference, 1e-12, "Catmull–Rom");
 
-    // A free-form cubic NURBS, homogeneous points given exactly.
-    let q = [
-        v(0.0, 0.0),
-        v(1.0, 3.0),
-        v(2.5, -1.0),
-        v(4.0, 2.0),
-        v(5.0, 0.0),
-    ];
+    // A free-form cubic NURBS and its exact 256-bit twin.
+    let xy = [(0.0, 0.0), (1.0, 2.0), (3.0, -1.0), (4.0, 2.5), (6.0, 0.0)];
+    let q: Vec<_> = xy.iter().map(|&(x, y)| v(x, y)).collect();
     let w = [1.0, 3.0, 0.5, 2.0, 1.0];
-    let h: Vec<_> = q.iter().zip(&w).map(|(p, w)| p * *w).collect();
     let knots = [0.0, 0.0, 0.0, 0.0, 1.5, 3.0, 3.0, 3.0, 3.0];
-    let nurbs = NurbsCurve::from_homogeneous(
-        4,
-        h.clone(),
-        w.to_vec(),
-        KnotVector::new(knots.to_vec()).unwrap(),
-    )
-    .unwrap();
-    let exact = NurbsCurve::from_homogeneous(
-        4,
-        h.iter().map(lift).collect(),
-        w.iter().map(|&x| M::from_f64_exact(x)).collect(),
-        KnotVector::new(knots.iter().map(|&x| M::from_f64_exact(x)).collect()).unwrap(),
-    )
-    .unwrap();
+    let (nurbs, exact) = nurbs_with_twin(4, &q, &w, &knots).unwrap();
     against_mpfr("NURBS", &nurbs, &exact);
 }
 

@@ -16,7 +16,9 @@ use splinelab::curves::sspline_curve::SsplineCurve;
 use splinelab::param_curve::ParamCurve;
 use splinelab::scalar::prelude::*;
 use splinelab::sspline::{SplineFamily, end_conditions::EndCondition};
-use splinelab_verify::flatten_reference::deviation_of_curve_in_mpfr;
+use splinelab_verify::flatten_reference::{
+    deviation_of_curve_in_mpfr, lift256, nurbs_twin, nurbs_with_twin,
+};
 
 type M = Mp<256>;
 
@@ -25,10 +27,6 @@ const SAMPLES: usize = 16;
 
 fn v(x: f64, y: f64) -> Vector2<f64> {
     Vector2::new(x, y)
-}
-
-fn lift(p: &Vector2<f64>) -> Vector2<M> {
-    p.map(M::from_f64_exact)
 }
 
 fn lift_knots(k: &KnotVector<f64>) -> KnotVector<M> {
@@ -107,18 +105,7 @@ fn nurbs_circle_and_a_free_form_nurbs_flatten_within_tol() {
     // its sagitta 1 − cos(θ/2); tol = 1e-6 needs θ ≤ 2 acos(1 − 1e-6), i.e.
     // at least 2π / 2.83e-3 ≈ 2221 chords of the optimum.
     let circle = NurbsCurve::circle(&v(0.0, 0.0), &1.0).unwrap();
-    let h = circle.homogeneous();
-    let exact = NurbsCurve::from_homogeneous(
-        h.order(),
-        h.points().iter().map(lift).collect(),
-        circle
-            .weights()
-            .iter()
-            .map(|&w| M::from_f64_exact(w))
-            .collect(),
-        lift_knots(h.knots()),
-    )
-    .unwrap();
+    let exact = nurbs_twin(&circle).unwrap();
     let (greedy, sub) = check("circle", &circle, &exact, &[1e-3, 1e-6, 1e-10]);
     let sagitta_count = 2.0 * std::f64::consts::PI / (2.0 * (1.0 - 1e-10f64).acos());
     assert!(
@@ -137,17 +124,8 @@ fn nurbs_circle_and_a_free_form_nurbs_flatten_within_tol() {
         v(7.0, 1.5),
     ];
     let w = [1.0, 3.0, 0.5, 2.0, 1.0, 0.75];
-    let homogeneous: Vec<_> = q.iter().zip(&w).map(|(p, w)| p * *w).collect();
-    let knots = KnotVector::new(vec![0.0, 0.5, 1.0, 2.0, 2.5, 4.0, 4.25, 5.0, 6.0, 7.0]).unwrap();
-    let free =
-        NurbsCurve::from_homogeneous(4, homogeneous.clone(), w.to_vec(), knots.clone()).unwrap();
-    let exact = NurbsCurve::from_homogeneous(
-        4,
-        homogeneous.iter().map(lift).collect(),
-        w.iter().map(|&x| M::from_f64_exact(x)).collect(),
-        lift_knots(&knots),
-    )
-    .unwrap();
+    let knots = [0.0, 0.5, 1.0, 2.0, 2.5, 4.0, 4.25, 5.0, 6.0, 7.0];
+    let (free, exact) = nurbs_with_twin(4, &q, &w, &knots).unwrap();
     check("free-form NURBS", &free, &exact, &[1e-2, 1e-6, 1e-10]);
 }
 
@@ -170,7 +148,8 @@ fn catmull_rom_splines_flatten_within_tol() {
         };
         for &closed in closings {
             let c = CatmullRom::new(pts.clone(), spacing, closed).unwrap();
-            let exact = CatmullRom::new(pts.iter().map(lift).collect(), spacing, closed).unwrap();
+            let exact =
+                CatmullRom::new(pts.iter().map(lift256).collect(), spacing, closed).unwrap();
             let name = format!("{} closed={closed}", spacing.name());
             check(&name, &c, &exact, &[1e-3, 1e-9]);
         }
@@ -189,7 +168,7 @@ fn sspline_and_bspline_curves_flatten_within_tol() {
         let b = s.to_bspline().unwrap();
         let exact = BSpline::new(
             b.order(),
-            b.points().iter().map(lift).collect(),
+            b.points().iter().map(lift256).collect(),
             lift_knots(b.knots()),
         )
         .unwrap();

@@ -202,13 +202,29 @@ pub fn flatten<T: Real, const D: usize, C: ParamCurveBezier<T, D> + ?Sized>(
     curve: &C,
     tol: &T,
 ) -> Result<Polyline<T, D>, CurveError> {
+    piece_by_piece(curve, tol, subdivide_piece)
+}
+
+/// What flattening one piece does: append the vertices after the piece's
+/// start (which the polyline already ends with).
+pub(crate) type PieceFlattener<T, const D: usize> =
+    fn(&BezierPiece<T, D>, &T, &mut Polyline<T, D>) -> Result<(), CurveError>;
+
+/// The polyline of `curve` at `tol`, started at the curve's first point and
+/// extended by `each` over every Bézier piece in turn (tolerance checked
+/// against the pieces' [`rounding_floor`] first).
+pub(crate) fn piece_by_piece<T: Real, const D: usize, C: ParamCurveBezier<T, D> + ?Sized>(
+    curve: &C,
+    tol: &T,
+    each: PieceFlattener<T, D>,
+) -> Result<Polyline<T, D>, CurveError> {
     let pieces = checked_pieces(curve, tol)?;
     let mut poly = Polyline {
         params: vec![pieces[0].span.0.clone()],
         points: vec![pieces[0].net().polygon()[0].clone()],
     };
     for piece in &pieces {
-        subdivide_piece(piece, tol, &mut poly)?;
+        each(piece, tol, &mut poly)?;
     }
     Ok(poly)
 }

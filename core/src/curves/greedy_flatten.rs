@@ -51,7 +51,7 @@
 
 use super::CurveError;
 use super::bezier_pieces::{BezierPiece, Net, ParamCurveBezier};
-use super::flatten::{MAX_DEPTH, Polyline, checked_pieces, flatness, segment_distance};
+use super::flatten::{MAX_DEPTH, Polyline, flatness, piece_by_piece, segment_distance};
 use crate::scalar::Real;
 use nalgebra::SVector;
 
@@ -201,15 +201,7 @@ pub fn flatten_greedy<T: Real, const D: usize, C: ParamCurveBezier<T, D> + ?Size
     curve: &C,
     tol: &T,
 ) -> Result<Polyline<T, D>, CurveError> {
-    let pieces = checked_pieces(curve, tol)?;
-    let mut poly = Polyline {
-        params: vec![pieces[0].span.0.clone()],
-        points: vec![pieces[0].net().polygon()[0].clone()],
-    };
-    for piece in &pieces {
-        greedy_piece(piece, tol, &mut poly)?;
-    }
-    Ok(poly)
+    piece_by_piece(curve, tol, greedy_piece)
 }
 
 /// Appends to `poly` the greedy chords' end points over `piece` (its start
