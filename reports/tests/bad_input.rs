@@ -26,6 +26,11 @@ fn case(args: &[&'static str], input: impl Into<String>) -> Case {
     }
 }
 
+/// [`case`] of a command line whose words are split at spaces.
+fn line(command: &'static str, input: impl Into<String>) -> Case {
+    case(&command.split(' ').collect::<Vec<_>>(), input)
+}
+
 fn huge_array(n: usize) -> String {
     format!("[{}]", vec!["0.5"; n].join(","))
 }
@@ -71,8 +76,8 @@ fn cases() -> Vec<Case> {
         ));
     }
     // report: the output folder cannot be created (its parent is a file).
-    v.push(case(
-        &["report", "--quick", "--out", "{in}/sub"],
+    v.push(line(
+        "report --quick --out {in}/sub",
         "a file, not a folder",
     ));
     v.push(case(&["report", "--quick"], ""));
@@ -92,41 +97,17 @@ fn cases() -> Vec<Case> {
         r#"{"figures": [{"name":"a.b","value":1,"kind":"accuracy","unit":"u","better":"lower","tolerance":-1}]}"#,
         r#"{"figures": []}"#,
     ] {
-        v.push(case(
-            &[
-                "compare",
-                "--baseline",
-                "{good}",
-                "--current",
-                "{in}",
-                "--out",
-                "{out}",
-            ],
+        v.push(line(
+            "compare --baseline {good} --current {in} --out {out}",
             bad,
         ));
-        v.push(case(
-            &[
-                "compare",
-                "--baseline",
-                "{in}",
-                "--current",
-                "{good}",
-                "--out",
-                "{out}",
-            ],
+        v.push(line(
+            "compare --baseline {in} --current {good} --out {out}",
             bad,
         ));
     }
-    v.push(case(
-        &[
-            "compare",
-            "--baseline",
-            "/nonexistent/base.json",
-            "--current",
-            "{in}",
-            "--out",
-            "{out}",
-        ],
+    v.push(line(
+        "compare --baseline /nonexistent/base.json --current {in} --out {out}",
         good,
     ));
     // bezier-eval: every input defect, for every method.
@@ -210,28 +191,22 @@ fn cases() -> Vec<Case> {
         r#"{"points": 5}"#.into(),
         format!(r#"{{"points": [{}]}}"#, many.join(",")),
     ] {
-        v.push(case(&["qi", "--input", "{in}", "--json"], bad));
+        v.push(line("qi --input {in} --json", bad));
     }
-    v.push(case(
-        &["qi", "--input", "{in}", "--max-iter", "0"],
+    v.push(line(
+        "qi --input {in} --max-iter 0",
         r#"{"points": [[0,0,0],[1,0,0],[2,1,0]]}"#,
     ));
-    v.push(case(
-        &["qi", "--input", "{in}", "--prec", "10"],
+    v.push(line(
+        "qi --input {in} --prec 10",
         r#"{"points": [[0,0,0],[1,0,0],[2,1,0]]}"#,
     ));
-    v.push(case(
-        &[
-            "bezier-eval",
-            "--input",
-            "/nonexistent.json",
-            "--method",
-            "power",
-        ],
+    v.push(line(
+        "bezier-eval --input /nonexistent.json --method power",
         "",
     ));
-    v.push(case(
-        &["bezier-eval", "--input", "{in}", "--method", "horner"],
+    v.push(line(
+        "bezier-eval --input {in} --method horner",
         r#"{"coeffs":[1],"t":[0]}"#,
     ));
     v
@@ -290,10 +265,7 @@ fn flatten_cases(v: &mut Vec<Case>) {
     // Huge: degree above the limit.
     inputs.push(format!(r#"{{"points": [{},[0,0]]}}"#, zigzag.join(",")));
     for input in inputs {
-        v.push(case(
-            &["flatten", "--input", "{in}", "--tol", "1e-3"],
-            input,
-        ));
+        v.push(line("flatten --input {in} --tol 1e-3", input));
     }
     // Bad tolerances, one of them a request of absurd work: a degree-200
     // zigzag to 10⁻⁴ would need ~10¹¹ de Casteljau steps.
@@ -310,20 +282,17 @@ fn flatten_cases(v: &mut Vec<Case>) {
     ] {
         v.push(case(&["flatten", "--input", "{in}", tol], valid));
     }
-    v.push(case(
-        &["flatten", "--input", "{in}", "--tol", "1e-4"],
+    v.push(line(
+        "flatten --input {in} --tol 1e-4",
         format!(r#"{{"points": [{}]}}"#, zigzag.join(",")),
     ));
     v.push(case(&["flatten", "--input", "{in}"], valid));
     v.push(case(&["flatten", "--tol", "1e-3"], ""));
-    v.push(case(
-        &["flatten", "--input", "/nonexistent/c.json", "--tol", "1e-3"],
-        "",
-    ));
+    v.push(line("flatten --input /nonexistent/c.json --tol 1e-3", ""));
     // The input is a folder (`{out}` after the setup creates it).
     v.push(Case {
         setup: Some(|out| std::fs::create_dir_all(out).unwrap()),
-        ..case(&["flatten", "--input", "{out}", "--tol", "1e-3"], "")
+        ..line("flatten --input {out} --tol 1e-3", "")
     });
 }
 
@@ -528,10 +497,7 @@ fn deform_cases(v: &mut Vec<Case>) {
     extra["scale"] = json!(2);
     inputs.push(extra.to_string());
     for input in inputs {
-        v.push(case(
-            &["deform", "--input", "{in}", "--out", "{out}"],
-            input,
-        ));
+        v.push(line("deform --input {in} --out {out}", input));
     }
     for args in [
         &["deform", "--out", "{out}"][..],
@@ -560,10 +526,7 @@ fn deform_cases(v: &mut Vec<Case>) {
         };
         v.push(Case {
             setup: Some(setup),
-            ..case(
-                &["deform", "--input", "{in}", "--out", "{out}"],
-                valid.clone(),
-            )
+            ..line("deform --input {in} --out {out}", valid.clone())
         });
     }
 }
