@@ -114,6 +114,7 @@
 //! assert_eq!(d.len(), s.len());
 //! ```
 
+pub mod arclength;
 pub mod bernstein;
 pub mod bspline;
 pub mod curves;

@@ -2,7 +2,11 @@
 //! (after kurbo's `ParamCurve` family): [`ParamCurve`] (domain and point),
 //! [`ParamCurveDeriv`] (first derivative), [`ParamSurface`] and
 //! [`ParamSurfaceDeriv`]. Generic code — sampling, flattening, distance
-//! measurements in `verify` — takes any of them.
+//! measurements in `verify` — takes any of them. Two capabilities build on
+//! them elsewhere: [`ParamCurveBezier`](crate::curves::bezier_pieces::ParamCurveBezier)
+//! (a chain of Bézier pieces, what flattening with a proven bound needs) and
+//! [`ParamCurveArclen`](crate::arclength::ParamCurveArclen) (arc length and its
+//! inverse, for every curve with a derivative).
 //!
 //! Every curve and surface type of the crate implements them in its own
 //! file, over its own scalar `T` (f64 or MPFR) and its own error type. The domain is
@@ -10,17 +14,17 @@
 //! rule: polynomial pieces extrapolate (Bézier, Hermite), spline types
 //! refuse with their error.
 //!
-//! | type | curve | derivative |
-//! |---|---|---|
-//! | [`Bezier`](crate::bernstein::bezier::Bezier) | ✓ | ✓ (hodograph) |
-//! | [`Hermite`](crate::curves::hermite::Hermite) | ✓ | ✓ |
-//! | [`CatmullRom`](crate::curves::catmull_rom::CatmullRom) | ✓ | ✓ |
-//! | [`RationalBezier`](crate::curves::rational_bezier::RationalBezier) | ✓ | |
-//! | [`BSpline`](crate::bspline::de_boor::BSpline) | ✓ | ✓ |
-//! | [`NurbsCurve`](crate::bspline::nurbs::NurbsCurve) | ✓ | |
-//! | [`SsplineCurve`](crate::curves::sspline_curve::SsplineCurve) | ✓ | |
-//! | [`ClampedCubicSpline`](crate::qi::cubic_spline::ClampedCubicSpline) | ✓ | ✓ |
-//! | [`QiInterpolation`](crate::qi::interpolate::QiInterpolation) | ✓ | ✓ |
+//! | type | curve | derivative (and arc length) | Bézier pieces (flattening) |
+//! |---|---|---|---|
+//! | [`Bezier`](crate::bernstein::bezier::Bezier) | ✓ | ✓ (hodograph) | ✓ |
+//! | [`Hermite`](crate::curves::hermite::Hermite) | ✓ | ✓ | ✓ |
+//! | [`CatmullRom`](crate::curves::catmull_rom::CatmullRom) | ✓ | ✓ | ✓ |
+//! | [`RationalBezier`](crate::curves::rational_bezier::RationalBezier) | ✓ | | ✓ |
+//! | [`BSpline`](crate::bspline::de_boor::BSpline) | ✓ | ✓ | ✓ |
+//! | [`NurbsCurve`](crate::bspline::nurbs::NurbsCurve) | ✓ | ✓ | ✓ |
+//! | [`SsplineCurve`](crate::curves::sspline_curve::SsplineCurve) | ✓ | | ✓ |
+//! | [`ClampedCubicSpline`](crate::qi::cubic_spline::ClampedCubicSpline) | ✓ | ✓ | |
+//! | [`QiInterpolation`](crate::qi::interpolate::QiInterpolation) | ✓ | ✓ | |
 //! | [`Patch`](crate::surface_deformation::patch::Patch), [`SsplineSurface`](crate::curves::sspline_surface::SsplineSurface), [`NurbsSurface`](crate::bspline::nurbs::NurbsSurface) | surface | [`Patch`](crate::surface_deformation::patch::Patch) |
 
 use crate::scalar::Real;
@@ -42,6 +46,25 @@ pub trait ParamCurve<T: Real, const D: usize> {
 pub trait ParamCurveDeriv<T: Real, const D: usize>: ParamCurve<T, D> {
     /// `P'(t) = dP/dt` (with respect to the curve's own parameter).
     fn deriv(&self, t: &T) -> Result<SVector<T, D>, Self::Error>;
+
+    /// The parameters strictly inside the domain, increasing, where the
+    /// curve joins two pieces and its derivatives may jump (a spline's
+    /// knots); empty for one smooth piece. Integration of `‖P'‖` splits
+    /// there ([`crate::arclength`]).
+    fn breakpoints(&self) -> Vec<T> {
+        Vec::new()
+    }
+}
+
+/// The values of `knots` strictly inside `(lo, hi)`, without repeats.
+pub(crate) fn interior<T: Real>(knots: &[T], lo: &T, hi: &T) -> Vec<T> {
+    let mut inside: Vec<T> = knots
+        .iter()
+        .filter(|k| *k > lo && *k < hi)
+        .cloned()
+        .collect();
+    inside.dedup();
+    inside
 }
 
 /// A surface `(u, v) ↦ S(u, v)` in `D` dimensions on a parameter rectangle.

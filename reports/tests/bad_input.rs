@@ -18,18 +18,17 @@ struct Case {
     setup: Option<fn(&Path)>,
 }
 
-/// A case from its command line, split at spaces (no argument here has one).
-fn case(line: &'static str, input: impl Into<String>) -> Case {
-    case_args(&line.split(' ').collect::<Vec<_>>(), input)
-}
-
-/// A case from its arguments (some built in a loop, or empty).
-fn case_args(args: &[&'static str], input: impl Into<String>) -> Case {
+fn case(args: &[&'static str], input: impl Into<String>) -> Case {
     Case {
         args: args.to_vec(),
         input: input.into(),
         setup: None,
     }
+}
+
+/// [`case`] of a command line whose words are split at spaces.
+fn line(command: &'static str, input: impl Into<String>) -> Case {
+    case(&command.split(' ').collect::<Vec<_>>(), input)
 }
 
 fn huge_array(n: usize) -> String {
@@ -39,7 +38,7 @@ fn huge_array(n: usize) -> String {
 fn cases() -> Vec<Case> {
     let mut v = Vec::new();
     // Unknown subcommand and options, everywhere.
-    v.push(case("frobnicate", ""));
+    v.push(case(&["frobnicate"], ""));
     for sub in [
         "cond",
         "report",
@@ -53,7 +52,7 @@ fn cases() -> Vec<Case> {
         "prefilter",
         "interpolate",
     ] {
-        v.push(case_args(&[sub, "--no-such-option"], ""));
+        v.push(case(&[sub, "--no-such-option"], ""));
     }
     flatten_cases(&mut v);
     deform_cases(&mut v);
@@ -71,17 +70,17 @@ fn cases() -> Vec<Case> {
         ("5", "equispaced", "inf"),
         ("5", "equispaced", "-64"),
     ] {
-        v.push(case_args(
+        v.push(case(
             &["cond", "--degree", deg, "--nodes", nodes, "--prec", prec],
             "",
         ));
     }
     // report: the output folder cannot be created (its parent is a file).
-    v.push(case(
+    v.push(line(
         "report --quick --out {in}/sub",
         "a file, not a folder",
     ));
-    v.push(case("report --quick", ""));
+    v.push(case(&["report", "--quick"], ""));
     // compare: malformed, truncated, wrong shapes, non-finite numbers.
     let good = r#"{"figures":[{"name":"a.b","value":1.0,"kind":"accuracy","unit":"u","better":"lower","tolerance":0.1}]}"#;
     for bad in [
@@ -98,16 +97,16 @@ fn cases() -> Vec<Case> {
         r#"{"figures": [{"name":"a.b","value":1,"kind":"accuracy","unit":"u","better":"lower","tolerance":-1}]}"#,
         r#"{"figures": []}"#,
     ] {
-        v.push(case(
+        v.push(line(
             "compare --baseline {good} --current {in} --out {out}",
             bad,
         ));
-        v.push(case(
+        v.push(line(
             "compare --baseline {in} --current {good} --out {out}",
             bad,
         ));
     }
-    v.push(case(
+    v.push(line(
         "compare --baseline /nonexistent/base.json --current {in} --out {out}",
         good,
     ));
@@ -127,7 +126,7 @@ fn cases() -> Vec<Case> {
             r#"{"coeffs": 3, "t": [0.5]}"#.into(),
             format!(r#"{{"coeffs": {}, "t": [0.5]}}"#, huge_array(20_000)),
         ] {
-            v.push(case_args(
+            v.push(case(
                 &[
                     "bezier-eval",
                     "--input",
@@ -169,7 +168,7 @@ fn cases() -> Vec<Case> {
         &["width", "--tension", "-2", "--tol", "1e-3"],
         &["width", "--order", "4"],
     ] {
-        v.push(case_args(args, ""));
+        v.push(case(args, ""));
     }
     // qi: every input defect.
     let many: Vec<String> = (0..201).map(|k| format!("[{k},{},0]", k * k)).collect();
@@ -192,21 +191,21 @@ fn cases() -> Vec<Case> {
         r#"{"points": 5}"#.into(),
         format!(r#"{{"points": [{}]}}"#, many.join(",")),
     ] {
-        v.push(case("qi --input {in} --json", bad));
+        v.push(line("qi --input {in} --json", bad));
     }
-    v.push(case(
+    v.push(line(
         "qi --input {in} --max-iter 0",
         r#"{"points": [[0,0,0],[1,0,0],[2,1,0]]}"#,
     ));
-    v.push(case(
+    v.push(line(
         "qi --input {in} --prec 10",
         r#"{"points": [[0,0,0],[1,0,0],[2,1,0]]}"#,
     ));
-    v.push(case(
+    v.push(line(
         "bezier-eval --input /nonexistent.json --method power",
         "",
     ));
-    v.push(case(
+    v.push(line(
         "bezier-eval --input {in} --method horner",
         r#"{"coeffs":[1],"t":[0]}"#,
     ));
@@ -266,7 +265,7 @@ fn flatten_cases(v: &mut Vec<Case>) {
     // Huge: degree above the limit.
     inputs.push(format!(r#"{{"points": [{},[0,0]]}}"#, zigzag.join(",")));
     for input in inputs {
-        v.push(case("flatten --input {in} --tol 1e-3", input));
+        v.push(line("flatten --input {in} --tol 1e-3", input));
     }
     // Bad tolerances, one of them a request of absurd work: a degree-200
     // zigzag to 10⁻⁴ would need ~10¹¹ de Casteljau steps.
@@ -281,19 +280,19 @@ fn flatten_cases(v: &mut Vec<Case>) {
         "--tol=x",
         "--tol=",
     ] {
-        v.push(case_args(&["flatten", "--input", "{in}", tol], valid));
+        v.push(case(&["flatten", "--input", "{in}", tol], valid));
     }
-    v.push(case(
+    v.push(line(
         "flatten --input {in} --tol 1e-4",
         format!(r#"{{"points": [{}]}}"#, zigzag.join(",")),
     ));
-    v.push(case("flatten --input {in}", valid));
-    v.push(case("flatten --tol 1e-3", ""));
-    v.push(case("flatten --input /nonexistent/c.json --tol 1e-3", ""));
+    v.push(case(&["flatten", "--input", "{in}"], valid));
+    v.push(case(&["flatten", "--tol", "1e-3"], ""));
+    v.push(line("flatten --input /nonexistent/c.json --tol 1e-3", ""));
     // The input is a folder (`{out}` after the setup creates it).
     v.push(Case {
         setup: Some(|out| std::fs::create_dir_all(out).unwrap()),
-        ..case("flatten --input {out} --tol 1e-3", "")
+        ..line("flatten --input {out} --tol 1e-3", "")
     });
 }
 
@@ -318,7 +317,7 @@ const P2: &str = concat!(
 fn engine_cases(v: &mut Vec<Case>) {
     let with = |args: &[&'static str], input: &str| Case {
         setup: Some(|out: &Path| std::fs::create_dir_all(out).unwrap()),
-        ..case_args(args, input)
+        ..case(args, input)
     };
     let malformed = [
         "",
@@ -498,7 +497,7 @@ fn deform_cases(v: &mut Vec<Case>) {
     extra["scale"] = json!(2);
     inputs.push(extra.to_string());
     for input in inputs {
-        v.push(case("deform --input {in} --out {out}", input));
+        v.push(line("deform --input {in} --out {out}", input));
     }
     for args in [
         &["deform", "--out", "{out}"][..],
@@ -516,7 +515,7 @@ fn deform_cases(v: &mut Vec<Case>) {
             "/proc/splinelab-bad-input",
         ],
     ] {
-        v.push(case_args(args, valid.clone()));
+        v.push(case(args, valid.clone()));
     }
     // The output folder exists but a target name is taken by a folder: the
     // other file must not be written either.
@@ -527,7 +526,7 @@ fn deform_cases(v: &mut Vec<Case>) {
         };
         v.push(Case {
             setup: Some(setup),
-            ..case("deform --input {in} --out {out}", valid.clone())
+            ..line("deform --input {in} --out {out}", valid.clone())
         });
     }
 }

@@ -28,18 +28,23 @@ fn scratch(name: &str) -> PathBuf {
     d
 }
 
-fn prefilter(coeffs: &str, extra: &[&str]) -> Output {
-    let samples = fixture("prefilter/samples.npy");
+/// `splinelab check prefilter --samples samples --coeffs coeffs extra…`.
+fn check_prefilter(samples: &str, coeffs: &str, extra: &[&str]) -> Output {
     let mut args = vec![
         "check",
         "prefilter",
         "--samples",
-        &samples,
+        samples,
         "--coeffs",
         coeffs,
     ];
     args.extend_from_slice(extra);
     splinelab(&args)
+}
+
+/// [`check_prefilter`] on the fixture samples.
+fn prefilter(coeffs: &str, extra: &[&str]) -> Output {
+    check_prefilter(&fixture("prefilter/samples.npy"), coeffs, extra)
 }
 
 #[test]
@@ -371,20 +376,18 @@ fn short_reflect_line_fails_by_default_and_out_holds_the_per_element_arrays() {
         fixture("stable/s_n8.npy"),
         fixture("stable/d5_reflect_n8.npy"),
     );
-    let out = splinelab(&[
-        "check",
-        "prefilter",
-        "--samples",
+    let out = check_prefilter(
         &s,
-        "--coeffs",
         &c,
-        "--degree",
-        "5",
-        "--mode",
-        "reflect",
-        "--out",
-        out_dir.to_str().unwrap(),
-    ]);
+        &[
+            "--degree",
+            "5",
+            "--mode",
+            "reflect",
+            "--out",
+            out_dir.to_str().unwrap(),
+        ],
+    );
     assert_eq!(out.status.code(), Some(1));
     let text = String::from_utf8_lossy(&out.stdout);
     assert!(text.contains("check prefilter: fail"), "{text}");
@@ -415,17 +418,7 @@ fn short_reflect_line_fails_by_default_and_out_holds_the_per_element_arrays() {
     assert!(out_dir.join("check_error_vs_bound.svg").is_file());
     // The same check on the whole-sample rule passes, and says on what basis.
     let c = fixture("stable/d5_mirror_n8.npy");
-    let out = splinelab(&[
-        "check",
-        "prefilter",
-        "--samples",
-        &s,
-        "--coeffs",
-        &c,
-        "--degree",
-        "5",
-        "--json",
-    ]);
+    let out = check_prefilter(&s, &c, &["--degree", "5", "--json"]);
     assert_eq!(out.status.code(), Some(0));
     let v: Value = serde_json::from_slice(&out.stdout).unwrap();
     assert_eq!(v["verdict_basis"], "stable-bound");

@@ -44,7 +44,7 @@ fn degree_2_equispaced_matches_the_closed_form_to_all_printed_digits() {
 
 #[test]
 fn bad_input_is_a_clear_error_with_non_zero_exit() {
-    // Each command line split at spaces (no argument here has one).
+    // Command lines (words split at spaces) and what the error must name.
     let cases: &[(&str, &str)] = &[
         ("cond --degree 0 --nodes equispaced", "--degree"),
         ("cond --degree 501 --nodes equispaced", "--degree"),

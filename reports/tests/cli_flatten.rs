@@ -316,3 +316,65 @@ fn at_1e_12_the_deviation_stays_within_the_tolerance_judged_in_mpfr() {
         }
     }
 }
+
+/// A control polygon of degree 2..=20 in one of the shapes that stress the
+/// bound: random, runs of coincident points, collinear with backtracking,
+/// nearly collinear, closed (a loop or cusp). Scaled so that `n² · scale`
+/// stays `≤ 1e-3`, which keeps the chord count at 1e-12 near 10⁴.
+fn hostile_polygon() -> impl Strategy<Value = Vec<[f64; 2]>> {
+    (2usize..=20, 0usize..5, -3.0f64..0.0).prop_flat_map(|(n, shape, exponent)| {
+        let scale = 10f64.powf(exponent) * 1e-3 / (n * n) as f64;
+        prop::collection::vec((-1.0f64..1.0, -1.0f64..1.0, any::<bool>()), n + 1).prop_map(
+            move |raw| {
+                let mut p: Vec<[f64; 2]> = raw
+                    .iter()
+                    .map(|&(x, y, _)| [scale * x, scale * y])
+                    .collect();
+                match shape {
+                    1 => {
+                        for i in 1..p.len() {
+                            if raw[i].2 {
+                                p[i] = p[i - 1];
+                            }
+                        }
+                    }
+                    2 => p.iter_mut().for_each(|q| q[1] = 0.0),
+                    3 => p.iter_mut().for_each(|q| q[1] *= 1e-9),
+                    4 => {
+                        let last = p.len() - 1;
+                        p[last] = p[0];
+                    }
+                    _ => {}
+                }
+                p
+            },
+        )
+    })
+}
+
+use proptest::prelude::*;
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 24, ..ProptestConfig::default() })]
+
+    /// Issue 29's contract at 1e-12: the deviation of the command's polyline,
+    /// judged in 256-bit MPFR (the 200 worst chords by the f64 measure), is
+    /// within the tolerance, for both methods, and no field is null without
+    /// a `_why`.
+    #[test]
+    fn at_1e_12_random_and_degenerate_curves_stay_within_tol_in_mpfr(
+        points in hostile_polygon(),
+        subdivision in any::<bool>(),
+    ) {
+        use splinelab_reports::cli::flatten::{FlattenMethod, flatten_points};
+        let method = if subdivision { FlattenMethod::Subdivision } else { FlattenMethod::Greedy };
+        let rows: Vec<Vec<f64>> = points.iter().map(|p| p.to_vec()).collect();
+        let v = flatten_points(&rows, 1e-12, method, false).unwrap();
+        for (key, value) in v.as_object().unwrap() {
+            prop_assert!(!value.is_null() || v.get(format!("{key}_why")).is_some(), "{key} null");
+        }
+        prop_assert!(v["max_deviation"].as_f64().unwrap() <= 1e-12);
+        let judged = deviation_judged_in_mpfr(&points, &v, 200);
+        prop_assert!(judged <= 1e-12, "{method:?} degree {}: MPFR {judged:e}", points.len() - 1);
+    }
+}

@@ -118,7 +118,9 @@ fn fuzz_flatten(text: &str) -> Result<(), TestCaseError> {
     {
         if let Ok(out) = flatten::flatten_points(&points, tol, method, true) {
             no_null(&out)?;
-            prop_assert!(out["max_deviation"].as_f64().unwrap() <= tol * (1.0 + 1.0 / 16.0));
+            // The contract: within the tolerance itself (the polyline aims
+            // inside it by the evaluation's error bound).
+            prop_assert!(out["max_deviation"].as_f64().unwrap() <= tol);
         }
     }
     Ok(())

@@ -6,8 +6,16 @@ use std::ffi::OsString;
 use std::os::unix::ffi::OsStringExt;
 use std::process::Command;
 
-fn splinelab() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_splinelab"))
+/// Writes `text` to `path`, runs `splinelab flatten --tol 1e-3 --input
+/// path`, and returns its exit code and standard error.
+fn flatten_file(path: &std::path::Path, text: &str) -> (Option<i32>, String) {
+    std::fs::write(path, text).unwrap();
+    let out = Command::new(env!("CARGO_BIN_EXE_splinelab"))
+        .args(["flatten", "--tol", "1e-3", "--input"])
+        .arg(path)
+        .output()
+        .unwrap();
+    (out.status.code(), String::from_utf8(out.stderr).unwrap())
 }
 
 #[test]
@@ -16,15 +24,9 @@ fn a_path_that_is_not_utf8_is_printed_with_escaped_bytes() {
     std::fs::create_dir_all(&dir).unwrap();
     let mut name = dir.into_os_string().into_vec();
     name.extend(b"/\xff\xfe.json");
-    let path = OsString::from_vec(name);
-    std::fs::write(&path, "{\"points\": [[0, 0], [1, 1]").unwrap();
-    let out = splinelab()
-        .args(["flatten", "--tol", "1e-3", "--input"])
-        .arg(&path)
-        .output()
-        .unwrap();
-    let stderr = String::from_utf8(out.stderr).unwrap();
-    assert_eq!(out.status.code(), Some(2));
+    let path = std::path::PathBuf::from(OsString::from_vec(name));
+    let (code, stderr) = flatten_file(&path, "{\"points\": [[0, 0], [1, 1]");
+    assert_eq!(code, Some(2));
     assert!(
         stderr.contains("/\\xFF\\xFE.json: truncated JSON"),
         "{stderr}"
@@ -41,14 +43,8 @@ fn a_mistyped_json_value_is_quoted_in_at_most_about_80_characters() {
     let long_string = format!("\"{}\"", "not a number ".repeat(300));
     for (k, bad) in [long_point, long_string].iter().enumerate() {
         let path = dir.join(format!("p{k}.json"));
-        std::fs::write(&path, format!("{{\"points\": [[0, 0], {bad}]}}")).unwrap();
-        let out = splinelab()
-            .args(["flatten", "--tol", "1e-3", "--input"])
-            .arg(&path)
-            .output()
-            .unwrap();
-        let stderr = String::from_utf8(out.stderr).unwrap();
-        assert_eq!(out.status.code(), Some(2), "{stderr}");
+        let (code, stderr) = flatten_file(&path, &format!("{{\"points\": [[0, 0], {bad}]}}"));
+        assert_eq!(code, Some(2), "{stderr}");
         let quoted = stderr.len() - path.to_str().unwrap().len();
         assert!(quoted < 220, "{} characters: {stderr}", stderr.len());
         assert!(

@@ -260,243 +260,81 @@ fn special_files() -> Vec<Hostile> {
         .collect()
 }
 
-/// A command line with `{F}` where the hostile file goes and `{O}` where
-/// the output goes; `folder` when `{O}` is a folder (check's `--out`).
+/// A command line, words split at spaces, with `{F}` where the hostile file
+/// goes and `{O}` where the output goes; `folder` when `{O}` is a folder
+/// (check's `--out`).
 struct Slot {
-    args: &'static [&'static str],
+    line: &'static str,
     folder: bool,
 }
 
 const SLOTS: &[Slot] = &[
     Slot {
-        args: &[
-            "prefilter",
-            "--input",
-            "{F}",
-            "--degree",
-            "3",
-            "--output",
-            "{O}",
-        ],
+        line: "prefilter --input {F} --degree 3 --output {O}",
         folder: false,
     },
     Slot {
-        args: &[
-            "interpolate",
-            "--input",
-            "{F}",
-            "--degree",
-            "3",
-            "--at",
-            "{pts}",
-            "--output",
-            "{O}",
-        ],
+        line: "interpolate --input {F} --degree 3 --at {pts} --output {O}",
         folder: false,
     },
     Slot {
-        args: &[
-            "interpolate",
-            "--input",
-            "{six}",
-            "--degree",
-            "3",
-            "--at",
-            "{F}",
-            "--output",
-            "{O}",
-        ],
+        line: "interpolate --input {six} --degree 3 --at {F} --output {O}",
         folder: false,
     },
     Slot {
-        args: &[
-            "check",
-            "prefilter",
-            "--samples",
-            "{F}",
-            "--coeffs",
-            "{six}",
-            "--out",
-            "{O}",
-        ],
+        line: "check prefilter --samples {F} --coeffs {six} --out {O}",
         folder: true,
     },
     Slot {
-        args: &[
-            "check",
-            "prefilter",
-            "--samples",
-            "{six}",
-            "--coeffs",
-            "{F}",
-            "--out",
-            "{O}",
-        ],
+        line: "check prefilter --samples {six} --coeffs {F} --out {O}",
         folder: true,
     },
     Slot {
-        args: &[
-            "check",
-            "interp",
-            "--samples",
-            "{F}",
-            "--coords",
-            "{pts}",
-            "--values",
-            "{pts}",
-            "--out",
-            "{O}",
-        ],
+        line: "check interp --samples {F} --coords {pts} --values {pts} --out {O}",
         folder: true,
     },
     Slot {
-        args: &[
-            "check",
-            "interp",
-            "--samples",
-            "{six}",
-            "--coords",
-            "{F}",
-            "--values",
-            "{pts}",
-            "--out",
-            "{O}",
-        ],
+        line: "check interp --samples {six} --coords {F} --values {pts} --out {O}",
         folder: true,
     },
     Slot {
-        args: &[
-            "check",
-            "interp",
-            "--samples",
-            "{six}",
-            "--coords",
-            "{pts}",
-            "--values",
-            "{F}",
-            "--out",
-            "{O}",
-        ],
+        line: "check interp --samples {six} --coords {pts} --values {F} --out {O}",
         folder: true,
     },
     Slot {
-        args: &[
-            "check", "cond", "--nodes", "{F}", "--values", "{one}", "--out", "{O}",
-        ],
+        line: "check cond --nodes {F} --values {one} --out {O}",
         folder: true,
     },
     Slot {
-        args: &[
-            "check", "cond", "--nodes", "{six}", "--values", "{F}", "--out", "{O}",
-        ],
+        line: "check cond --nodes {six} --values {F} --out {O}",
         folder: true,
     },
     Slot {
-        args: &[
-            "check", "coeffs", "--order", "4", "--values", "{F}", "--out", "{O}",
-        ],
+        line: "check coeffs --order 4 --values {F} --out {O}",
         folder: true,
     },
     Slot {
-        args: &[
-            "check",
-            "bspline-eval",
-            "--knots",
-            "{F}",
-            "--coeffs",
-            "{pts}",
-            "--degree",
-            "1",
-            "--x",
-            "{pts}",
-            "--values",
-            "{pts}",
-            "--out",
-            "{O}",
-        ],
+        line: "check bspline-eval --knots {F} --coeffs {pts} --degree 1 --x {pts} --values {pts} --out {O}",
         folder: true,
     },
     Slot {
-        args: &[
-            "check",
-            "bspline-eval",
-            "--knots",
-            "{knots}",
-            "--coeffs",
-            "{F}",
-            "--degree",
-            "1",
-            "--x",
-            "{pts}",
-            "--values",
-            "{pts}",
-            "--out",
-            "{O}",
-        ],
+        line: "check bspline-eval --knots {knots} --coeffs {F} --degree 1 --x {pts} --values {pts} --out {O}",
         folder: true,
     },
     Slot {
-        args: &[
-            "check",
-            "bspline-eval",
-            "--knots",
-            "{knots}",
-            "--coeffs",
-            "{pts}",
-            "--degree",
-            "1",
-            "--x",
-            "{F}",
-            "--values",
-            "{pts}",
-            "--out",
-            "{O}",
-        ],
+        line: "check bspline-eval --knots {knots} --coeffs {pts} --degree 1 --x {F} --values {pts} --out {O}",
         folder: true,
     },
     Slot {
-        args: &[
-            "check",
-            "bezier-eval",
-            "--coeffs",
-            "{F}",
-            "--t",
-            "{pts}",
-            "--values",
-            "{pts}",
-            "--out",
-            "{O}",
-        ],
+        line: "check bezier-eval --coeffs {F} --t {pts} --values {pts} --out {O}",
         folder: true,
     },
     Slot {
-        args: &[
-            "check",
-            "bezier-eval",
-            "--coeffs",
-            "{pts}",
-            "--t",
-            "{F}",
-            "--values",
-            "{pts}",
-            "--out",
-            "{O}",
-        ],
+        line: "check bezier-eval --coeffs {pts} --t {F} --values {pts} --out {O}",
         folder: true,
     },
     Slot {
-        args: &[
-            "check",
-            "bezier-eval",
-            "--coeffs",
-            "{pts}",
-            "--t",
-            "{pts}",
-            "--values",
-            "{F}",
-            "--out",
-            "{O}",
-        ],
+        line: "check bezier-eval --coeffs {pts} --t {pts} --values {F} --out {O}",
         folder: true,
     },
 ];
@@ -599,11 +437,11 @@ fn hostile_npy_files_in_every_array_slot_fail_cleanly_or_read_correctly() {
             fill.push(("{F}", file.clone()));
             fill.push(("{O}", out.to_str().unwrap().to_string()));
             let args: Vec<String> = slot
-                .args
-                .iter()
+                .line
+                .split(' ')
                 .map(|a| {
                     fill.iter()
-                        .find(|(k, _)| k == a)
+                        .find(|(k, _)| *k == a)
                         .map_or(a.to_string(), |(_, v)| v.clone())
                 })
                 .collect();

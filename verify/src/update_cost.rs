@@ -22,7 +22,9 @@ use splinelab::curves::{CurveError, sspline_curve::SsplineCurve};
 use splinelab::scalar::prelude::*;
 use splinelab::sspline::end_conditions::{EndCondition, EndRule};
 use splinelab::sspline::node_values::node_values_exact;
-use splinelab::sspline::prefilter::{ConvolutionPrefilter, PrefilterError, RecursivePrefilter};
+use splinelab::sspline::prefilter::{
+    ConvolutionPrefilter, Prefilter1d, PrefilterError, RecursivePrefilter,
+};
 use splinelab::sspline::{
     Criterion, SplineFamily, SsplineError, f64_saturation_width, truncation_width,
 };
@@ -312,37 +314,32 @@ fn signal(len: usize, seed: u64) -> Vec<f64> {
     (0..len).map(|_| r.range(-1.0, 1.0)).collect()
 }
 
-/// One full-build route: the recursive filter or a convolution of a width.
-enum Prefilter {
-    Recursive(RecursivePrefilter<f64>),
-    Convolution(ConvolutionPrefilter<f64>),
-}
-
-impl Prefilter {
-    fn new(family: &SplineFamily, width: Option<usize>) -> Result<Self, PrefilterError> {
-        Ok(match width {
-            None => Prefilter::Recursive(RecursivePrefilter::new(family)?),
-            Some(n) => Prefilter::Convolution(ConvolutionPrefilter::new(family, n)?),
-        })
-    }
-
-    fn apply(&self, s: &[f64]) -> Result<Vec<f64>, PrefilterError> {
-        match self {
-            Prefilter::Recursive(r) => r.apply(s, EndRule::Reflect),
-            Prefilter::Convolution(c) => c.apply(s, EndRule::Reflect),
-        }
-    }
+/// One full-build route: the recursive filter (no width) or a convolution
+/// of a width, behind the routes' one trait.
+fn prefilter(
+    family: &SplineFamily,
+    width: Option<usize>,
+) -> Result<Box<dyn Prefilter1d<f64>>, PrefilterError> {
+    Ok(match width {
+        None => Box::new(RecursivePrefilter::new(family)?),
+        Some(n) => Box::new(ConvolutionPrefilter::new(family, n)?),
+    })
 }
 
 fn build_rows(p: &UpdateCostParams) -> Result<Vec<BuildRow>, UpdateCostError> {
     let mut rows = Vec::new();
     for (name, family) in build_families() {
         for (method, width) in build_methods(&family, p.tol)? {
-            let filter = Prefilter::new(&family, width)?;
+            let filter = prefilter(&family, width)?;
             for &len in &p.build_sizes {
                 let s = signal(len, 11);
                 let ns = median_ns(p.repeats.min(5), || {
-                    black_box(filter.apply(&s).map(|d| d.len()).unwrap_or(0));
+                    black_box(
+                        filter
+                            .apply(&s, EndRule::Reflect)
+                            .map(|d| d.len())
+                            .unwrap_or(0),
+                    );
                 });
                 rows.push(BuildRow {
                     family: name.into(),
@@ -369,7 +366,7 @@ fn accuracy_rows(p: &UpdateCostParams) -> Result<Vec<BuildAccuracy>, UpdateCostE
         let expansion =
             splinelab::sspline::euler_frobenius::PoleExpansion::<Mp<128>>::new(&family)?;
         for (method, width) in build_methods(&family, p.tol)? {
-            let d = Prefilter::new(&family, width)?.apply(&s)?;
+            let d = prefilter(&family, width)?.apply(&s, EndRule::Reflect)?;
             let err = d
                 .iter()
                 .zip(&reference)

@@ -437,6 +437,10 @@ impl<T: Real, const D: usize> ParamCurveDeriv<T, D> for BSpline<T, D> {
     fn deriv(&self, t: &T) -> Result<SVector<T, D>, BSplineError> {
         self.eval_derivative(t, 1)
     }
+    fn breakpoints(&self) -> Vec<T> {
+        let (lo, hi) = self.domain();
+        crate::param_curve::interior(self.knots().as_slice(), &lo, &hi)
+    }
 }
 
 #[cfg(test)]

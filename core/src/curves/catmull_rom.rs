@@ -295,6 +295,10 @@ impl<T: Real, const D: usize> ParamCurveDeriv<T, D> for CatmullRom<T, D> {
     fn deriv(&self, t: &T) -> Result<SVector<T, D>, CurveError> {
         CatmullRom::eval(self, t).map(|(_, d)| d)
     }
+    fn breakpoints(&self) -> Vec<T> {
+        let k = self.knots();
+        crate::param_curve::interior(k, &k[0], &k[k.len() - 1])
+    }
 }
 
 #[cfg(test)]

@@ -1,6 +1,12 @@
-//! Drawing a Bézier curve as a polyline (seed 002, "ベジエ曲線の描画方法"):
+//! Drawing a curve as a polyline (seed 002, "ベジエ曲線の描画方法"):
 //! method 1, uniform parameter sampling; method 2, adaptive sampling that
 //! subdivides by de Casteljau while the control polygon is not flat.
+//!
+//! Any curve flattens: uniform sampling and the measured deviation need only
+//! [`ParamCurve`]; the adaptive methods with a proven bound need the curve's
+//! Bézier pieces ([`ParamCurveBezier`]: Bézier, Hermite, rational Bézier,
+//! B-spline, NURBS, S-spline and Catmull–Rom curves), each piece flattened in
+//! its own local parameter and the vertices reported in the curve's.
 //!
 //! **The guarantee of method 2.** A Bézier curve lies in the convex hull of
 //! its control points. If every control point is within `ε` of the chord
@@ -9,10 +15,14 @@
 //! adaptive polyline is the chain of chords of sub-curves that passed this
 //! test, so **every point of the curve is within `ε` of the polyline** —
 //! a bound, not an estimate (up to the rounding floor of
-//! [`rounding_floor`]).
+//! [`rounding_floor`]). A rational piece with positive weights lies in the
+//! hull of its affine control points too, and subdivides exactly in
+//! homogeneous coordinates.
 
 use super::CurveError;
-use crate::bernstein::bezier::{Bezier, subdivide};
+use super::bezier_pieces::{BezierPiece, ParamCurveBezier, scale_and_degree};
+use crate::bernstein::bezier::Bezier;
+use crate::param_curve::ParamCurve;
 use crate::scalar::Real;
 use nalgebra::SVector;
 
@@ -23,7 +33,7 @@ pub const MAX_DEPTH: usize = 60;
 pub const MAX_UNIFORM_SEGMENTS: usize = 1 << 24;
 
 /// A polyline approximating a curve: vertices `points[j] ≈ P(params[j])`,
-/// `params` increasing from 0 to 1.
+/// `params` increasing over the curve's domain (from 0 to 1 for a Bézier curve).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Polyline<T: Real, const D: usize> {
     /// Curve parameters of the vertices.
@@ -73,26 +83,41 @@ pub fn flatness<T: Real, const D: usize>(points: &[SVector<T, D>]) -> T {
 }
 
 /// The smallest tolerance [`flatten`] accepts for `curve`:
-/// `2⁸ · n · u · max_i ‖P_i‖_∞` (`u` the unit roundoff, at least one `u`).
+/// `2⁸ · n · u · max_i ‖P_i‖_∞` (`u` the unit roundoff, at least one `u`),
+/// `n` the largest degree and `P_i` the control points of every Bézier piece
+/// (times `max w / min w` for a rational piece).
 /// Each level of de Casteljau subdivision perturbs the sub-polygon by at most
 /// `γ_{3n} max|P_i|` per coordinate; over ≲ 40 levels and the flatness
 /// computation that stays below this floor, so a tolerance above it is
 /// honoured up to a relative `O(2⁻⁴)` slack in the worst case and typically
-/// to a few ulps.
-pub fn rounding_floor<T: Real, const D: usize>(curve: &Bezier<T, D>) -> T {
-    let scale = curve
-        .points()
-        .iter()
-        .flat_map(|p| p.iter())
-        .fold(T::zero(), |m, x| m.max(x.clone().abs()));
-    let n = T::from_int(curve.degree().max(1) as i64);
+/// to a few ulps. **Errors**: the curve's pieces cannot be formed.
+///
+/// ```
+/// use nalgebra::Vector2;
+/// use splinelab::bernstein::bezier::Bezier;
+/// use splinelab::curves::flatten::rounding_floor;
+/// let c = Bezier::new(vec![Vector2::new(0.0f64, 0.0), Vector2::new(1.0, 2.0),
+///                          Vector2::new(2.0, 0.0)]).unwrap();
+/// // 2⁸ · 2 · 2⁻⁵³ · 2
+/// assert_eq!(rounding_floor(&c).unwrap(), 2f64.powi(-43));
+/// ```
+pub fn rounding_floor<T: Real, const D: usize, C: ParamCurveBezier<T, D> + ?Sized>(
+    curve: &C,
+) -> Result<T, CurveError> {
+    Ok(pieces_floor(&curve.bezier_pieces()?))
+}
+
+/// [`rounding_floor`] of the pieces.
+pub(crate) fn pieces_floor<T: Real, const D: usize>(pieces: &[BezierPiece<T, D>]) -> T {
+    let (scale, degree) = scale_and_degree(pieces);
+    let n = T::from_int(degree as i64);
     (scale * n).max(T::one()) * T::unit_roundoff().scale_by_pow2(8)
 }
 
 /// Rejects a tolerance that is not finite, not positive, or below the
-/// [`rounding_floor`].
+/// [`rounding_floor`] of `pieces`.
 pub(crate) fn check_tol<T: Real, const D: usize>(
-    curve: &Bezier<T, D>,
+    pieces: &[BezierPiece<T, D>],
     tol: &T,
 ) -> Result<(), CurveError> {
     if !tol.is_finite() || *tol <= T::zero() {
@@ -102,7 +127,7 @@ pub(crate) fn check_tol<T: Real, const D: usize>(
             range: "(0, ∞)",
         });
     }
-    let floor = rounding_floor(curve);
+    let floor = pieces_floor(pieces);
     if *tol < floor {
         return Err(CurveError::ToleranceBelowRounding {
             tol: tol.to_f64(),
@@ -112,9 +137,28 @@ pub(crate) fn check_tol<T: Real, const D: usize>(
     Ok(())
 }
 
-/// Adaptive flattening (seed 002 method 2): split at `t = ½` by de Casteljau
-/// ([`subdivide`]) until each piece's control polygon has
-/// [`flatness`] `≤ tol`; the polyline joins the pieces' end points.
+/// The curve's pieces, checked non-empty, and `tol` checked against them.
+pub(crate) fn checked_pieces<T: Real, const D: usize, C: ParamCurveBezier<T, D> + ?Sized>(
+    curve: &C,
+    tol: &T,
+) -> Result<Vec<BezierPiece<T, D>>, CurveError> {
+    let pieces = curve.bezier_pieces()?;
+    if pieces.is_empty() {
+        return Err(CurveError::OutOfRange {
+            name: "Bézier pieces",
+            value: 0.0,
+            range: "at least one",
+        });
+    }
+    check_tol(&pieces, tol)?;
+    Ok(pieces)
+}
+
+/// Adaptive flattening (seed 002 method 2): split at `s = ½` by de Casteljau
+/// ([`subdivide`](crate::bernstein::bezier::subdivide)) until each piece's
+/// control polygon has [`flatness`] `≤ tol`; the polyline joins the pieces'
+/// end points. A curve of several Bézier pieces ([`ParamCurveBezier`]) is
+/// flattened piece by piece, the vertices' parameters mapped to the curve's.
 ///
 /// **Guarantee**: every point of the curve is within `tol` of the polyline
 /// (convex hull property, module doc), for `tol ≥` [`rounding_floor`].
@@ -122,6 +166,10 @@ pub(crate) fn check_tol<T: Real, const D: usize>(
 /// `√(‖Δ²P‖/tol)` as flatness shrinks by ≈ 4 per halving.
 /// **Errors**: `tol` not finite or `≤ 0`; below the rounding floor;
 /// more than [`MAX_DEPTH`] levels.
+///
+/// **Accuracy**: judged in 256-bit MPFR for Bézier, NURBS, Catmull–Rom and
+/// S-spline curves by `verify/tests/curves_flatten_any.rs`. **Source**: seed 002
+/// method 2; the convex hull property (Farin, *Curves and Surfaces for CAGD*, §3).
 ///
 /// ```
 /// use nalgebra::Vector2;
@@ -133,46 +181,115 @@ pub(crate) fn check_tol<T: Real, const D: usize>(
 /// assert_eq!(poly.points[0], Vector2::new(0.0, 0.0));
 /// assert_eq!(*poly.points.last().unwrap(), Vector2::new(2.0, 0.0));
 /// ```
-pub fn flatten<T: Real, const D: usize>(
-    curve: &Bezier<T, D>,
+///
+/// ```
+/// // The exact NURBS circle in MPFR: every vertex on the circle, and the
+/// // curve within tol of the polyline (the sagitta of the longest chord).
+/// use nalgebra::Vector2;
+/// use splinelab::bspline::nurbs::NurbsCurve;
+/// use splinelab::curves::flatten::{flatten, max_deviation};
+/// use splinelab::scalar::prelude::*;
+/// type M = Mp<128>;
+/// let c = NurbsCurve::circle(&Vector2::new(M::zero(), M::zero()), &M::one()).unwrap();
+/// let tol = M::from_f64_exact(1e-6);
+/// let poly = flatten(&c, &tol).unwrap();
+/// for p in &poly.points {
+///     assert!((p.norm() - M::one()).abs().to_f64() < 1e-35);
+/// }
+/// assert!(max_deviation(&c, &poly, 16).unwrap() <= tol);
+/// ```
+pub fn flatten<T: Real, const D: usize, C: ParamCurveBezier<T, D> + ?Sized>(
+    curve: &C,
     tol: &T,
 ) -> Result<Polyline<T, D>, CurveError> {
-    check_tol(curve, tol)?;
+    piece_by_piece(curve, tol, subdivide_piece)
+}
+
+/// What flattening one piece does: append the vertices after the piece's
+/// start (which the polyline already ends with).
+pub(crate) type PieceFlattener<T, const D: usize> =
+    fn(&BezierPiece<T, D>, &T, &mut Polyline<T, D>) -> Result<(), CurveError>;
+
+/// The polyline of `curve` at `tol`, started at the curve's first point and
+/// extended by `each` over every Bézier piece in turn (tolerance checked
+/// against the pieces' [`rounding_floor`] first).
+pub(crate) fn piece_by_piece<T: Real, const D: usize, C: ParamCurveBezier<T, D> + ?Sized>(
+    curve: &C,
+    tol: &T,
+    each: PieceFlattener<T, D>,
+) -> Result<Polyline<T, D>, CurveError> {
+    let pieces = checked_pieces(curve, tol)?;
+    let mut poly = Polyline {
+        params: vec![pieces[0].span.0.clone()],
+        points: vec![pieces[0].net().polygon()[0].clone()],
+    };
+    for piece in &pieces {
+        each(piece, tol, &mut poly)?;
+    }
+    Ok(poly)
+}
+
+/// Appends to `poly` the end points of the flat sub-pieces of `piece`
+/// (all but its start, which `poly` already ends with).
+fn subdivide_piece<T: Real, const D: usize>(
+    piece: &BezierPiece<T, D>,
+    tol: &T,
+    poly: &mut Polyline<T, D>,
+) -> Result<(), CurveError> {
     let half = T::one() / T::from_int(2);
-    let mut params = vec![T::zero()];
-    let mut points = vec![curve.points()[0].clone()];
-    // Pieces still to examine, the leftmost on top: (t0, t1, depth, control points).
-    let mut stack = vec![(T::zero(), T::one(), 0usize, curve.points().to_vec())];
-    while let Some((t0, t1, depth, ctrl)) = stack.pop() {
-        if flatness(&ctrl) <= *tol {
-            params.push(t1);
-            points.push(ctrl[ctrl.len() - 1].clone());
+    // Pieces still to examine, the leftmost on top: (s0, s1, depth, control net).
+    let mut stack = vec![(T::zero(), T::one(), 0usize, piece.net())];
+    while let Some((s0, s1, depth, net)) = stack.pop() {
+        let polygon = net.polygon();
+        if flatness(&polygon) <= *tol {
+            poly.params.push(piece.param(&s1));
+            poly.points.push(polygon[polygon.len() - 1].clone());
             continue;
         }
         if depth >= MAX_DEPTH {
             return Err(CurveError::DepthExceeded(MAX_DEPTH));
         }
-        let (left, right) = subdivide(&ctrl, &half)?;
-        let tm = (t0.clone() + t1.clone()) * half.clone();
-        stack.push((tm.clone(), t1, depth + 1, right));
-        stack.push((t0, tm, depth + 1, left));
+        let (left, right) = net.split(&half)?;
+        let sm = (s0.clone() + s1.clone()) * half.clone();
+        stack.push((sm.clone(), s1, depth + 1, right));
+        stack.push((s0, sm, depth + 1, left));
     }
-    Ok(Polyline { params, points })
+    Ok(())
 }
 
-/// Uniform sampling (seed 002 method 1): the polyline through `P(j/m)`,
-/// `j = 0..m`, each vertex by de Casteljau. `m ≥ 1`.
+/// Uniform sampling (seed 002 method 1): the polyline through `P(t_j)`,
+/// `t_j = a + (b − a) j/m`, `j = 0..m`, over the curve's domain `[a, b]`
+/// (`t_m = b` exactly), each vertex by the curve's own evaluation. `m ≥ 1`.
 ///
-/// **Accuracy**: each vertex within de Casteljau's `γ_{2n} max|P|` of the curve point
-/// (Farouki–Rajan 1987); the chord error is [`uniform_segments_bound`]'s, tested in
+/// **Accuracy**: each vertex that of `eval` (for a Bézier curve within de
+/// Casteljau's `γ_{2n} max|P|` of the curve point, Farouki–Rajan 1987); the
+/// chord error is [`uniform_segments_bound`]'s, tested in
 /// `verify/tests/curves_flatten.rs::uniform_count_is_the_smallest_passing_count`.
-pub fn uniform_polyline<T: Real, const D: usize>(
-    curve: &Bezier<T, D>,
+/// **Source**: seed 002 method 1.
+///
+/// ```
+/// use nalgebra::Vector2;
+/// use splinelab::bernstein::bezier::Bezier;
+/// use splinelab::curves::flatten::uniform_polyline;
+/// let c = Bezier::new(vec![Vector2::new(0.0f64, 0.0), Vector2::new(2.0, 4.0)]).unwrap();
+/// let poly = uniform_polyline(&c, 4).unwrap();
+/// assert_eq!((poly.params[1], poly.points[1]), (0.25, Vector2::new(0.5, 1.0)));
+/// ```
+pub fn uniform_polyline<T: Real, const D: usize, C: ParamCurve<T, D> + ?Sized>(
+    curve: &C,
     m: usize,
-) -> Result<Polyline<T, D>, CurveError> {
+) -> Result<Polyline<T, D>, C::Error> {
     let m = m.max(1);
+    let (a, b) = curve.domain();
     let params: Vec<T> = (0..=m)
-        .map(|j| T::from_int(j as i64) / T::from_int(m as i64))
+        .map(|j| {
+            if j == m {
+                b.clone()
+            } else {
+                let s = T::from_int(j as i64) / T::from_int(m as i64);
+                a.clone() + (b.clone() - a.clone()) * s
+            }
+        })
         .collect();
     let points = params
         .iter()
@@ -189,15 +306,25 @@ pub fn uniform_polyline<T: Real, const D: usize>(
 ///
 /// **Accuracy**: a sampled maximum — it can miss the true maximum by a
 /// relative `O(1/samples²)` (the deviation is smooth with a quadratic peak).
-/// **Cost**: `segments · samples` de Casteljau evaluations.
+/// **Cost**: `segments · samples` evaluations.
 ///
 /// **Source**: seed 002 (uniform vs adaptive drawing); judged in 256-bit MPFR by
 /// `reports/tests/cli_flatten.rs::at_1e_12_the_deviation_stays_within_the_tolerance_judged_in_mpfr`.
-pub fn max_deviation<T: Real, const D: usize>(
-    curve: &Bezier<T, D>,
+///
+/// ```
+/// use nalgebra::Vector2;
+/// use splinelab::bernstein::bezier::Bezier;
+/// use splinelab::curves::flatten::{max_deviation, uniform_polyline};
+/// // P(t) = (2t, 4t(1−t)) against its one chord: the apex, 1 above it.
+/// let c = Bezier::new(vec![Vector2::new(0.0f64, 0.0), Vector2::new(1.0, 2.0),
+///                          Vector2::new(2.0, 0.0)]).unwrap();
+/// assert_eq!(max_deviation(&c, &uniform_polyline(&c, 1).unwrap(), 3).unwrap(), 1.0);
+/// ```
+pub fn max_deviation<T: Real, const D: usize, C: ParamCurve<T, D> + ?Sized>(
+    curve: &C,
     poly: &Polyline<T, D>,
     samples: usize,
-) -> Result<T, CurveError> {
+) -> Result<T, C::Error> {
     let k = T::from_int(samples as i64 + 1);
     let mut worst = T::zero();
     for j in 0..poly.segments() {
@@ -241,7 +368,7 @@ pub fn uniform_segments_bound<T: Real, const D: usize>(
     curve: &Bezier<T, D>,
     tol: &T,
 ) -> Result<T, CurveError> {
-    check_tol(curve, tol)?;
+    checked_pieces(curve, tol)?;
     let p = curve.points();
     let second = p
         .windows(3)
@@ -260,18 +387,22 @@ pub fn uniform_segments_bound<T: Real, const D: usize>(
 /// (essentially monotonically, like `m⁻²`) with `m`; bisection assumes it.
 ///
 /// **Cost**: `O(log m)` trials of `m · samples` evaluations.
-/// **Errors**: bad `tol` (as [`flatten`]); more than [`MAX_UNIFORM_SEGMENTS`].
+/// **Errors**: bad `tol` (as [`flatten`]); more than [`MAX_UNIFORM_SEGMENTS`];
+/// an evaluation's error.
 ///
 /// **Accuracy**: the count is the smallest passing one up to the sampled deviation's
 /// `O(1/samples²)`, tested in
 /// `verify/tests/curves_flatten.rs::uniform_count_is_the_smallest_passing_count`.
 /// **Source**: seed 002's uniform drawing, the count it needs.
-pub fn uniform_segments<T: Real, const D: usize>(
-    curve: &Bezier<T, D>,
+pub fn uniform_segments<T: Real, const D: usize, C: ParamCurveBezier<T, D> + ?Sized>(
+    curve: &C,
     tol: &T,
     samples: usize,
-) -> Result<usize, CurveError> {
-    check_tol(curve, tol)?;
+) -> Result<usize, CurveError>
+where
+    CurveError: From<C::Error>,
+{
+    checked_pieces(curve, tol)?;
     let passes = |m: usize| -> Result<bool, CurveError> {
         Ok(max_deviation(curve, &uniform_polyline(curve, m)?, samples)? <= *tol)
     };

@@ -43,10 +43,15 @@
 //! — the bound is computed in the working precision on sub-curves made by de
 //! Casteljau subdivision, whose rounding stays under that floor as in
 //! [`super::flatten::flatten`].
+//!
+//! **Any curve of Bézier pieces** ([`ParamCurveBezier`]: B-spline, NURBS,
+//! S-spline, Catmull–Rom curves…) is flattened piece by piece. A rational
+//! piece has no second-difference bound; its chords are certified by the
+//! convex hull bound alone (still a proof, with more chords than the optimum).
 
 use super::CurveError;
-use super::flatten::{MAX_DEPTH, Polyline, check_tol, segment_distance};
-use crate::bernstein::bezier::{Bezier, subdivide};
+use super::bezier_pieces::{BezierPiece, Net, ParamCurveBezier};
+use super::flatten::{MAX_DEPTH, Polyline, flatness, piece_by_piece, segment_distance};
 use crate::scalar::Real;
 use nalgebra::SVector;
 
@@ -117,23 +122,25 @@ pub fn chord_deviation_bound<T: Real, const D: usize>(ctrl: &[SVector<T, D>]) ->
     }
 }
 
-/// Control points of `curve` restricted to `[t0, t1]` (two de Casteljau
-/// subdivisions), with the chord end points replaced by the polyline
+/// Control points of `piece` restricted to the local `[s0, s1]` (two de
+/// Casteljau subdivisions, in homogeneous coordinates for a rational piece,
+/// then projected), with the chord end points replaced by the polyline
 /// vertices `a`, `b` (the same points up to rounding, so adjacent chords
 /// share their vertex exactly).
-fn piece<T: Real, const D: usize>(
-    curve: &Bezier<T, D>,
-    t0: &T,
-    t1: &T,
+fn sub_polygon<T: Real, const D: usize>(
+    net: &Net<T, D>,
+    s0: &T,
+    s1: &T,
     a: &SVector<T, D>,
     b: &SVector<T, D>,
 ) -> Result<Vec<SVector<T, D>>, CurveError> {
-    let (left, _) = subdivide(curve.points(), t1)?;
-    let mut q = if t0.is_zero() {
+    let (left, _) = net.split(s1)?;
+    let sub = if s0.is_zero() {
         left
     } else {
-        subdivide(&left, &(t0.clone() / t1.clone()))?.1
+        left.split(&(s0.clone() / s1.clone()))?.1
     };
+    let mut q = sub.polygon().into_owned();
     let n = q.len() - 1;
     q[0] = a.clone();
     q[n] = b.clone();
@@ -142,7 +149,9 @@ fn piece<T: Real, const D: usize>(
 
 /// Near-optimal flattening with a proven distance bound (module doc): the
 /// polyline through `P(t_j)`, each chord the longest from `t_j` that
-/// [`chord_deviation_bound`] certifies within `tol`.
+/// [`chord_deviation_bound`] certifies within `tol`; a curve of several
+/// Bézier pieces ([`ParamCurveBezier`]) piece by piece, the vertices'
+/// parameters mapped to the curve's.
 ///
 /// **Guarantee**: every point of the curve is within `tol` of the polyline,
 /// for `tol ≥` [`super::flatten::rounding_floor`]. **Cost**: typically
@@ -157,7 +166,9 @@ fn piece<T: Real, const D: usize>(
 /// predicted from the curvature, then bisected until [`chord_deviation_bound`] is within
 /// `tol`. **Source**: seed 002's adaptive drawing; optimum count after R. Levien,
 /// *Flattening quadratic Béziers* (2019). Tested in
-/// `verify/tests/curves_flatten.rs::greedy_flattening_is_within_tol_below_uniform_and_near_the_optimum`.
+/// `verify/tests/curves_flatten.rs::greedy_flattening_is_within_tol_below_uniform_and_near_the_optimum`;
+/// over NURBS, Catmull–Rom and S-spline curves judged in 256-bit MPFR by
+/// `verify/tests/curves_flatten_any.rs`.
 ///
 /// ```
 /// use nalgebra::Vector2;
@@ -170,37 +181,68 @@ fn piece<T: Real, const D: usize>(
 /// assert!(greedy.segments() < flatten(&c, &1e-3).unwrap().segments());
 /// assert!(max_deviation(&c, &greedy, 64).unwrap() <= 1e-3);
 /// ```
-pub fn flatten_greedy<T: Real, const D: usize>(
-    curve: &Bezier<T, D>,
+///
+/// ```
+/// // A centripetal Catmull–Rom spline in MPFR: within tol of its polyline.
+/// use nalgebra::Vector2;
+/// use splinelab::curves::catmull_rom::{CatmullRom, Spacing};
+/// use splinelab::curves::flatten::max_deviation;
+/// use splinelab::curves::greedy_flatten::flatten_greedy;
+/// use splinelab::scalar::{Mp, Real};
+/// type M = Mp<128>;
+/// let v = |x: i64, y: i64| Vector2::new(M::from_int(x), M::from_int(y));
+/// let c = CatmullRom::new(vec![v(0, 0), v(1, 2), v(3, 2), v(4, 0), v(6, 1)],
+///                         Spacing::Centripetal, false).unwrap();
+/// let tol = M::from_f64_exact(1e-8);
+/// let poly = flatten_greedy(&c, &tol).unwrap();
+/// assert!(max_deviation(&c, &poly, 16).unwrap() <= tol);
+/// ```
+pub fn flatten_greedy<T: Real, const D: usize, C: ParamCurveBezier<T, D> + ?Sized>(
+    curve: &C,
     tol: &T,
 ) -> Result<Polyline<T, D>, CurveError> {
-    check_tol(curve, tol)?;
+    piece_by_piece(curve, tol, greedy_piece)
+}
+
+/// Appends to `poly` the greedy chords' end points over `piece` (its start
+/// is `poly`'s last vertex), in the piece's local parameter `s ∈ [0, 1]`.
+fn greedy_piece<T: Real, const D: usize>(
+    piece: &BezierPiece<T, D>,
+    tol: &T,
+    poly: &mut Polyline<T, D>,
+) -> Result<(), CurveError> {
+    let net = piece.net();
+    let bound = |q: &[SVector<T, D>]| {
+        if net.is_rational() {
+            flatness(q)
+        } else {
+            chord_deviation_bound(q)
+        }
+    };
     let one = T::one();
     let min_step = T::one().scale_by_pow2(-(MAX_DEPTH as i32));
-    let mut params = vec![T::zero()];
-    let mut points = vec![curve.points()[0].clone()];
+    let mut s0 = T::zero();
     let mut step = one.clone();
     loop {
-        let t0 = params[params.len() - 1].clone();
-        let a = points[points.len() - 1].clone();
-        let room = one.clone() - t0.clone();
+        let a = poly.points[poly.points.len() - 1].clone();
+        let room = one.clone() - s0.clone();
         let measure = |h: &T| -> Result<(T, SVector<T, D>), CurveError> {
-            let t1 = if *h >= room {
+            let s1 = if *h >= room {
                 one.clone()
             } else {
-                t0.clone() + h.clone()
+                s0.clone() + h.clone()
             };
-            let b = curve.eval(&t1)?;
-            let q = piece(curve, &t0, &t1, &a, &b)?;
-            Ok((chord_deviation_bound(&q), b))
+            let b = piece.eval_local(&s1)?;
+            let q = sub_polygon(&net, &s0, &s1, &a, &b)?;
+            Ok((bound(&q), b))
         };
-        let lo = longest_step(measure, tol, step.min(room.clone()), &room, &min_step)?;
-        let (h, b) = lo;
+        let (h, b) = longest_step(measure, tol, step.min(room.clone()), &room, &min_step)?;
         let end = h >= room;
-        params.push(if end { one.clone() } else { t0 + h.clone() });
-        points.push(b);
+        s0 = if end { one.clone() } else { s0 + h.clone() };
+        poly.params.push(piece.param(&s0));
+        poly.points.push(b);
         if end {
-            return Ok(Polyline { params, points });
+            return Ok(());
         }
         step = h;
     }
@@ -309,6 +351,7 @@ fn longest_step<T: Real, const D: usize>(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::bernstein::bezier::Bezier;
     use nalgebra::Vector2;
 
     #[test]

@@ -18,6 +18,7 @@
 //! All objects are generic over the scalar ([`Real`](crate::scalar::Real))
 //! and the dimension `D` (2-D and 3-D points are `SVector<T, 2>` / `SVector<T, 3>`).
 
+pub mod bezier_pieces;
 pub mod catmull_rom;
 pub mod flatten;
 pub mod global_cubic;

@@ -229,6 +229,10 @@ impl<T: Real> ParamCurveDeriv<T, 3> for ClampedCubicSpline<T> {
         let [_, d, _] = self.jet(i, &tau);
         Ok(d)
     }
+    fn breakpoints(&self) -> Vec<T> {
+        let k = self.knots();
+        crate::param_curve::interior(k, &k[0], &k[k.len() - 1])
+    }
 }
 
 #[cfg(test)]

@@ -344,6 +344,12 @@ impl<T: Real> ParamCurveDeriv<T, 3> for QiInterpolation<T> {
         let s = &self.segments[i];
         Ok(s.tangent_at(&tau) * s.length.clone())
     }
+    /// The segment joins `1, …, n − 1`.
+    fn breakpoints(&self) -> Vec<T> {
+        (1..self.segments.len())
+            .map(|i| T::from_int(i as i64))
+            .collect()
+    }
 }
 
 impl<T: Real> QiInterpolation<T> {

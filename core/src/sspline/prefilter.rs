@@ -63,6 +63,50 @@ pub enum PrefilterError {
     Sspline(#[from] SsplineError),
 }
 
+/// A 1-D full build `s ↦ D` (module doc): what [`RecursivePrefilter`] and
+/// [`ConvolutionPrefilter`] share, so that code comparing or choosing routes
+/// (the verify study `update_cost`, the engine's callers) takes either.
+///
+/// **Method**, **accuracy** and **source**: those of the implementing route
+/// ([`RecursivePrefilter::apply`]: exact inverse filter to a few ulps;
+/// [`ConvolutionPrefilter::apply`]: within the width's tail bound).
+///
+/// ```
+/// use splinelab::sspline::{SplineFamily, end_conditions::EndRule};
+/// use splinelab::sspline::prefilter::{ConvolutionPrefilter, Prefilter1d, RecursivePrefilter};
+/// use splinelab::scalar::prelude::*;
+/// // In MPFR: both routes through one trait object, the convolution of
+/// // half-width 120 within 1e-50 of the exact filter (cubic tail ≈ 0.268^n).
+/// type M = Mp<256>;
+/// let f = SplineFamily::Order(4);
+/// let routes: Vec<Box<dyn Prefilter1d<M>>> = vec![
+///     Box::new(RecursivePrefilter::<M>::new(&f).unwrap()),
+///     Box::new(ConvolutionPrefilter::<M>::new(&f, 120).unwrap()),
+/// ];
+/// let s: Vec<M> = [1, 4, 2, 0, 3, 5, 1].iter().map(|&x| M::from_int(x)).collect();
+/// let d: Vec<Vec<M>> = routes.iter().map(|r| r.apply(&s, EndRule::Reflect).unwrap()).collect();
+/// for (a, b) in d[0].iter().zip(&d[1]) {
+///     assert!((a.clone() - b.clone()).abs().to_f64() < 1e-50);
+/// }
+/// ```
+pub trait Prefilter1d<T: Real> {
+    /// The coefficients `D_0..D_{ν−1}` of `samples` extended by `end`.
+    /// Errors: empty or non-finite samples; an end the route does not support.
+    fn apply(&self, samples: &[T], end: EndRule) -> Result<Vec<T>, PrefilterError>;
+}
+
+impl<T: Real> Prefilter1d<T> for RecursivePrefilter<T> {
+    fn apply(&self, samples: &[T], end: EndRule) -> Result<Vec<T>, PrefilterError> {
+        RecursivePrefilter::apply(self, samples, end)
+    }
+}
+
+impl<T: Real> Prefilter1d<T> for ConvolutionPrefilter<T> {
+    fn apply(&self, samples: &[T], end: EndRule) -> Result<Vec<T>, PrefilterError> {
+        ConvolutionPrefilter::apply(self, samples, end)
+    }
+}
+
 fn check_samples<T: Real>(s: &[T]) -> Result<(), PrefilterError> {
     if s.is_empty() {
         return Err(PrefilterError::Empty);

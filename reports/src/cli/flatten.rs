@@ -252,7 +252,7 @@ fn run_dim<const D: usize>(
 /// point-to-chord distance add up to. Refused when what is left is below
 /// the floor itself.
 fn aim<const D: usize>(curve: &Bezier<f64, D>, tol: f64) -> Result<f64, CliError> {
-    let floor = rounding_floor(curve);
+    let floor = rounding_floor(curve).map_err(CliError::numerical)?;
     let target = tol - floor / 8.0;
     if target < floor {
         return Err(CliError::invalid(
