@@ -8,8 +8,12 @@ root=$(cd "$(dirname "$0")/.." && pwd)
 bin="${CARGO_TARGET_DIR:-$root/target}/release/splinelab"
 read -r -a features <<<"$(bash "$root/scripts/gmp_features.sh")"
 if [ ! -x "$bin" ]; then
-  if [ ${#features[@]} -gt 0 ]; then gmp="system GMP/MPFR"; else gmp="GMP/MPFR built from source, add ~4 min"; fi
-  echo "splinelab: first build of the release binary ($gmp; about 2 min on 2 cores, seconds afterwards)" >&2
+  if [ ${#features[@]} -gt 0 ]; then
+    gmp="linking the system GMP/MPFR"
+  else
+    gmp="GMP/MPFR from source: 2-4 min more unless ~/.cache/gmp-mpfr-sys has them"
+  fi
+  echo "splinelab: first build of the release binary (about 3 min on 2 cores; $gmp); later runs rebuild in seconds" >&2
   cargo build --release --manifest-path "$root/Cargo.toml" -p splinelab-reports --bin splinelab "${features[@]+"${features[@]}"}" >&2
 else
   cargo build --release --quiet --manifest-path "$root/Cargo.toml" -p splinelab-reports --bin splinelab "${features[@]+"${features[@]}"}" >&2
