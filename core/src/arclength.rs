@@ -140,7 +140,7 @@ pub trait ParamCurveArclen<T: Real, const D: usize>: ParamCurveDeriv<T, D> {
         let rule = rule::<T, Self::Error>()?;
         let (a, b) = self.domain();
         let total = integrate(self, &rule, &a, &b, &rate)?;
-        if !s.is_finite() || *s < -accuracy.clone() || *s > total.clone() + accuracy.clone() {
+        if !s.is_finite() || *s < -accuracy.clone() || *s > total.clone() + accuracy {
             return Err(ArclenError::OutOfRange {
                 name: "arc length",
                 value: s.to_f64(),
@@ -151,7 +151,7 @@ pub trait ParamCurveArclen<T: Real, const D: usize>: ParamCurveDeriv<T, D> {
         if *s <= half {
             return Ok(a);
         }
-        if total.clone() - s.clone() <= half {
+        if total.clone() - s <= half {
             return Ok(b);
         }
         // Bracket [lo, hi] with L(lo) ≤ s ≤ L(hi); `len_lo` the running length.
@@ -161,7 +161,7 @@ pub trait ParamCurveArclen<T: Real, const D: usize>: ParamCurveDeriv<T, D> {
         let mut t = a.clone() + (hi.clone() - a) * (s.clone() / total);
         for _ in 0..MAX_STEPS {
             let len_t = len_lo.clone() + integrate(self, &rule, &lo, &t, &rate)?;
-            let miss = s.clone() - len_t.clone();
+            let miss = s.clone() - &len_t;
             if miss.clone().abs() <= half {
                 return Ok(t);
             }
@@ -175,7 +175,7 @@ pub trait ParamCurveArclen<T: Real, const D: usize>: ParamCurveDeriv<T, D> {
             t = if speed > T::zero() && newton > lo && newton < hi {
                 newton
             } else {
-                (lo.clone() + hi.clone()).scale_by_pow2(-1)
+                (lo.clone() + &hi).scale_by_pow2(-1)
             };
         }
         Err(ArclenError::NotConverged(MAX_STEPS))
@@ -212,7 +212,7 @@ fn gauss<T: Real, const D: usize, C: ParamCurveDeriv<T, D> + ?Sized>(
     t0: &T,
     t1: &T,
 ) -> Result<T, ArclenError<C::Error>> {
-    let h = t1.clone() - t0.clone();
+    let h = t1.clone() - t0;
     let mut sum = T::zero();
     for (x, w) in rule.nodes().iter().zip(rule.weights()) {
         let t = t0.clone() + h.clone() * x.clone();
@@ -254,11 +254,11 @@ fn refine<T: Real, const D: usize, C: ParamCurveDeriv<T, D> + ?Sized>(
     rate: &T,
     depth: usize,
 ) -> Result<T, ArclenError<C::Error>> {
-    let mid = (t0.clone() + t1.clone()).scale_by_pow2(-1);
+    let mid = (t0.clone() + t1).scale_by_pow2(-1);
     let left = gauss(curve, rule, t0, &mid)?;
     let right = gauss(curve, rule, &mid, t1)?;
-    let halves = left.clone() + right.clone();
-    if (whole - halves.clone()).abs() <= rate.clone() * (t1.clone() - t0.clone()) {
+    let halves = left.clone() + &right;
+    if (whole - halves.clone()).abs() <= rate.clone() * (t1.clone() - t0) {
         return Ok(halves);
     }
     if depth >= MAX_DEPTH || mid <= *t0 || mid >= *t1 {

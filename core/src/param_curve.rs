@@ -113,7 +113,7 @@ pub fn sample<T: Real, const D: usize, C: ParamCurve<T, D>>(
                 b.clone()
             } else {
                 let s = T::from_int(k as i64) / T::from_int(n as i64);
-                a.clone() + (b.clone() - a.clone()) * s
+                a.clone() + (b.clone() - &a) * s
             };
             curve.eval(&t)
         })

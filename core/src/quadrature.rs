@@ -88,12 +88,11 @@ pub fn legendre<T: Real>(m: usize, x: &T) -> (T, T) {
     }
     for k in 1..m {
         let kk = T::from_int(k as i64);
-        let next = (T::from_int(2 * k as i64 + 1) * x.clone() * p.clone() - kk.clone() * p_prev)
+        let next = (T::from_int(2 * k as i64 + 1) * x.clone() * &p - kk.clone() * p_prev)
             / (kk + T::one());
         p_prev = std::mem::replace(&mut p, next);
     }
-    let dp = T::from_int(m as i64) * (x.clone() * p.clone() - p_prev)
-        / (x.clone() * x.clone() - T::one());
+    let dp = T::from_int(m as i64) * (x.clone() * &p - p_prev) / (x.clone() * x - T::one());
     (p, dp)
 }
 
@@ -164,7 +163,7 @@ impl<T: Real> GaussLegendre<T> {
             } else {
                 legendre_root::<T>(m, T::from_f64_exact(x64), i)?
             };
-            let w = T::one() / ((T::one() - x.clone() * x.clone()) * dp.clone() * dp);
+            let w = T::one() / ((T::one() - x.clone() * &x) * dp.clone() * dp);
             // Roots come in ± pairs: x_i descending, store ascending on [0,1].
             nodes[i - 1] = half.clone() - half.clone() * x.clone();
             nodes[m - i] = half.clone() + half.clone() * x;
@@ -199,7 +198,7 @@ impl<T: Real> GaussLegendre<T> {
 
     /// `∫_a^b f ≈ (b − a) Σ w_i f(a + (b − a) t_i)`.
     pub fn integrate_on(&self, a: &T, b: &T, mut f: impl FnMut(&T) -> T) -> T {
-        let len = b.clone() - a.clone();
+        let len = b.clone() - a;
         let s = self.integrate(|t| f(&(a.clone() + len.clone() * t.clone())));
         len * s
     }
@@ -263,7 +262,7 @@ mod tests {
         for k in 0..2 * m {
             let q = rule.integrate(|t| t.clone().powi(k as i32));
             let exact = T::from_rational(&Rational::from((1, k as i64 + 1)));
-            let err = (q.clone() - exact.clone()).abs();
+            let err = (q.clone() - &exact).abs();
             let bound = T::unit_roundoff().scale_by_pow2(ulps) * T::from_int(m as i64);
             assert!(
                 err <= bound,

@@ -76,9 +76,9 @@ pub fn eval_with_derivatives<T: Real>(a: &[T], x: &T) -> (T, T, T) {
     let mut d1 = T::zero();
     let mut d2 = T::zero();
     for c in a.iter().rev() {
-        d2 = d2 * x.clone() + d1.clone();
-        d1 = d1 * x.clone() + p.clone();
-        p = p * x.clone() + c.clone();
+        d2 = d2 * x.clone() + &d1;
+        d1 = d1 * x.clone() + &p;
+        p = p * x.clone() + c;
     }
     (p, d1, d2.clone() + d2)
 }
@@ -201,12 +201,12 @@ fn laguerre_step<T: Real>(a: &[T], known: &[T], x: &T) -> Option<T> {
     let mut g = g_full.clone();
     let mut h = g_full.clone() * g_full - d2 / p;
     for r in known {
-        let inv = T::one() / (x.clone() - r.clone());
+        let inv = T::one() / (x.clone() - r);
         g -= inv.clone();
         h -= inv.clone() * inv;
     }
     let n = T::from_int((a.len() - 1 - known.len()) as i64);
-    let disc = (n.clone() - T::one()) * (n.clone() * h - g.clone() * g.clone());
+    let disc = (n.clone() - T::one()) * (n.clone() * h - g.clone() * &g);
     // A real-rooted polynomial has disc ≥ 0; a tiny negative value is rounding.
     let root = if disc > T::zero() {
         disc.sqrt()

@@ -94,7 +94,7 @@ pub(crate) mod tests {
             let (r, t) = (&w[0], &w[1]);
             let mut a = w[2].clone();
             a.affine_step(r, &w[3], t);
-            assert_eq!(a, w[2].clone() * r.clone() + w[3].clone() * t.clone());
+            assert_eq!(a, w[2].clone() * r + w[3].clone() * t);
             let p = Vector3::new(w[2].clone(), w[4].clone(), w[5].clone());
             let q = Vector3::new(w[3].clone(), w[6].clone(), w[7].clone());
             let mut s = p.clone();

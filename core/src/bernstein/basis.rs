@@ -64,12 +64,12 @@ pub fn bernstein_basis<T: Real>(n: usize, t: &T) -> Vec<T> {
     b.push(T::one());
     for k in 1..=n {
         // Sweep downwards so that b[i − 1] still holds level k − 1.
-        let last = t.clone() * b[k - 1].clone();
+        let last = t.clone() * &b[k - 1];
         b.push(last);
         for i in (1..k).rev() {
-            b[i] = one_minus_t.clone() * b[i].clone() + t.clone() * b[i - 1].clone();
+            b[i] = one_minus_t.clone() * &b[i] + t.clone() * &b[i - 1];
         }
-        b[0] = one_minus_t.clone() * b[0].clone();
+        b[0] = one_minus_t.clone() * &b[0];
     }
     b
 }
@@ -114,7 +114,7 @@ mod tests {
             let b = bernstein_basis(n, &M::from_rational(&t));
             for (i, bi) in b.iter().enumerate() {
                 let want = M::from_rational(&exact(n as u32, i as u32, &t));
-                let rel = ((bi.clone() - want.clone()) / want).abs();
+                let rel = ((bi.clone() - &want) / want).abs();
                 // γ_{2n} at 200 bits, with margin for the rounding of t itself.
                 assert!(rel < M::from_f64_exact(4.0 * n as f64 + 2.0) * M::unit_roundoff());
             }

@@ -63,13 +63,13 @@ pub fn bernstein_sum<T: Real>(poly: &BernsteinPoly<T>, t: &T) -> Result<T, Bezie
     let mut r_pow = Vec::with_capacity(n + 1);
     r_pow.push(T::one());
     for k in 1..=n {
-        let next = r_pow[k - 1].clone() * r.clone();
+        let next = r_pow[k - 1].clone() * &r;
         r_pow.push(next);
     }
     let mut t_pow = T::one();
     let mut sum = T::zero();
     for (i, (b, c)) in poly.coeffs().iter().zip(poly.binomials()).enumerate() {
-        sum += c.value.clone() * b.clone() * t_pow.clone() * r_pow[n - i].clone();
+        sum += c.value.clone() * b * t_pow.clone() * &r_pow[n - i];
         t_pow *= t.clone();
     }
     finite(sum, METHOD, n)

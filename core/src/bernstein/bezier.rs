@@ -425,10 +425,10 @@ mod tests {
         let t = M::from(0.375);
         let s = M::from(0.625);
         let w = [
-            s.clone() * s.clone() * s.clone(),
-            M::from(3.0) * t.clone() * s.clone() * s.clone(),
-            M::from(3.0) * t.clone() * t.clone() * s.clone(),
-            t.clone() * t.clone() * t.clone(),
+            s.clone() * &s * s.clone(),
+            M::from(3.0) * t.clone() * &s * s.clone(),
+            M::from(3.0) * t.clone() * &t * s.clone(),
+            t.clone() * &t * t.clone(),
         ];
         let want = pts
             .iter()

@@ -66,7 +66,7 @@ pub fn cond_power<T: Real>(monomial: &[T], t: &T) -> Option<T> {
     let value = monomial
         .iter()
         .rev()
-        .fold(T::zero(), |acc, a| acc * t.clone() + a.clone());
+        .fold(T::zero(), |acc, a| acc * t.clone() + a);
     (!value.is_zero()).then(|| power_abs_sum(monomial, t) / abs(&value))
 }
 

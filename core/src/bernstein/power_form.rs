@@ -140,7 +140,7 @@ impl<T: Real> PowerForm<T> {
             .coeffs
             .iter()
             .rev()
-            .fold(T::zero(), |y, a| y * t.clone() + a.clone());
+            .fold(T::zero(), |y, a| y * t.clone() + a);
         finite(y, METHOD, self.coeffs.len() - 1)
     }
 

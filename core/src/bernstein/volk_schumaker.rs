@@ -72,7 +72,7 @@ fn reduce<T: Real>(t: &T) -> (T, T, bool) {
     let half = T::one().scale_by_pow2(-1);
     let r = T::one() - t.clone();
     if *t <= half {
-        (t.clone() / r.clone(), r, false)
+        (t.clone() / &r, r, false)
     } else {
         (r / t.clone(), t.clone(), true)
     }

@@ -376,7 +376,7 @@ impl<T: Real, const D: usize> BSpline<T, D> {
         let km1 = T::from_int(k as i64 - 1);
         let points = (0..self.points.len() - 1)
             .map(|j| {
-                let h = t[j + k].clone() - t[j + 1].clone();
+                let h = t[j + k].clone() - &t[j + 1];
                 if h.is_zero() {
                     SVector::zeros()
                 } else {
@@ -410,12 +410,12 @@ pub(crate) fn basis_functions<T: Real>(order: usize, knots: &[T], s: usize, t: &
     let (mut left, mut right) = (vec![T::zero(); order], vec![T::zero(); order]);
     n[0] = T::one();
     for j in 1..=p {
-        left[j] = t.clone() - knots[s + 1 - j].clone();
-        right[j] = knots[s + j].clone() - t.clone();
+        left[j] = t.clone() - &knots[s + 1 - j];
+        right[j] = knots[s + j].clone() - t;
         let mut saved = T::zero();
         for r in 0..j {
-            let temp = n[r].clone() / (right[r + 1].clone() + left[j - r].clone());
-            n[r] = saved + right[r + 1].clone() * temp.clone();
+            let temp = n[r].clone() / (right[r + 1].clone() + &left[j - r]);
+            n[r] = saved + right[r + 1].clone() * &temp;
             saved = left[j - r].clone() * temp;
         }
         n[j] = saved;
@@ -460,8 +460,7 @@ mod tests {
         for r in 1..k {
             for j in (r..k).rev() {
                 let i = span + 1 - k + j;
-                let alpha =
-                    (t.clone() - knots[i].clone()) / (knots[i + k - r].clone() - knots[i].clone());
+                let alpha = (t.clone() - &knots[i]) / (knots[i + k - r].clone() - &knots[i]);
                 d[j] = d[j - 1].clone() * (T::one() - alpha.clone()) + d[j].clone() * alpha;
             }
         }

@@ -167,7 +167,7 @@ impl<T: Real, const D: usize> BSpline<T, D> {
         let t = self.knots().as_slice();
         let fresh: Vec<SVector<T, D>> = (i + 2 - k..=i)
             .map(|j| {
-                let alpha = (u.clone() - t[j].clone()) / (t[j + k - 1].clone() - t[j].clone());
+                let alpha = (u.clone() - &t[j]) / (t[j + k - 1].clone() - &t[j]);
                 let q = self.points();
                 &q[j - 1] + (&q[j] - &q[j - 1]) * alpha
             })
@@ -211,7 +211,7 @@ impl<T: Real, const D: usize> BSpline<T, D> {
         let t = self.knots().as_slice();
         let mids: Vec<T> = (k - 1..=n)
             .filter(|&i| t[i] < t[i + 1])
-            .map(|i| (t[i].clone() + t[i + 1].clone()).scale_by_pow2(-1))
+            .map(|i| (t[i].clone() + &t[i + 1]).scale_by_pow2(-1))
             .collect();
         let mut c = self.clone();
         c.reserve(mids.len());

@@ -72,7 +72,7 @@ impl<T: Real, const D: usize> BezierPiece<T, D> {
             return self.span.1.clone();
         }
         let (a, b) = &self.span;
-        a.clone() + (b.clone() - a.clone()) * s.clone()
+        a.clone() + (b.clone() - a) * s.clone()
     }
 
     /// The piece's point at the local `s` (de Casteljau, projective for a
@@ -360,7 +360,7 @@ impl<T: Real, const D: usize> ParamCurveBezier<T, D> for CatmullRom<T, D> {
             .map(|s| {
                 let (p0, d0) = self.eval_segment(s, &T::zero())?;
                 let (p3, d3) = self.eval_segment(s, &T::one())?;
-                let third = (k[s + 1].clone() - k[s].clone()) / three.clone();
+                let third = (k[s + 1].clone() - &k[s]) / three.clone();
                 let p1 = &p0 + d0 * third.clone();
                 let p2 = &p3 - d3 * third;
                 Ok(BezierPiece {

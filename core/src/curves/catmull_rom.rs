@@ -87,8 +87,8 @@ fn lerp_d<T: Real, const D: usize>(
     (pa, da): (&SVector<T, D>, &SVector<T, D>),
     (pb, db): (&SVector<T, D>, &SVector<T, D>),
 ) -> (SVector<T, D>, SVector<T, D>) {
-    let len = b.clone() - a.clone();
-    let (wa, wb) = (b.clone() - tau.clone(), tau.clone() - a.clone());
+    let len = b.clone() - a;
+    let (wa, wb) = (b.clone() - tau, tau.clone() - a);
     let x = (pa * wa.clone() + pb * wb.clone()) / len.clone();
     let dx = ((pb - pa) + da * wa + db * wb) / len;
     (x, dx)
@@ -275,7 +275,7 @@ impl<T: Real, const D: usize> CatmullRom<T, D> {
             .saturating_sub(1)
             .min(self.segment_count() - 1);
         let (a, b) = (&self.knots[s], &self.knots[s + 1]);
-        let u = ((t.clone() - a.clone()) / (b.clone() - a.clone())).clamp(T::zero(), T::one());
+        let u = ((t.clone() - a) / (b.clone() - a)).clamp(T::zero(), T::one());
         self.eval_segment(s, &u)
     }
 }

@@ -250,7 +250,7 @@ fn subdivide_piece<T: Real, const D: usize>(
             return Err(CurveError::DepthExceeded(MAX_DEPTH));
         }
         let (left, right) = net.split(&half)?;
-        let sm = (s0.clone() + s1.clone()) * half.clone();
+        let sm = (s0.clone() + &s1) * half.clone();
         stack.push((sm.clone(), s1, depth + 1, right));
         stack.push((s0, sm, depth + 1, left));
     }
@@ -287,7 +287,7 @@ pub fn uniform_polyline<T: Real, const D: usize, C: ParamCurve<T, D> + ?Sized>(
                 b.clone()
             } else {
                 let s = T::from_int(j as i64) / T::from_int(m as i64);
-                a.clone() + (b.clone() - a.clone()) * s
+                a.clone() + (b.clone() - &a) * s
             }
         })
         .collect();
@@ -331,7 +331,7 @@ pub fn max_deviation<T: Real, const D: usize, C: ParamCurve<T, D> + ?Sized>(
         let (t0, t1) = (&poly.params[j], &poly.params[j + 1]);
         let (a, b) = (&poly.points[j], &poly.points[j + 1]);
         for i in 1..=samples {
-            let t = t0.clone() + (t1.clone() - t0.clone()) * T::from_int(i as i64) / k.clone();
+            let t = t0.clone() + (t1.clone() - t0) * T::from_int(i as i64) / k.clone();
             worst = worst.max(segment_distance(&curve.eval(&t)?, a, b));
         }
     }

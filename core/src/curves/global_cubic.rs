@@ -117,7 +117,7 @@ fn solve<T: Real, const D: usize>(
         let (den, r) = if i == 0 {
             (b, r)
         } else {
-            (b - a.clone() * cp[i - 1].clone(), r - &rp[i - 1] * a)
+            (b - a.clone() * &cp[i - 1], r - &rp[i - 1] * a)
         };
         cp.push(c / den.clone());
         rp.push(r / den);

@@ -138,7 +138,7 @@ fn sub_polygon<T: Real, const D: usize>(
     let sub = if s0.is_zero() {
         left
     } else {
-        left.split(&(s0.clone() / s1.clone()))?.1
+        left.split(&(s0.clone() / s1))?.1
     };
     let mut q = sub.polygon().into_owned();
     let n = q.len() - 1;
@@ -225,12 +225,12 @@ fn greedy_piece<T: Real, const D: usize>(
     let mut step = one.clone();
     loop {
         let a = poly.points[poly.points.len() - 1].clone();
-        let room = one.clone() - s0.clone();
+        let room = one.clone() - &s0;
         let measure = |h: &T| -> Result<(T, SVector<T, D>), CurveError> {
             let s1 = if *h >= room {
                 one.clone()
             } else {
-                s0.clone() + h.clone()
+                s0.clone() + h
             };
             let b = piece.eval_local(&s1)?;
             let q = sub_polygon(&net, &s0, &s1, &a, &b)?;
@@ -268,7 +268,7 @@ fn longest_step<T: Real, const D: usize>(
     min_step: &T,
 ) -> Result<(T, SVector<T, D>), CurveError> {
     let slack = T::one() - T::one().scale_by_pow2(-9);
-    let close = |lo: &T, hi: &T| hi.clone() * slack.clone() <= *lo;
+    let close = |lo: &T, hi: &T| hi.clone() * &slack <= *lo;
     let mut lo: Option<(T, SVector<T, D>)> = None;
     let mut fail: Option<T> = None;
     for _ in 0..PREDICTIONS {
@@ -322,7 +322,7 @@ fn longest_step<T: Real, const D: usize>(
     // above it, growing ×2 past any that still pass.
     let mut grow = T::one() + T::one().scale_by_pow2(-8);
     while fail.is_none() && lo.0 < *room {
-        let h = (lo.0.clone() * grow.clone()).min(room.clone());
+        let h = (lo.0.clone() * &grow).min(room.clone());
         let (bound, b) = measure(&h)?;
         if bound <= *tol {
             lo = (h, b);
@@ -336,7 +336,7 @@ fn longest_step<T: Real, const D: usize>(
             if close(&lo.0, &f) {
                 break;
             }
-            let mid = (lo.0.clone() + f.clone()).scale_by_pow2(-1);
+            let mid = (lo.0.clone() + &f).scale_by_pow2(-1);
             let (bound, b) = measure(&mid)?;
             if bound <= *tol {
                 lo = (mid, b);

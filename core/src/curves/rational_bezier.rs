@@ -238,7 +238,7 @@ impl<T: Real> RationalBezier<T, 2> {
         let w1 = h.clone().cos().max(T::zero());
         let h0 = centre + on_circle(start.clone());
         let h1 = centre * w1.clone() + on_circle(start.clone() + h);
-        let h2 = centre + on_circle(start.clone() + sweep.clone());
+        let h2 = centre + on_circle(start.clone() + sweep);
         Self::from_homogeneous(vec![h0, h1, h2], vec![T::one(), w1, T::one()])
     }
 }

@@ -247,7 +247,7 @@ impl<T: Real + Send + Sync> BlockPrefilter<T> {
         for (k, strip) in mid.chunks_mut(STRIP).enumerate() {
             for (j, src) in srcs.iter().enumerate() {
                 for (row, x) in strip.iter_mut().zip(&src[k * STRIP..]) {
-                    row[j] = gain.clone() * x.clone();
+                    row[j] = gain.clone() * x;
                 }
             }
             causal_rows(strip, &mut prev, &poles[0]);
@@ -348,7 +348,7 @@ fn store<T: Real>(outs: &mut [&mut [T]], rows: &[Row<T>], lo: usize) {
 /// `c⁻_{L−1} = ξ/(ξ² − 1) c⁺_{L−1}`, the last row of `buf` replaced by
 /// it and returned: the anti-causal start over a zero continuation.
 fn anticausal_start<T: Real>(buf: &mut [Row<T>], z: &T) -> Row<T> {
-    let f = z.clone() / (z.clone() * z.clone() - T::one());
+    let f = z.clone() / (z.clone() * z - T::one());
     let last = buf.last_mut().expect("a window has a sample");
     for x in last.iter_mut() {
         *x = f.clone() * x.clone();

@@ -365,7 +365,7 @@ impl<T: Real> LineFilter<T> {
         if len == 1 {
             let k = r.constant_response();
             for x in c.iter_mut() {
-                *x = x.clone() * k.clone();
+                *x = x.clone() * &k;
             }
             return;
         }
@@ -390,7 +390,7 @@ fn causal_rows<T: Real>(c: &mut [T], w: usize, z: &T) {
     for i in 1..c.len() / w {
         let (head, tail) = c.split_at_mut(i * w);
         for (x, p) in tail[..w].iter_mut().zip(&head[(i - 1) * w..]) {
-            *x += z.clone() * p.clone();
+            *x += z.clone() * p;
         }
     }
 }
@@ -408,7 +408,7 @@ fn anticausal_rows<T: Real>(c: &mut [T], w: usize, z: &T) {
 /// `acc += f · row` for a row of `w` values.
 fn add_scaled<T: Real>(acc: &mut [T], f: &T, row: &[T]) {
     for (a, x) in acc.iter_mut().zip(row) {
-        *a += f.clone() * x.clone();
+        *a += f.clone() * x;
     }
 }
 
@@ -439,7 +439,7 @@ fn anticausal_start_rows<T: Real>(
         Mode::Reflect => {
             let f = z.clone() / (z.clone() - T::one());
             for (a, x) in acc.iter_mut().zip(last) {
-                *a = f.clone() * x.clone();
+                *a = f.clone() * x;
             }
         }
         Mode::GridWrap => {
@@ -456,7 +456,7 @@ fn anticausal_start_rows<T: Real>(
             }
         }
         _ => {
-            let f = z.clone() / (z.clone() * z.clone() - T::one());
+            let f = z.clone() / (z.clone() * z - T::one());
             let before = &c[(n - 2) * w..(n - 1) * w];
             for ((a, x), y) in acc.iter_mut().zip(last).zip(before) {
                 *a = f.clone() * (x.clone() + z.clone() * y.clone());
@@ -472,12 +472,12 @@ fn convolve_rows<T: Real>(taps: &[T], ext: &[T], out: &mut [T], w: usize) {
     let n = taps.len() - 1;
     for (k, o) in out.chunks_mut(w).enumerate() {
         for (o, x) in o.iter_mut().zip(&ext[(k + n) * w..]) {
-            *o = taps[0].clone() * x.clone();
+            *o = taps[0].clone() * x;
         }
         for (j, cj) in taps.iter().enumerate().skip(1) {
             let (l, r) = (&ext[(k + n - j) * w..], &ext[(k + n + j) * w..]);
             for ((o, l), r) in o.iter_mut().zip(l).zip(r) {
-                *o += cj.clone() * (l.clone() + r.clone());
+                *o += cj.clone() * (l.clone() + r);
             }
         }
     }
@@ -495,10 +495,10 @@ pub(crate) fn causal<T: Real>(c: &mut [T], z: T) {
     if c.len() < 2 {
         return;
     }
-    let z2 = z.clone() * z.clone();
+    let z2 = z.clone() * &z;
     let mut older = c[0].clone();
     let mut s_prev = c[1].clone();
-    c[1] += z.clone() * older.clone();
+    c[1] += z.clone() * &older;
     let mut prev = c[1].clone();
     for x in c[2..].iter_mut() {
         let s = x.clone();
@@ -517,14 +517,14 @@ pub(crate) fn anticausal<T: Real>(c: &mut [T], z: T) {
     if n < 2 {
         return;
     }
-    let z2 = z.clone() * z.clone();
+    let z2 = z.clone() * &z;
     let mut later = c[n - 1].clone();
     let mut s_next = c[n - 2].clone();
-    c[n - 2] = z.clone() * (later.clone() - s_next.clone());
+    c[n - 2] = z.clone() * (later.clone() - &s_next);
     let mut next = c[n - 2].clone();
     for x in c[..n - 2].iter_mut().rev() {
         let s = x.clone();
-        *x = z2.clone() * later - (z2.clone() * s_next + z.clone() * s.clone());
+        *x = z2.clone() * later - (z2.clone() * s_next + z.clone() * &s);
         later = next;
         next = x.clone();
         s_next = s;
@@ -539,7 +539,7 @@ fn causal_start<T: Real>(c: &[T], z: &T, horizon: usize, mode: Mode) -> T {
     let mut sum = T::zero();
     for j in 0..horizon.max(1) {
         let i = mode.fold(-(j as i64), n).unwrap_or(0);
-        sum += zk.clone() * c[i].clone();
+        sum += zk.clone() * &c[i];
         zk *= z.clone();
     }
     sum
@@ -560,9 +560,6 @@ fn anticausal_start<T: Real>(c: &[T], z: &T, horizon: usize, mode: Mode) -> T {
             }
             -z * sum
         }
-        _ => {
-            z.clone() / (z.clone() * z.clone() - T::one())
-                * (c[n - 1].clone() + z * c[n - 2].clone())
-        }
+        _ => z.clone() / (z.clone() * &z - T::one()) * (c[n - 1].clone() + z * c[n - 2].clone()),
     }
 }

@@ -108,11 +108,11 @@ impl<T: Real> ClampedCubicSpline<T> {
         let m0 = &self.slopes[i] * dl.clone();
         let m1 = &self.slopes[i + 1] * dl.clone();
         let c = |k: i64| T::from_int(k);
-        let t2 = t.clone() * t.clone();
-        let t3 = t2.clone() * t.clone();
+        let t2 = t.clone() * t;
+        let t3 = t2.clone() * t;
         let h = [
             c(2) * t3.clone() - c(3) * t2.clone() + c(1),
-            t3.clone() - c(2) * t2.clone() + t.clone(),
+            t3.clone() - c(2) * t2.clone() + t,
             c(3) * t2.clone() - c(2) * t3.clone(),
             t3 - t2.clone(),
         ];
@@ -143,7 +143,7 @@ impl<T: Real> ClampedCubicSpline<T> {
     pub fn curvature(&self, i: usize, t: &T) -> T {
         let [_, d1, d2] = self.jet(i, t);
         let sp = d1.norm();
-        d1.cross(&d2).norm() / (sp.clone() * sp.clone() * sp)
+        d1.cross(&d2).norm() / (sp.clone() * &sp * sp)
     }
 }
 
@@ -161,7 +161,7 @@ fn solve_slopes<T: Real>(
     if n < 2 {
         return m;
     }
-    let dl: Vec<T> = (0..n).map(|i| u[i + 1].clone() - u[i].clone()).collect();
+    let dl: Vec<T> = (0..n).map(|i| u[i + 1].clone() - &u[i]).collect();
     let delta: Vec<Vector3<T>> = (0..n)
         .map(|i| (&p[i + 1] - &p[i]) / dl[i].clone())
         .collect();
@@ -171,7 +171,7 @@ fn solve_slopes<T: Real>(
     let mut r_prime: Vec<Vector3<T>> = Vec::with_capacity(n);
     for i in 1..n {
         let a = dl[i].clone();
-        let b = (dl[i - 1].clone() + dl[i].clone()) * T::from_int(2);
+        let b = (dl[i - 1].clone() + &dl[i]) * T::from_int(2);
         let c = dl[i - 1].clone();
         let mut r = (&delta[i - 1] * dl[i].clone() + &delta[i] * dl[i - 1].clone()) * three.clone();
         if i == 1 {
@@ -206,7 +206,7 @@ fn piece<T: Real>(k: &[T], t: &T) -> Result<(usize, T), OutOfDomain> {
         .partition_point(|x| x <= t)
         .saturating_sub(1)
         .min(last - 1);
-    let tau = (t.clone() - k[i].clone()) / (k[i + 1].clone() - k[i].clone());
+    let tau = (t.clone() - &k[i]) / (k[i + 1].clone() - &k[i]);
     Ok((i, tau))
 }
 
@@ -250,14 +250,14 @@ mod tests {
         type M = Mp<256>;
         let f = |u: &M| {
             Vector3::new(
-                u.clone() * u.clone() * u.clone() - u.clone(),
-                M::from_int(2) * u.clone() * u.clone() + M::from_int(1),
+                u.clone() * u * u.clone() - u,
+                M::from_int(2) * u.clone() * u + M::from_int(1),
                 M::from_int(3) - u.clone(),
             )
         };
         let df = |u: &M| {
             Vector3::new(
-                M::from_int(3) * u.clone() * u.clone() - M::from_int(1),
+                M::from_int(3) * u.clone() * u - M::from_int(1),
                 M::from_int(4) * u.clone(),
                 M::from_int(-1),
             )

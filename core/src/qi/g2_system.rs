@@ -119,27 +119,26 @@ impl<'a, T: Real> G2System<'a, T> {
         let mut d_b = d_a.clone();
         for (k, w) in self.rule.weights().iter().enumerate() {
             let b = &self.basis[k];
-            let comb =
-                |c0: usize| (0..3).fold(T::zero(), |acc, j| acc + x[c0 + j].clone() * b[j].clone());
+            let comb = |c0: usize| (0..3).fold(T::zero(), |acc, j| acc + x[c0 + j].clone() * &b[j]);
             let jet = TangentJet::new(&comb(alpha_index(i, 0)), &comb(beta_index(i, 0)));
             sum += &jet.t * w.clone();
             if jac.is_some() {
                 for j in 0..3 {
-                    let wb = w.clone() * b[j].clone();
+                    let wb = w.clone() * &b[j];
                     d_a[j] += &jet.d_alpha * wb.clone();
                     d_b[j] += &jet.d_beta * wb;
                 }
             }
         }
         if let Some(jm) = jac {
-            let lh = l.clone() / self.scale.clone();
+            let lh = l.clone() / &self.scale;
             for c in 0..3 {
                 let row = 3 * i + c;
                 for j in 0..3 {
-                    jm[(row, alpha_index(i, j))] = d_a[j][c].clone() * lh.clone();
-                    jm[(row, beta_index(i, j))] = d_b[j][c].clone() * lh.clone();
+                    jm[(row, alpha_index(i, j))] = d_a[j][c].clone() * &lh;
+                    jm[(row, beta_index(i, j))] = d_b[j][c].clone() * &lh;
                 }
-                jm[(row, length_index(i))] = sum[c].clone() / self.scale.clone();
+                jm[(row, length_index(i))] = sum[c].clone() / &self.scale;
             }
         }
         let chord = &self.points[i + 1] - &self.points[i];
@@ -173,13 +172,13 @@ impl<'a, T: Real> G2System<'a, T> {
                 let (li, lj) = (x[length_index(i)].clone(), x[length_index(i + 1)].clone());
                 let d_next = x[idx(i + 1, 1)].clone() - x[idx(i + 1, 0)].clone();
                 let d_prev = x[idx(i, 2)].clone() - x[idx(i, 1)].clone();
-                f[r2] = (d_next.clone() * li.clone() - d_prev.clone() * lj.clone()) / h.clone();
+                f[r2] = (d_next.clone() * &li - d_prev.clone() * &lj) / h.clone();
                 if let Some(jm) = jac.as_mut() {
                     jm[(r1, idx(i + 1, 0))] = one.clone();
                     jm[(r1, idx(i, 2))] = -one.clone();
-                    jm[(r2, idx(i + 1, 1))] = li.clone() / h.clone();
+                    jm[(r2, idx(i + 1, 1))] = li.clone() / &h;
                     jm[(r2, idx(i + 1, 0))] = -li / h.clone();
-                    jm[(r2, idx(i, 2))] = -lj.clone() / h.clone();
+                    jm[(r2, idx(i, 2))] = -lj.clone() / &h;
                     jm[(r2, idx(i, 1))] = lj / h.clone();
                     jm[(r2, length_index(i))] = d_next / h.clone();
                     jm[(r2, length_index(i + 1))] = -d_prev / h.clone();
@@ -194,7 +193,7 @@ impl<'a, T: Real> G2System<'a, T> {
         ];
         for (e, (col, target)) in ends.iter().zip(&self.ends).enumerate() {
             let row = dim - 4 + e;
-            f[row] = x[*col].clone() - target.clone();
+            f[row] = x[*col].clone() - target;
             if let Some(jm) = jac.as_mut() {
                 jm[(row, *col)] = one.clone();
             }
@@ -265,7 +264,7 @@ mod tests {
             let mut xm = x.clone();
             xp[c] += h.clone();
             xm[c] -= h.clone();
-            let col = (sys.residual(&xp) - sys.residual(&xm)) / (h.clone() + h.clone());
+            let col = (sys.residual(&xp) - sys.residual(&xm)) / (h.clone() + &h);
             let err = (col - jac.column(c)).norm();
             assert!(err < M::from_int(1).scale_by_pow2(-200), "column {c}");
         }

@@ -308,9 +308,8 @@ fn start_guess<T: Real>(
             let (a0, b0) = angles[2 * i].clone();
             let (am, bm) = angles[2 * i + 1].clone();
             let (a2, b2) = angles[2 * i + 2].clone();
-            let mid = |c0: &T, cm: T, c2: &T| {
-                cm * T::from_int(2) - (c0.clone() + c2.clone()) * half.clone()
-            };
+            let mid =
+                |c0: &T, cm: T, c2: &T| cm * T::from_int(2) - (c0.clone() + c2) * half.clone();
             let length = rule.integrate(|t| spline.jet(i, t)[1].norm())
                 * (spline.knots()[i + 1].clone() - spline.knots()[i].clone());
             QiSegment {

@@ -163,13 +163,13 @@ fn line_search<T: Real, S: NonlinearSystem<T>>(
     r: &T,
 ) -> Option<T> {
     let c = T::from_int(1) / T::from_int(10_000);
-    let r2 = r.clone() * r.clone();
+    let r2 = r.clone() * r;
     let mut lambda = T::one();
     for _ in 0..=30 {
         let trial = x + delta * lambda.clone();
         if sys.admissible(&trial) {
             let rt = sys.residual(&trial).norm();
-            let bound = (T::one() - T::from_int(2) * c.clone() * lambda.clone()) * r2.clone();
+            let bound = (T::one() - T::from_int(2) * c.clone() * &lambda) * r2.clone();
             if rt.is_finite() && rt.clone() * rt <= bound {
                 return Some(lambda);
             }
@@ -196,12 +196,11 @@ mod tests {
         fn residual_and_jacobian(&self, v: &DVector<T>) -> (DVector<T>, DMatrix<T>) {
             let (x, y) = (v[0].clone(), v[1].clone());
             let f = DVector::from_vec(vec![
-                x.clone() * x.clone() + y.clone() * y.clone() - T::from_int(4),
-                x.clone() * y.clone() - T::one(),
+                x.clone() * &x + y.clone() * &y - T::from_int(4),
+                x.clone() * &y - T::one(),
             ]);
             let two = T::from_int(2);
-            let j =
-                DMatrix::from_row_slice(2, 2, &[two.clone() * x.clone(), two * y.clone(), y, x]);
+            let j = DMatrix::from_row_slice(2, 2, &[two.clone() * &x, two * y.clone(), y, x]);
             (f, j)
         }
     }
@@ -219,7 +218,7 @@ mod tests {
             let run = newton(&Circle, x0, &opts);
             assert_eq!(run.failure, None);
             let x = (M::from_int(2) + M::from_int(3).sqrt()).sqrt();
-            assert!((run.x[0].clone() - x.clone()).abs() < M::unit_roundoff().scale_by_pow2(6));
+            assert!((run.x[0].clone() - &x).abs() < M::unit_roundoff().scale_by_pow2(6));
             assert!((run.x[1].clone() - x.recip()).abs() < M::unit_roundoff().scale_by_pow2(6));
             // Quadratic phase: some r_{k+1} ≤ 10 r_k² with r_k < 1e-10.
             let r: Vec<f64> = run.history.iter().map(|h| h.residual.to_f64()).collect();

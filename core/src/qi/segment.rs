@@ -32,8 +32,8 @@ fn bernstein2<T: Real>(c: &[T; 3], t: &T) -> T {
 /// `2 Σ_j (c_{j+1} − c_j) B_{1,j}(t)`.
 fn bernstein2_derivative<T: Real>(c: &[T; 3], t: &T) -> T {
     let b = bernstein_basis(1, t);
-    let d0 = c[1].clone() - c[0].clone();
-    let d1 = c[2].clone() - c[1].clone();
+    let d0 = c[1].clone() - &c[0];
+    let d1 = c[2].clone() - &c[1];
     T::from_int(2) * (d0 * b[0].clone() + d1 * b[1].clone())
 }
 
@@ -82,10 +82,10 @@ impl<T: Real> QiSegment<T> {
     pub fn displacement(&self, t: &T, rule: &GaussLegendre<T>) -> Vector3<T> {
         let mut acc = Vector3::new(T::zero(), T::zero(), T::zero());
         for (tau, w) in rule.nodes().iter().zip(rule.weights()) {
-            let tt = t.clone() * tau.clone();
+            let tt = t.clone() * tau;
             acc += self.tangent_at(&tt) * w.clone();
         }
-        acc * (self.length.clone() * t.clone())
+        acc * (self.length.clone() * t)
     }
 
     /// `C(1) − P = l ∫₀¹ T dτ`.

@@ -65,17 +65,13 @@ impl<T: Real> TangentJet<T> {
     /// **Source**: seed 004 eq 16.
     pub fn new(alpha: &T, beta: &T) -> Self {
         let (sa, ca) = alpha.clone().sin_cos();
-        let (s2, c2) = (beta.clone() + beta.clone()).sin_cos();
+        let (s2, c2) = (beta.clone() + beta).sin_cos();
         let two = T::from_int(2);
         TangentJet {
-            t: Vector3::new(
-                c2.clone(),
-                sa.clone() * s2.clone(),
-                -(ca.clone() * s2.clone()),
-            ),
-            d_alpha: Vector3::new(T::zero(), ca.clone() * s2.clone(), sa.clone() * s2.clone()),
+            t: Vector3::new(c2.clone(), sa.clone() * &s2, -(ca.clone() * &s2)),
+            d_alpha: Vector3::new(T::zero(), ca.clone() * &s2, sa.clone() * &s2),
             d_beta: Vector3::new(
-                -(two.clone() * s2.clone()),
+                -(two.clone() * &s2),
                 two.clone() * sa * c2.clone(),
                 -(two * ca * c2),
             ),
@@ -191,12 +187,10 @@ mod tests {
         let h = M::from_int(1).scale_by_pow2(-100);
         for (a, b) in grid::<M>() {
             let j = TangentJet::new(&a, &b);
-            let da = (tangent(&(a.clone() + h.clone()), &b)
-                - tangent(&(a.clone() - h.clone()), &b))
-                / (h.clone() + h.clone());
-            let db = (tangent(&a, &(b.clone() + h.clone()))
-                - tangent(&a, &(b.clone() - h.clone())))
-                / (h.clone() + h.clone());
+            let da = (tangent(&(a.clone() + &h), &b) - tangent(&(a.clone() - &h), &b))
+                / (h.clone() + &h);
+            let db = (tangent(&a, &(b.clone() + &h)) - tangent(&a, &(b.clone() - &h)))
+                / (h.clone() + &h);
             let tol = M::from_int(1).scale_by_pow2(-150);
             assert!((da - j.d_alpha.clone()).norm() < tol);
             assert!((db - j.d_beta.clone()).norm() < tol);

@@ -21,15 +21,15 @@ use rug::Rational;
 pub fn segments<T: Real>(beta2: &T, t: &T) -> [T; 4] {
     let n = |k: i64| T::from_int(k);
     let delta = beta2.clone() + n(12);
-    let t2 = t.clone() * t.clone();
-    let t3 = t2.clone() * t.clone();
+    let t2 = t.clone() * t;
+    let t3 = t2.clone() * t;
     let s = T::one() - t.clone();
     let b1 = n(2) * t3.clone();
     let b0 = n(2) + n(6) * t.clone() + (n(3) * beta2.clone() + n(6)) * t2.clone()
         - (n(2) * beta2.clone() + n(6)) * t3.clone();
     let bm1 = (beta2.clone() + n(8)) - (n(3) * beta2.clone() + n(12)) * t2
         + (n(2) * beta2.clone() + n(6)) * t3;
-    let bm2 = n(2) * s.clone() * s.clone() * s;
+    let bm2 = n(2) * s.clone() * &s * s;
     [bm2, bm1, b0, b1].map(|b| b / delta.clone())
 }
 
@@ -38,7 +38,7 @@ pub fn segments<T: Real>(beta2: &T, t: &T) -> [T; 4] {
 /// take the segments `b_{−2}, b_{−1}, b_0, b_1` at `t` (eq 28, 36).
 pub fn centred_window<T: Real>(beta2: &T, x: &T) -> BasisWindow<T> {
     let fl = x.clone().floor();
-    let t = x.clone() - fl.clone();
+    let t = x.clone() - &fl;
     BasisWindow {
         first: fl.to_f64() as i64 - 1,
         values: segments(beta2, &t).to_vec(),

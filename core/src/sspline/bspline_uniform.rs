@@ -71,7 +71,7 @@ pub fn cell_values_into<T: Real>(m: u32, u: &T, a: &mut [T]) {
             let t = u.clone() + T::from_int(s as i64);
             let mut v = T::zero();
             if s + 1 < k {
-                v += t.clone() * a[s].clone();
+                v += t.clone() * &a[s];
             }
             if s >= 1 {
                 v += (kk.clone() - t) * a[s - 1].clone();
@@ -134,7 +134,7 @@ pub fn centred_cell(m: u32, x: f64) -> (i64, f64) {
 /// **Source**: seed 000 eqs 7 and 31; de Boor, *A Practical Guide to Splines*.
 pub fn centred_window<T: Real>(m: u32, x: &T) -> BasisWindow<T> {
     let fl_x = x.clone().floor();
-    let t = x.clone() - fl_x.clone();
+    let t = x.clone() - &fl_x;
     let fl_x = fl_x.to_f64() as i64;
     let half = T::one().scale_by_pow2(-1);
     // ⌊x + m/2⌋ and its fractional part u, without forming x + m/2.
@@ -176,7 +176,7 @@ pub fn uniform_bspline<T: Real>(m: u32, x: &T) -> T {
         return T::zero();
     }
     let fl = x.clone().floor();
-    let u = x.clone() - fl.clone();
+    let u = x.clone() - &fl;
     let s = fl.to_f64() as usize;
     cell_values(m, &u)[s].clone()
 }

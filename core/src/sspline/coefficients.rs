@@ -173,7 +173,7 @@ fn solve_band_toeplitz<T: Real>(v: &[T], size: usize, centre: usize) -> Vec<T> {
         let last = (k + p).min(size - 1);
         let pivot = a[k * w + p].clone();
         for i in k + 1..=last {
-            let l = a[i * w + p + k - i].clone() / pivot.clone();
+            let l = a[i * w + p + k - i].clone() / &pivot;
             for j in k + 1..=last {
                 let akj = a[k * w + p + j - k].clone();
                 a[i * w + p + j - i] -= l.clone() * akj;
@@ -187,7 +187,7 @@ fn solve_band_toeplitz<T: Real>(v: &[T], size: usize, centre: usize) -> Vec<T> {
         let last = (k + p).min(size - 1);
         let mut s = b[k].clone();
         for j in k + 1..=last {
-            s -= a[k * w + p + j - k].clone() * x[j].clone();
+            s -= a[k * w + p + j - k].clone() * &x[j];
         }
         x[k] = s / a[k * w + p].clone();
     }
@@ -299,7 +299,7 @@ mod tests {
         let wide: Vec<Mp<2048>> = partial_fractions(&family, 3).unwrap();
         for (g, w) in got.iter().zip(&wide) {
             let w: Mp<1024> = w.convert();
-            let rel = ((g.clone() - w.clone()) / w).to_float().abs();
+            let rel = ((g.clone() - &w) / w).to_float().abs();
             assert!(rel < rug::Float::with_val(64, 1) >> 1000u32, "{rel}");
         }
     }

@@ -275,10 +275,7 @@ impl<T: Real> RecursivePrefilter<T> {
         if end == EndRule::Free {
             return Err(PrefilterError::UnsupportedEnd(end));
         }
-        let mut c: Vec<T> = samples
-            .iter()
-            .map(|s| s.clone() * self.gain.clone())
-            .collect();
+        let mut c: Vec<T> = samples.iter().map(|s| s.clone() * &self.gain).collect();
         if c.len() == 1 {
             // Both extensions of one sample are constant: D = s / V(1).
             return Ok(c
@@ -301,7 +298,7 @@ impl<T: Real> RecursivePrefilter<T> {
                 _ => mirror_anticausal_start(&c, z),
             };
             for i in (0..last).rev() {
-                c[i] = z.clone() * (c[i + 1].clone() - c[i].clone());
+                c[i] = z.clone() * (c[i + 1].clone() - &c[i]);
             }
         }
         Ok(c)
@@ -336,7 +333,7 @@ fn mirror_causal_start<T: Real>(c: &[T], z: &T, horizon: usize) -> T {
         let mut zk = T::one();
         let mut sum = T::zero();
         for x in &c[..horizon] {
-            sum += zk.clone() * x.clone();
+            sum += zk.clone() * x;
             zk *= z.clone();
         }
         return sum;
@@ -347,7 +344,7 @@ fn mirror_causal_start<T: Real>(c: &[T], z: &T, horizon: usize) -> T {
     let iz = T::one() / z.clone();
     let mut sum = c[0].clone() + z.clone().powi(n as i32 - 1) * c[n - 1].clone();
     for x in &c[1..n - 1] {
-        sum += (zk.clone() + z2k.clone()) * x.clone();
+        sum += (zk.clone() + &z2k) * x.clone();
         zk *= z.clone();
         z2k *= iz.clone();
     }
@@ -357,8 +354,7 @@ fn mirror_causal_start<T: Real>(c: &[T], z: &T, horizon: usize) -> T {
 /// `c⁻_{ν−1}` of the mirror extension: `ξ/(ξ² − 1) (c⁺_{ν−1} + ξ c⁺_{ν−2})`.
 fn mirror_anticausal_start<T: Real>(c: &[T], z: &T) -> T {
     let n = c.len();
-    z.clone() / (z.clone() * z.clone() - T::one())
-        * (c[n - 1].clone() + z.clone() * c[n - 2].clone())
+    z.clone() / (z.clone() * z - T::one()) * (c[n - 1].clone() + z.clone() * c[n - 2].clone())
 }
 
 /// `Σ_{j≥0} ξ^j x_{index(j)}` for a `ν`-periodic index: exact (one period
@@ -481,12 +477,12 @@ impl<T: Real> ConvolutionPrefilter<T> {
     /// per output is that of [`Self::folded`], so both agree bitwise.
     fn interior(&self, s: &[T], lo: usize, out: &mut [T]) {
         for (o, x) in out.iter_mut().zip(&s[lo..]) {
-            *o = self.c[0].clone() * x.clone();
+            *o = self.c[0].clone() * x;
         }
         for j in 1..=self.half_width() {
             let cj = &self.c[j];
             for (o, (l, r)) in out.iter_mut().zip(s[lo - j..].iter().zip(&s[lo + j..])) {
-                *o += cj.clone() * (l.clone() + r.clone());
+                *o += cj.clone() * (l.clone() + r);
             }
         }
     }

@@ -111,7 +111,7 @@ impl<T: Real> TruncatedBasis<T> {
             .map(|(l, b)| (w.first + l as i64, b))
             .filter(|(i, _)| i.abs() <= n)
             .fold(T::zero(), |acc, (i, b)| {
-                acc + self.c[i.unsigned_abs() as usize].clone() * b.clone()
+                acc + self.c[i.unsigned_abs() as usize].clone() * b
             })
     }
 }
@@ -244,7 +244,7 @@ impl<T: Real> TruncationAnalysis<T> {
             let mut e = S::zero();
             for (l, b) in w.values.iter().enumerate() {
                 if let Some(ci) = tail(w.first + l as i64 - k) {
-                    e += ci.clone() * b.clone();
+                    e += ci.clone() * b;
                 }
             }
             total += e.abs();

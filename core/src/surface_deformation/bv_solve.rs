@@ -194,14 +194,14 @@ impl<T: Real> BvBidiagonal<T> {
             lower.push(lower_row(t, &om, n, i));
         }
         // x_j = t_j/(1 − t_j) for j < n (t_n may be 1 and is never needed).
-        let x: Vec<T> = (0..n).map(|j| t[j].clone() / om[j].clone()).collect();
+        let x: Vec<T> = (0..n).map(|j| t[j].clone() / &om[j]).collect();
         let upper = (0..=n)
             .map(|i| {
                 if i == 0 {
                     return Vec::new();
                 }
                 let ratio = T::from_rational(&Rational::from(((n - i + 1) as i64, i as i64)));
-                x[..i].iter().map(|xj| ratio.clone() * xj.clone()).collect()
+                x[..i].iter().map(|xj| ratio.clone() * xj).collect()
             })
             .collect();
         let pivots = (0..=n).map(|i| pivot(t, &om, n, i)).collect();
@@ -280,21 +280,21 @@ impl<T: Real> BvBidiagonal<T> {
 
 /// `m_i0 … m_{i,i−1}` by the `O(i)` recurrence of the module docs.
 fn lower_row<T: Real>(t: &[T], om: &[T], n: usize, i: usize) -> Vec<T> {
-    let q = om[i].clone() / om[i - 1].clone();
+    let q = om[i].clone() / &om[i - 1];
     // q^k for k = 0..=n by repeated multiplication (relative error ≤ k u).
     let mut qpow = Vec::with_capacity(n + 1);
     qpow.push(T::one());
     for k in 1..=n {
-        let next = qpow[k - 1].clone() * q.clone();
+        let next = qpow[k - 1].clone() * &q;
         qpow.push(next);
     }
     let mut rho = T::one();
     let mut row = Vec::with_capacity(i);
     for j in 0..i {
-        row.push(qpow[n - j].clone() * rho.clone());
+        row.push(qpow[n - j].clone() * &rho);
         if j + 1 < i {
-            let num = om[i - j - 2].clone() * (t[i].clone() - t[i - j - 1].clone());
-            let den = om[i - j - 1].clone() * (t[i - 1].clone() - t[i - j - 2].clone());
+            let num = om[i - j - 2].clone() * (t[i].clone() - &t[i - j - 1]);
+            let den = om[i - j - 1].clone() * (t[i - 1].clone() - &t[i - j - 2]);
             rho *= num / den;
         }
     }
@@ -306,7 +306,7 @@ fn pivot<T: Real>(t: &[T], om: &[T], n: usize, i: usize) -> T {
     let binom = crate::bernstein::basis::binomial_real::<T>(n as u32, i as u32);
     let mut p = binom * om[i].clone().powi((n - i) as i32);
     for a in 0..i {
-        p *= (t[i].clone() - t[a].clone()) / om[a].clone();
+        p *= (t[i].clone() - &t[a]) / om[a].clone();
     }
     p
 }
@@ -503,16 +503,16 @@ mod tests {
         let n = f.degree();
         for j in 0..n {
             for i in (j + 1..=n).rev() {
-                let d = f.lower[i][j].clone() * r[i - 1].clone();
+                let d = f.lower[i][j].clone() * &r[i - 1];
                 r[i] = r[i].clone() - d;
             }
         }
         for (ri, p) in r.iter_mut().zip(&f.pivots) {
-            *ri = ri.clone() / p.clone();
+            *ri = ri.clone() / p;
         }
         for j in (0..n).rev() {
             for i in j + 1..=n {
-                let d = f.upper[i][j].clone() * r[i].clone();
+                let d = f.upper[i][j].clone() * &r[i];
                 r[i - 1] = r[i - 1].clone() - d;
             }
         }
@@ -584,7 +584,7 @@ mod tests {
 
     fn close(got: &Mp<300>, want: &Rational) -> bool {
         let w = Mp::<300>::from_rational(want);
-        let err = (got.clone() - w.clone()).abs();
+        let err = (got.clone() - &w).abs();
         err <= w.abs() * Mp::<300>::from_f64_exact(1e-80)
             || (want == &0 && err == Mp::<300>::from_int(0))
     }

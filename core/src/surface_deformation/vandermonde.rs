@@ -124,7 +124,7 @@ pub fn monomial_vandermonde<T: Real>(nodes: &[T]) -> DMatrix<T> {
     let mut v = DMatrix::from_element(n, n, T::one());
     for j in 0..n {
         for i in 1..n {
-            v[(j, i)] = v[(j, i - 1)].clone() * nodes[j].clone();
+            v[(j, i)] = v[(j, i - 1)].clone() * &nodes[j];
         }
     }
     v

@@ -213,7 +213,7 @@ impl<T: Real + Send + Sync> Interpolant<T> {
         let dot = |wl: &[T], row: &[T]| {
             let mut sum = T::zero();
             for (wv, cv) in wl.iter().zip(row) {
-                sum += wv.clone() * cv.clone();
+                sum += wv.clone() * cv;
             }
             sum
         };
@@ -268,7 +268,7 @@ impl<T: Real + Send + Sync> Interpolant<T> {
             let row: &[T; M] = c[at..at + M].try_into().expect("M coefficients");
             let mut dot = T::zero();
             for l in 0..M {
-                dot += w1[l].clone() * row[l].clone();
+                dot += w1[l].clone() * &row[l];
             }
             sum += w0.clone() * dot;
         }

@@ -225,7 +225,7 @@ fn dot<T: Real, const M: usize>(w: &[T; M], row: &[T]) -> T {
     let row: &[T; M] = row[..M].try_into().expect("M coefficients");
     let mut sum = T::zero();
     for l in 0..M {
-        sum += w[l].clone() * row[l].clone();
+        sum += w[l].clone() * &row[l];
     }
     sum
 }
