@@ -247,6 +247,38 @@ def _sincos_degrees(angle):
     return [(c, s), (-s, c), (-c, -s), (s, -c)][q % 4]
 
 
+def _rotation(angle, axes, shape, reshape):
+    """scipy.ndimage.rotate's geometry: the sorted plane ``axes``, the 2x2
+    matrix from output to input, its offset, the output plane's and the
+    whole output's shape (shared by the NumPy and dask rotations)."""
+    ndim = len(shape)
+    if ndim < 2:
+        raise ValueError("input array should be at least 2D")
+    axes = list(axes)
+    if len(axes) != 2:
+        raise ValueError("axes should contain exactly two values")
+    if not all(float(ax).is_integer() for ax in axes):
+        raise ValueError("axes should contain only integer values")
+    axes = [int(ax) + ndim if ax < 0 else int(ax) for ax in axes]
+    if not all(0 <= ax < ndim for ax in axes) or axes[0] == axes[1]:
+        raise ValueError(f"invalid rotation plane specified: {axes}")
+    axes.sort()
+    c, s = _sincos_degrees(angle)
+    rot = np.array([[c, s], [-s, c]])
+    img_shape = np.asarray(shape)
+    in_plane = img_shape[axes]
+    if reshape:
+        iy, ix = in_plane
+        bounds = rot @ [[0, 0, iy, iy], [0, ix, 0, ix]]
+        out_plane = (np.ptp(bounds, axis=1) + 0.5).astype(int)
+    else:
+        out_plane = img_shape[axes]
+    offset = (in_plane - 1) / 2 - rot @ ((out_plane - 1) / 2)
+    out_shape = img_shape.copy()
+    out_shape[axes] = out_plane
+    return axes, rot, offset, out_plane, tuple(int(n) for n in out_shape)
+
+
 def rotate(input, angle, axes=(1, 0), reshape=True, output=None, order=3, mode="constant", cval=0.0,
            prefilter=True, *, tol=None, threads=None, exact_edges=False):
     """Rotate an array by ``angle`` degrees in the plane of ``axes``
@@ -264,31 +296,7 @@ def rotate(input, angle, axes=(1, 0), reshape=True, output=None, order=3, mode="
     """
     a = np.asarray(input)
     ndim = a.ndim
-    if ndim < 2:
-        raise ValueError("input array should be at least 2D")
-    axes = list(axes)
-    if len(axes) != 2:
-        raise ValueError("axes should contain exactly two values")
-    if not all(float(ax).is_integer() for ax in axes):
-        raise ValueError("axes should contain only integer values")
-    axes = [int(ax) + ndim if ax < 0 else int(ax) for ax in axes]
-    if not all(0 <= ax < ndim for ax in axes) or axes[0] == axes[1]:
-        raise ValueError(f"invalid rotation plane specified: {axes}")
-    axes.sort()
-    c, s = _sincos_degrees(angle)
-    rot = np.array([[c, s], [-s, c]])
-    img_shape = np.asarray(a.shape)
-    in_plane = img_shape[axes]
-    if reshape:
-        iy, ix = in_plane
-        bounds = rot @ [[0, 0, iy, iy], [0, ix, 0, ix]]
-        out_plane = (np.ptp(bounds, axis=1) + 0.5).astype(int)
-    else:
-        out_plane = img_shape[axes]
-    offset = (in_plane - 1) / 2 - rot @ ((out_plane - 1) / 2)
-    out_shape = img_shape.copy()
-    out_shape[axes] = out_plane
-    out_shape = tuple(int(n) for n in out_shape)
+    axes, rot, offset, out_plane, out_shape = _rotation(angle, axes, a.shape, reshape)
     kwargs = dict(order=order, mode=mode, cval=cval, prefilter=prefilter, tol=tol, threads=threads,
                   exact_edges=exact_edges)
     if ndim == 2:

@@ -398,25 +398,19 @@ def affine_transform(input, matrix, offset=0.0, output_shape=None, order=3, mode
 
 def rotate(input, angle, axes=(1, 0), reshape=True, order=3, mode="constant", cval=0.0, *, tol=DEFAULT_TOL,
            output=None, chunks=None, threads=1, route="truncated"):
-    """``splinelab.rotate`` of a 2-D dask array (scipy's matrix, centre and
-    output shape); arguments and bound as :func:`zoom`."""
-    from splinelab._resample import _sincos_degrees
+    """``splinelab.rotate`` of a dask array (scipy's matrix, centre and
+    output shape); arguments and bound as :func:`zoom`. Above two
+    dimensions the rotation is one N-D affine map, the identity off the
+    plane: at the integer coordinates there the N-D spline interpolates,
+    so it equals scipy's plane-by-plane rotation within
+    ``bound(order, tol, ndim) * max|input|`` (plus rounding)."""
+    from splinelab._resample import _rotation
 
     darr = da.asarray(input)
-    if darr.ndim != 2:
-        raise ValueError(f"rotate on dask takes 2-D arrays, got {darr.ndim}-D")
-    axes = sorted(int(a) % 2 for a in axes)
-    if axes != [0, 1]:
-        raise ValueError(f"invalid rotation plane specified: {axes}")
-    c, s = _sincos_degrees(angle)
-    rot = np.array([[c, s], [-s, c]])
-    in_plane = np.asarray(darr.shape)
-    if reshape:
-        iy, ix = in_plane
-        bounds = rot @ [[0, 0, iy, iy], [0, ix, 0, ix]]
-        out_plane = (np.ptp(bounds, axis=1) + 0.5).astype(int)
-    else:
-        out_plane = in_plane
-    offset = (in_plane - 1) / 2 - rot @ ((out_plane - 1) / 2)
-    return affine_transform(darr, rot, offset, tuple(int(n) for n in out_plane), order, mode, cval, tol=tol,
+    axes, rot, plane_offset, _, out_shape = _rotation(angle, axes, darr.shape, reshape)
+    matrix = np.eye(darr.ndim)
+    matrix[np.ix_(axes, axes)] = rot
+    offset = np.zeros(darr.ndim)
+    offset[axes] = plane_offset
+    return affine_transform(darr, matrix, offset, out_shape, order, mode, cval, tol=tol,
                             output=output, chunks=chunks, threads=threads, route=route)
