@@ -1,6 +1,8 @@
 """map_coordinates at 10**6 random points, one thread, against scipy 1.17.1
 (issue 26's evaluation figure): the minimum of 3 runs each, the prefilter of
-the array included on both sides (prefilter=True, scipy's default).
+the array included on both sides (prefilter=True, scipy's default). Then
+the evaluation alone (prefilter=False) on one and two threads, min of 7:
+the serial fraction of the evaluation.
 
     .venv/bin/python python/bench/map_coordinates.py
 """
@@ -30,6 +32,13 @@ def main():
         s = best(lambda: ndimage.map_coordinates(a, pts, order=order))
         o = best(lambda: splinelab.map_coordinates(a, pts, order=order, threads=1))
         print(f"{shape} order {order}: scipy {s:.3f} s, ours {o:.3f} s, scipy/ours {s / o:.2f}", flush=True)
+        c = splinelab.spline_filter(a, order=order)
+        one, two = (
+            best(lambda t=t: splinelab.map_coordinates(c, pts, order=order, prefilter=False, threads=t), 7)
+            for t in (1, 2)
+        )
+        print(f"  evaluation only: 1 thread {one * 1e3:.1f} ms, 2 threads {two * 1e3:.1f} ms, "
+              f"speed-up {one / two:.2f}", flush=True)
 
 
 if __name__ == "__main__":
