@@ -7,15 +7,16 @@ root=$(cd "$(dirname "$0")/.." && pwd)
 [ -f "$HOME/.cargo/env" ] && . "$HOME/.cargo/env"
 bin="${CARGO_TARGET_DIR:-$root/target}/release/splinelab"
 read -r -a features <<<"$(bash "$root/scripts/gmp_features.sh")"
+quiet=(--quiet)
 if [ ! -x "$bin" ]; then
+  quiet=()
   if [ ${#features[@]} -gt 0 ]; then
     gmp="linking the system GMP/MPFR"
   else
     gmp="GMP/MPFR from source: 2-4 min more unless ~/.cache/gmp-mpfr-sys has them"
   fi
   echo "splinelab: first build of the release binary (about 3 min on 2 cores; $gmp); later runs rebuild in seconds" >&2
-  cargo build --release --manifest-path "$root/Cargo.toml" -p splinelab-reports --bin splinelab "${features[@]+"${features[@]}"}" >&2
-else
-  cargo build --release --quiet --manifest-path "$root/Cargo.toml" -p splinelab-reports --bin splinelab "${features[@]+"${features[@]}"}" >&2
 fi
+cargo build --release "${quiet[@]+"${quiet[@]}"}" --manifest-path "$root/Cargo.toml" -p splinelab-reports \
+  --bin splinelab "${features[@]+"${features[@]}"}" >&2
 exec "$bin" "$@"
