@@ -41,7 +41,7 @@ pub struct BezierEvalArgs {
     /// transformations: as accurate as de Casteljau at twice the precision).
     #[arg(long, value_parser = parse_method)]
     pub method: Method,
-    /// Working precision: f64, or MPFR bits (16..=2048; runs at the next compiled precision, at most 1.5× the bits).
+    /// Working precision: f64, or MPFR bits (16..=2048; runs at the next compiled precision, at most 2× the bits).
     #[arg(long, default_value = "f64", value_parser = parse_prec)]
     pub prec: Prec,
     /// Also evaluate the exact inputs in rational arithmetic and report the

@@ -24,7 +24,7 @@ pub struct CoeffsArgs {
     /// Beta2 tension β2 ≥ 0 (decimal or p/q, taken exactly); implies the cubic Beta2 family.
     #[arg(long)]
     pub tension: Option<String>,
-    /// Working precision: f64, or MPFR bits (16..=2048; runs at the next compiled precision, at most 1.5× the bits).
+    /// Working precision: f64, or MPFR bits (16..=2048; runs at the next compiled precision, at most 2× the bits).
     #[arg(long, default_value = "f64", value_parser = parse_prec)]
     pub prec: Prec,
     /// Number of coefficients c_0..c_{K−1} (1..=100000).

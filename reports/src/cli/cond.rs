@@ -31,7 +31,7 @@ pub struct CondArgs {
     /// The tensor matrix B_u ⊗ B_v of seed 001 eq 2 on the grid of the nodes.
     #[arg(long)]
     pub tensor: bool,
-    /// Working precision: f64, or MPFR bits (16..=2048; runs at the next compiled precision, at most 1.5× the bits).
+    /// Working precision: f64, or MPFR bits (16..=2048; runs at the next compiled precision, at most 2× the bits).
     #[arg(long, default_value = "f64", value_parser = parse_prec)]
     pub prec: Prec,
     /// Print one JSON object instead of a table.

@@ -37,7 +37,7 @@ pub struct QiArgs {
     /// precision; "nan"/"inf" are accepted and rejected by the solver with a typed error).
     #[arg(long)]
     pub input: PathBuf,
-    /// Working precision: f64, or MPFR bits (16..=2048; runs at the next compiled precision, at most 1.5× the bits).
+    /// Working precision: f64, or MPFR bits (16..=2048; runs at the next compiled precision, at most 2× the bits).
     #[arg(long, default_value = "f64", value_parser = parse_prec)]
     pub prec: Prec,
     /// Damped Newton (backtracking line search) instead of plain Newton.
