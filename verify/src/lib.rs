@@ -19,7 +19,6 @@ pub mod metrics;
 pub mod qi;
 pub mod rng;
 pub mod sspline;
-pub mod strategies;
 pub mod study_error;
 pub mod timing;
 pub mod update_cost;

@@ -15,7 +15,8 @@ use splinelab_verify::bezier_eval::{
     ExactPoly, Family, Method, Prepared, check_bounds, find_zero_result, gamma, jiang_example,
     measure, unit_roundoff,
 };
-use splinelab_verify::strategies::{near_multiple_roots, parameter, ulp_close_values};
+mod common;
+use common::strategies::{near_multiple_roots, parameter, ulp_close_values};
 
 /// Coefficients: uniform, near-multiple roots, or values a few ulps apart
 /// (a nearly constant polynomial: every de Casteljau difference cancels).

@@ -10,7 +10,8 @@ use splinelab::bspline::knots::{KnotError, KnotVector};
 use splinelab::scalar::prelude::*;
 use splinelab::surface_deformation::patch::Patch;
 use splinelab_verify::curves::{bounds, bspline_vs_bezier, de_boor_vs_basis, patch_vs_nurbs};
-use splinelab_verify::strategies::grid_points;
+mod common;
+use common::strategies::grid_points;
 
 fn build<T: Real>(order: usize, knots: &[i32], pts: &[[i32; 2]]) -> Option<BSpline<T, 2>> {
     let mut k: Vec<i32> = knots.to_vec();

@@ -12,7 +12,8 @@ use splinelab_verify::curves::{
     bounds, catmull_rom_errors, loop_example, min_relative_speed, polyline_self_intersects,
     sample_catmull_rom,
 };
-use splinelab_verify::strategies::grid_points;
+mod common;
+use common::strategies::grid_points;
 
 fn check<T: Real>(pts: &[[i32; 2]], spacing: Spacing, closed: bool) -> Result<(), TestCaseError> {
     let p: Vec<Vector2<T>> = pts

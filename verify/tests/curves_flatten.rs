@@ -12,7 +12,8 @@ use splinelab::scalar::prelude::*;
 use splinelab_verify::curves::{flatten_excess, flatten_test_curves, frac};
 use splinelab_verify::flatten_reference::{deviation_in_mpfr, greedy_reference_segments};
 use splinelab_verify::metrics::{dist_ref, in_u};
-use splinelab_verify::strategies::{grid_points, near_coincident_points};
+mod common;
+use common::strategies::{grid_points, near_coincident_points};
 
 fn curve<T: Real>(pts: &[[i32; 2]]) -> Bezier<T, 2> {
     Bezier::new(

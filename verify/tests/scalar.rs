@@ -68,7 +68,8 @@ fn exact(x: f64) -> Rational {
     Rational::from_f64(x).unwrap()
 }
 
-use splinelab_verify::strategies::finite_f64;
+mod common;
+use common::strategies::finite_f64;
 
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(2000))]

@@ -3,9 +3,9 @@
 //! (near-coincident points, near-multiple roots, values a few ulps apart).
 //! One place, so that a new test gets the adversarial cases for free.
 
-use crate::bezier_eval::product_of_roots;
 use proptest::prelude::*;
 use rug::Rational;
+use splinelab_verify::bezier_eval::product_of_roots;
 
 /// Finite f64s spread over many binades (including tiny and huge ones).
 pub fn finite_f64() -> impl Strategy<Value = f64> {
