@@ -49,16 +49,12 @@ fn within_budget(e: &Estimate, budget: f64) -> PyResult<()> {
             "budget={budget} is not a positive number of seconds"
         )));
     }
-    if e.seconds > budget {
-        return Err(value_error(format!(
-            "this request ({}) is estimated at {:.2e} s, over budget={budget} s: \
-             reduce it, or pass budget={:.0}",
-            e.what,
-            e.seconds,
-            (e.seconds * 2.0).ceil()
-        )));
-    }
-    Ok(())
+    e.within(budget, None).map_err(|over| {
+        value_error(format!(
+            "{over}: reduce it, or pass budget={:.0}",
+            over.admit()
+        ))
+    })
 }
 
 /// The width choice: `(n, achieved, bound, criterion, f64 saturation n,

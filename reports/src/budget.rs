@@ -41,7 +41,7 @@ impl Default for BudgetArgs {
 }
 
 // The cost models live in verify (the Python package budgets with them too).
-pub use splinelab_verify::cost::{Estimate, number_bytes, unit_seconds};
+pub use splinelab_verify::cost::{Estimate, OverBudget, number_bytes, unit_seconds};
 
 impl BudgetArgs {
     /// Refuses `e` beyond the budget; otherwise returns a spinner (hidden
@@ -59,26 +59,17 @@ impl BudgetArgs {
                 format!("{} is not a positive number of MiB", self.max_memory),
             ));
         }
-        if e.seconds > self.budget {
-            return Err(CliError::OverBudget(format!(
-                "this request ({}) is estimated at {:.2e} s, over the budget of {} s: \
-                 reduce it, or raise the budget with --budget {:.0}",
-                e.what,
-                e.seconds,
-                self.budget,
-                (e.seconds * 2.0).ceil()
-            )));
-        }
-        let mib = e.bytes / (1024.0 * 1024.0);
-        if mib > self.max_memory {
-            return Err(CliError::OverBudget(format!(
-                "this request ({}) is estimated to need {mib:.0} MiB, over the limit of {} MiB: \
-                 reduce it, or raise the limit with --max-memory {:.0}",
-                e.what,
-                self.max_memory,
-                (mib * 1.5).ceil()
-            )));
-        }
+        e.within(self.budget, Some(self.max_memory))
+            .map_err(|over| {
+                let knob = match over {
+                    OverBudget::Time { .. } => "the budget with --budget",
+                    OverBudget::Memory { .. } => "the limit with --max-memory",
+                };
+                CliError::OverBudget(format!(
+                    "{over}: reduce it, or raise {knob} {:.0}",
+                    over.admit()
+                ))
+            })?;
         Ok(Spinner::start(e))
     }
 }

@@ -19,6 +19,75 @@ pub struct Estimate {
     pub what: String,
 }
 
+/// Why a request was refused before it started: its estimate passes the
+/// time budget or the memory limit. Carries the figure that would admit
+/// it (twice the time, 1.5× the memory, rounded up), so that each front end
+/// names its own knob (`--budget` on the command line, `budget=` in Python).
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum OverBudget {
+    /// The estimated run time passes the budget.
+    #[error("this request ({what}) is estimated at {seconds:.2e} s, over the budget of {budget} s")]
+    Time {
+        /// What dominates the cost.
+        what: String,
+        /// The estimate, seconds.
+        seconds: f64,
+        /// The budget, seconds.
+        budget: f64,
+        /// A budget that admits the request, seconds.
+        admit: f64,
+    },
+    /// The estimated memory passes the limit.
+    #[error(
+        "this request ({what}) is estimated to need {mib:.0} MiB, over the limit of {limit} MiB"
+    )]
+    Memory {
+        /// What dominates the cost.
+        what: String,
+        /// The estimate, MiB.
+        mib: f64,
+        /// The limit, MiB.
+        limit: f64,
+        /// A limit that admits the request, MiB.
+        admit: f64,
+    },
+}
+
+impl OverBudget {
+    /// The budget (seconds) or limit (MiB) that admits the request.
+    pub fn admit(&self) -> f64 {
+        match self {
+            OverBudget::Time { admit, .. } | OverBudget::Memory { admit, .. } => *admit,
+        }
+    }
+}
+
+impl Estimate {
+    /// Refuses the request when its time passes `budget` seconds or its
+    /// memory passes `max_mib` MiB (`None`: no memory limit). The caller
+    /// has checked that both are positive numbers.
+    pub fn within(&self, budget: f64, max_mib: Option<f64>) -> Result<(), OverBudget> {
+        if self.seconds > budget {
+            return Err(OverBudget::Time {
+                what: self.what.clone(),
+                seconds: self.seconds,
+                budget,
+                admit: (self.seconds * 2.0).ceil(),
+            });
+        }
+        let mib = self.bytes / (1024.0 * 1024.0);
+        match max_mib {
+            Some(limit) if mib > limit => Err(OverBudget::Memory {
+                what: self.what.clone(),
+                mib,
+                limit,
+                admit: (mib * 1.5).ceil(),
+            }),
+            _ => Ok(()),
+        }
+    }
+}
+
 /// Seconds of one work unit (about one MPFR multiply-add with its
 /// temporaries) at `bits` of precision (53 = f64). Fitted to
 /// `cond --degree 80` and `bezier-eval --method decasteljau` (degree 2000,
@@ -79,5 +148,31 @@ mod tests {
             "cubic at 1e-10 is estimated {a} s (it takes milliseconds)"
         );
         assert!(b > a && c > 60.0, "estimates {a} {b} {c}");
+    }
+
+    fn estimate(seconds: f64, mib: f64) -> Estimate {
+        Estimate {
+            seconds,
+            bytes: mib * 1024.0 * 1024.0,
+            what: "a test".into(),
+        }
+    }
+
+    #[test]
+    fn refusals_name_the_figure_that_admits_the_request() {
+        assert_eq!(estimate(5.0, 3.0).within(5.0, None), Ok(()));
+        let time = estimate(10.2, 1.0).within(5.0, Some(4.0)).unwrap_err();
+        assert!(matches!(time, OverBudget::Time { .. }) && time.admit() == 21.0);
+        assert!(
+            time.to_string()
+                .contains("1.02e1 s, over the budget of 5 s")
+        );
+        let memory = estimate(1.0, 3.0).within(5.0, Some(2.0)).unwrap_err();
+        assert!(matches!(memory, OverBudget::Memory { .. }) && memory.admit() == 5.0);
+        assert!(
+            memory
+                .to_string()
+                .contains("need 3 MiB, over the limit of 2 MiB")
+        );
     }
 }
