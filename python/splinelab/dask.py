@@ -1,19 +1,25 @@
 """Certified chunked prefiltering of dask arrays.
 
-``spline_filter`` and ``spline_filter1d`` filter each chunk with the
-truncated prefilter of half-width ``n`` certified for ``tol``, through
+``spline_filter`` and ``spline_filter1d`` filter each chunk through
 ``dask.array.map_overlap`` with an overlap depth of ``n`` plus the degree's
-support half-width ``(order + 1) // 2`` on each filtered axis. A
-coefficient at least ``n`` samples from its block's padded edge reads only
-true samples, so the chunked result equals the unchunked truncated one up
-to rounding, and differs from the exact (recursive, unchunked) filter by at
-most ``filter_bound(order, tol, ndim)['total'] * max|input|``: the
-truncation error of ``n``, not the chunking, sets the error. Any degree
-0..199 (``order`` is the degree, as in scipy).
+support half-width ``(order + 1) // 2`` on each filtered axis, ``n`` the
+half-width certified for ``tol``. The default route runs the exact
+recursive filter over each padded block with **zeros beyond it** (the
+engine's ``grid-constant`` rule with cval 0, exact to ``2^-106``), the
+block's array edges first padded by the mode's own extension: a coefficient
+at least ``n`` from the padded edge then reads every sample within ``n``
+truly and only zeros in place of those beyond, so it differs from the exact
+unchunked coefficient by at most ``b max|input|`` per axis, ``b = Σ_{|j|>n}
+|c_j|`` — the bound of the truncated convolution of half-width ``n``, at the
+recursion's cost (about 4 multiply-adds per sample and pole where the
+convolution takes ``2n + 1``). The truncation error of ``n``, not the
+chunking, sets the error: ``filter_bound(order, tol, ndim)['total'] *
+max|input|`` at most. Any degree 0..199 (``order`` is the degree, as in
+scipy). Integer outputs (filtered axis by axis and truncated, as scipy does)
+take the truncated convolution of half-width ``n``, the same bound.
 
 ``route='recursive'`` filters each padded block with the exact recursive
-filter instead (about 4 multiply-adds per sample and pole where the
-truncated convolution takes ``2n + 1``): a coefficient at least ``n`` from
+filter under the block's own mirror extension instead: a coefficient at least ``n`` from
 the padded edge then differs from the unchunked one only through samples
 beyond the padding, each off by at most ``2 max|input|`` (the block's own
 mirror extension against the true samples), so the per-axis error is at
@@ -90,23 +96,53 @@ def bound(order, tol=DEFAULT_TOL, ndim=1, route="truncated"):
     return (a + e) ** ndim - a**ndim
 
 
+# numpy's name for the extension of each filter rule at an array edge.
+_NUMPY_PAD = {"mirror": "reflect", "reflect": "symmetric"}
+
+
 def _map(darr, axes, order, mode, tol, output, threads, route):
     darr = da.asarray(darr)
     dtype = np.dtype(output)
     d = depth(order, tol, route)
-    # An axis in one chunk has no seam: no overlap (and none that the
-    # array's length could not hold).
-    depths = {ax: (d if ax in axes and darr.numblocks[ax] > 1 else 0) for ax in range(darr.ndim)}
+    # An axis in one chunk has no seam: no overlap. An axis not longer than
+    # two overlaps goes into one chunk: filtered whole, exactly.
+    short = {ax: -1 for ax in axes if darr.numblocks[ax] > 1 and darr.shape[ax] <= 2 * d}
+    if short:
+        darr = darr.rechunk(short)
+    seamed = [ax for ax in axes if darr.numblocks[ax] > 1]
+    depths = {ax: (d if ax in seamed else 0) for ax in range(darr.ndim)}
     # Edge blocks extend by scipy's filter rule for `mode` (splinelab._ndimage._filter).
-    boundary = "periodic" if _filter_mode(mode, False) == "grid-wrap" else "none"
+    rule = _filter_mode(mode, False)
+    boundary = "periodic" if rule == "grid-wrap" else "none"
+    zeros_beyond = route == "truncated" and dtype.kind in "fc"
     block_tol = tol if route == "truncated" else None
 
-    def block(x):
-        # The truncated route needs the local convolution: a coefficient then
-        # reads only samples within `n` (the module documentation).
-        return _filter(x, axes, order, dtype, mode, block_tol, threads, convolution=True)
+    def block(x, block_info=None):
+        if not zeros_beyond:
+            # The local convolution: a coefficient reads only samples within `n`.
+            return _filter(x, axes, order, dtype, mode, block_tol, threads, convolution=True)
+        info = block_info[0]
+        x, crop = _pad_array_edges(x, seamed, rule, d, info["chunk-location"], info["num-chunks"])
+        y = _filter(x, seamed, order, dtype, "grid-constant", None, threads, exact_edges=True)[crop]
+        whole = [ax for ax in axes if ax not in seamed]
+        return _filter(y, whole, order, dtype, mode, None, threads) if whole else y
 
     return darr.map_overlap(block, depth=depths, boundary=boundary, dtype=dtype, meta=np.array((), dtype=dtype))
+
+
+def _pad_array_edges(x, seamed, rule, d, location, chunks):
+    """``x`` padded by ``d`` samples of the mode's extension (``rule``) on
+    each side of a seamed axis where the block meets the array's edge (there
+    map_overlap adds no halo; ``grid-wrap`` has its periodic halo already),
+    and the slices that take the padding off again."""
+    pads = [(0, 0)] * x.ndim
+    if rule in _NUMPY_PAD:
+        for ax in seamed:
+            pads[ax] = (d if location[ax] == 0 else 0, d if location[ax] == chunks[ax] - 1 else 0)
+    if not any(lo or hi for lo, hi in pads):
+        return x, ()
+    crop = tuple(slice(lo, lo + n) for (lo, _), n in zip(pads, x.shape))
+    return np.pad(x, pads, mode=_NUMPY_PAD[rule]), crop
 
 
 def spline_filter(darr, order=3, mode="mirror", tol=DEFAULT_TOL, output=np.float64, threads=1, route="truncated"):
@@ -115,7 +151,9 @@ def spline_filter(darr, order=3, mode="mirror", tol=DEFAULT_TOL, output=np.float
     ``order`` is the spline **degree** 0..199. ``tol`` in (0, 1) is the
     certified per-axis truncation tolerance (see the module documentation);
     ``threads`` per block (default 1: dask already runs blocks in parallel).
-    ``route``: 'truncated' (default) or 'recursive' (faster; see the module
+    ``route``: 'truncated' (default: the recursion per padded block with
+    zeros beyond it, bound ``b`` per axis) or 'recursive' (the block's own
+    mirror extension, ``2 b`` at half the tolerance; see the module
     documentation); :func:`bound` gives the certified error of either.
 
     >>> import dask.array as da, numpy as np, splinelab, splinelab.dask
