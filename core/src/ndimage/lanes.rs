@@ -21,6 +21,10 @@
 use crate::scalar::Real;
 use multiversion::multiversion;
 
+/// Lines per group of the contiguous axis (`nd_prefilter`): its rows get
+/// the fixed-width kernels.
+pub(crate) const LINES: usize = 16;
+
 /// `row_i += ξ · row_{i−1}` down `rows` (rows of `G` lines), `prev` the row
 /// before the first on entry and the last row on return (the causal pass,
 /// Unser, Aldroubi and Eden 1993).
@@ -55,6 +59,14 @@ pub(crate) fn anticausal_fixed<T: Real, const G: usize>(
 /// `c[i·w..]`): row `i` += ξ · row `i − 1`.
 #[multiversion(targets("x86_64+avx512f+avx512vl+avx2+fma", "x86_64+avx2+fma", "aarch64+neon"))]
 pub(crate) fn causal_strided<T: Real>(c: &mut [T], w: usize, z: &T) {
+    if w == LINES {
+        // Rows of a known width: the loop over a row unrolls into whole
+        // registers (a runtime width of 8 fell to the scalar remainder).
+        if let Some((first, rest)) = c.as_chunks_mut::<LINES>().0.split_first_mut() {
+            causal_fixed(rest, &mut first.clone(), z);
+        }
+        return;
+    }
     for i in 1..c.len() / w {
         let (head, tail) = c.split_at_mut(i * w);
         for (x, p) in tail[..w].iter_mut().zip(&head[(i - 1) * w..]) {
@@ -67,6 +79,12 @@ pub(crate) fn causal_strided<T: Real>(c: &mut [T], w: usize, z: &T) {
 /// ξ (row `i + 1` − row `i`).
 #[multiversion(targets("x86_64+avx512f+avx512vl+avx2+fma", "x86_64+avx2+fma", "aarch64+neon"))]
 pub(crate) fn anticausal_strided<T: Real>(c: &mut [T], w: usize, z: &T) {
+    if w == LINES {
+        if let Some((last, rest)) = c.as_chunks_mut::<LINES>().0.split_last_mut() {
+            anticausal_fixed(rest, &mut last.clone(), z);
+        }
+        return;
+    }
     for i in (0..c.len() / w - 1).rev() {
         let (head, tail) = c.split_at_mut((i + 1) * w);
         for (x, nx) in head[i * w..].iter_mut().zip(&tail[..w]) {

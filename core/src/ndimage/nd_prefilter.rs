@@ -14,6 +14,7 @@
 
 use super::NdimageError;
 use super::block_filter::BlockPrefilter;
+use super::lanes;
 use super::line_filter::LineFilter;
 use super::mode::Mode;
 use crate::scalar::Real;
@@ -240,7 +241,9 @@ where
 /// Contiguous lines filtered [`GROUP`] at a time: each group is transposed
 /// into a buffer (row `i` = sample `i` of the group's lines) so that the
 /// recursion, latency-bound on one line, runs as vector operations over
-/// the group ([`LineFilter::apply_lines`]); lines left over run alone.
+/// the group ([`LineFilter::apply_lines`]); lines left over run alone. The
+/// transposition runs in strips of [`STRIP`] rows that stay in L1, reading
+/// (and writing back) the lines front to back.
 fn filter_last_axis<T, S, D>(a: &mut ArrayBase<S, D>, filter: &LineFilter<T>)
 where
     T: Real + Send + Sync,
@@ -250,27 +253,32 @@ where
     let n = a.shape()[a.ndim() - 1];
     let data = a.as_slice_mut().expect("standard layout");
     let stash = Stash::default();
+    let one = T::one();
     data.par_chunks_mut(n * GROUP).for_each(|lines| {
-        stash.with(|(buf, scratch): &mut (Vec<T>, Vec<T>)| {
+        stash.with(|(buf, scratch): &mut (Vec<[T; GROUP]>, Vec<T>)| {
             if lines.len() < n * GROUP {
                 for line in lines.chunks_mut(n) {
                     filter.apply(line, scratch);
                 }
                 return;
             }
-            buf.clear();
-            for i in 0..n {
-                buf.extend((0..GROUP).map(|j| lines[j * n + i].clone()));
+            buf.resize(n, std::array::from_fn(|_| T::zero()));
+            let srcs: Vec<&[T]> = lines.chunks(n).collect();
+            for (k, strip) in buf.chunks_mut(STRIP).enumerate() {
+                // × 1: exact, the gain is applied by the filter.
+                lanes::load_strip(strip, k * STRIP, &srcs, &one);
             }
-            filter.apply_lines(buf, GROUP, scratch);
-            for (i, row) in buf.chunks(GROUP).enumerate() {
-                for (j, x) in row.iter().enumerate() {
-                    lines[j * n + i] = x.clone();
-                }
+            filter.apply_lines(buf.as_flattened_mut(), GROUP, scratch);
+            let mut outs: Vec<&mut [T]> = lines.chunks_mut(n).collect();
+            for (k, strip) in buf.chunks(STRIP).enumerate() {
+                lanes::store_strip(&mut outs, strip, k * STRIP);
             }
         })
     });
 }
+
+/// Rows per strip of [`filter_last_axis`]'s transposition.
+const STRIP: usize = 64;
 
 /// Work buffers shared by the tasks of one pass, each task taking one
 /// and putting it back: a fresh multi-megabyte `Vec` per task is a fresh
@@ -295,8 +303,9 @@ impl<B: Default> Stash<B> {
     }
 }
 
-/// Lines per group of [`filter_last_axis`]: two AVX registers of `f64`.
-const GROUP: usize = 8;
+/// Lines per group of [`filter_last_axis`] (two AVX-512 registers of
+/// `f64`, enough independent chains to hide the recursion's latency).
+const GROUP: usize = lanes::LINES;
 
 /// Bytes of one strip's work buffer (measured: wider strips read longer
 /// contiguous runs of each row, which the prefetcher needs more than the
