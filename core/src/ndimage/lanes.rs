@@ -21,8 +21,9 @@
 use crate::scalar::Real;
 use multiversion::multiversion;
 
-/// Lines per group of the contiguous axis (`nd_prefilter`): its rows get
-/// the fixed-width kernels.
+/// Lines per group of the contiguous axis in `f64` (`nd_prefilter`; twice
+/// as many in `f32`): rows of this width and twice it get the fixed-width
+/// kernels.
 pub(crate) const LINES: usize = 16;
 
 /// `row_i += ξ · row_{i−1}` down `rows` (rows of `G` lines), `prev` the row
@@ -59,13 +60,13 @@ pub(crate) fn anticausal_fixed<T: Real, const G: usize>(
 /// `c[i·w..]`): row `i` += ξ · row `i − 1`.
 #[multiversion(targets("x86_64+avx512f+avx512vl+avx2+fma", "x86_64+avx2+fma", "aarch64+neon"))]
 pub(crate) fn causal_strided<T: Real>(c: &mut [T], w: usize, z: &T) {
+    // Rows of a known width: the loop over a row unrolls into whole
+    // registers (a runtime width of 8 fell to the scalar remainder).
     if w == LINES {
-        // Rows of a known width: the loop over a row unrolls into whole
-        // registers (a runtime width of 8 fell to the scalar remainder).
-        if let Some((first, rest)) = c.as_chunks_mut::<LINES>().0.split_first_mut() {
-            causal_fixed(rest, &mut first.clone(), z);
-        }
-        return;
+        return causal_rows_of::<T, LINES>(c, z);
+    }
+    if w == 2 * LINES {
+        return causal_rows_of::<T, { 2 * LINES }>(c, z);
     }
     for i in 1..c.len() / w {
         let (head, tail) = c.split_at_mut(i * w);
@@ -80,16 +81,30 @@ pub(crate) fn causal_strided<T: Real>(c: &mut [T], w: usize, z: &T) {
 #[multiversion(targets("x86_64+avx512f+avx512vl+avx2+fma", "x86_64+avx2+fma", "aarch64+neon"))]
 pub(crate) fn anticausal_strided<T: Real>(c: &mut [T], w: usize, z: &T) {
     if w == LINES {
-        if let Some((last, rest)) = c.as_chunks_mut::<LINES>().0.split_last_mut() {
-            anticausal_fixed(rest, &mut last.clone(), z);
-        }
-        return;
+        return anticausal_rows_of::<T, LINES>(c, z);
+    }
+    if w == 2 * LINES {
+        return anticausal_rows_of::<T, { 2 * LINES }>(c, z);
     }
     for i in (0..c.len() / w - 1).rev() {
         let (head, tail) = c.split_at_mut((i + 1) * w);
         for (x, nx) in head[i * w..].iter_mut().zip(&tail[..w]) {
             *x = z.clone() * (nx.clone() - x.clone());
         }
+    }
+}
+
+/// [`causal_strided`] on rows of `G` values.
+fn causal_rows_of<T: Real, const G: usize>(c: &mut [T], z: &T) {
+    if let Some((first, rest)) = c.as_chunks_mut::<G>().0.split_first_mut() {
+        causal_fixed(rest, &mut first.clone(), z);
+    }
+}
+
+/// [`anticausal_strided`] on rows of `G` values.
+fn anticausal_rows_of<T: Real, const G: usize>(c: &mut [T], z: &T) {
+    if let Some((last, rest)) = c.as_chunks_mut::<G>().0.split_last_mut() {
+        anticausal_fixed(rest, &mut last.clone(), z);
     }
 }
 

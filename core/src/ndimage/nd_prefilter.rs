@@ -238,13 +238,30 @@ where
     });
 }
 
-/// Contiguous lines filtered [`GROUP`] at a time: each group is transposed
+/// Contiguous lines filtered `G` at a time: each group is transposed
 /// into a buffer (row `i` = sample `i` of the group's lines) so that the
 /// recursion, latency-bound on one line, runs as vector operations over
 /// the group ([`LineFilter::apply_lines`]); lines left over run alone. The
 /// transposition runs in strips of [`STRIP`] rows that stay in L1, reading
-/// (and writing back) the lines front to back.
+/// (and writing back) the lines front to back. `G` is 16 lines of `f64`
+/// (two AVX-512 registers, enough independent chains to hide the
+/// recursion's latency) and 32 of `f32`: the same bytes per row, twice
+/// the lanes.
 fn filter_last_axis<T, S, D>(a: &mut ArrayBase<S, D>, filter: &LineFilter<T>)
+where
+    T: Real + Send + Sync,
+    S: DataMut<Elem = T>,
+    D: Dimension,
+{
+    if std::mem::size_of::<T>() <= 4 {
+        filter_last_axis_in::<T, S, D, { 2 * lanes::LINES }>(a, filter)
+    } else {
+        filter_last_axis_in::<T, S, D, { lanes::LINES }>(a, filter)
+    }
+}
+
+/// [`filter_last_axis`] in groups of `G` lines.
+fn filter_last_axis_in<T, S, D, const G: usize>(a: &mut ArrayBase<S, D>, filter: &LineFilter<T>)
 where
     T: Real + Send + Sync,
     S: DataMut<Elem = T>,
@@ -254,9 +271,9 @@ where
     let data = a.as_slice_mut().expect("standard layout");
     let stash = Stash::default();
     let one = T::one();
-    data.par_chunks_mut(n * GROUP).for_each(|lines| {
-        stash.with(|(buf, scratch): &mut (Vec<[T; GROUP]>, Vec<T>)| {
-            if lines.len() < n * GROUP {
+    data.par_chunks_mut(n * G).for_each(|lines| {
+        stash.with(|(buf, scratch): &mut (Vec<[T; G]>, Vec<T>)| {
+            if lines.len() < n * G {
                 for line in lines.chunks_mut(n) {
                     filter.apply(line, scratch);
                 }
@@ -268,7 +285,7 @@ where
                 // × 1: exact, the gain is applied by the filter.
                 lanes::load_strip(strip, k * STRIP, &srcs, &one);
             }
-            filter.apply_lines(buf.as_flattened_mut(), GROUP, scratch);
+            filter.apply_lines(buf.as_flattened_mut(), G, scratch);
             let mut outs: Vec<&mut [T]> = lines.chunks_mut(n).collect();
             for (k, strip) in buf.chunks(STRIP).enumerate() {
                 lanes::store_strip(&mut outs, strip, k * STRIP);
@@ -303,9 +320,6 @@ impl<B: Default> Stash<B> {
     }
 }
 
-/// Lines per group of [`filter_last_axis`] (two AVX-512 registers of
-/// `f64`, enough independent chains to hide the recursion's latency).
-const GROUP: usize = lanes::LINES;
 
 /// Bytes of one strip's work buffer (measured: wider strips read longer
 /// contiguous runs of each row, which the prefetcher needs more than the
