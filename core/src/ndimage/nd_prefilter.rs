@@ -320,7 +320,6 @@ impl<B: Default> Stash<B> {
     }
 }
 
-
 /// Bytes of one strip's work buffer (measured: wider strips read longer
 /// contiguous runs of each row, which the prefetcher needs more than the
 /// buffer needs L2).
