@@ -81,9 +81,9 @@ def main():
         c, c_cpu = (min(v) for v in zip(*copies))
         for t in (1, 2):
             ms, cpu = (min(v) for v in zip(*times[t]))
-            print(json.dumps({"case": name, "threads": t, "ms": round(ms * 1e3, 2), "copy_ms": round(c * 1e3, 2),
-                              "over_copy": round(ms / c, 2), "cpu_ms": round(cpu * 1e3, 2),
-                              "copy_cpu_ms": round(c_cpu * 1e3, 2)}), flush=True)
+            print(json.dumps({"case": name, "threads": t, "ms": round(ms * 1e3, 3), "copy_ms": round(c * 1e3, 3),
+                              "over_copy": round(ms / c, 2), "cpu_ms": round(cpu * 1e3, 3),
+                              "copy_cpu_ms": round(c_cpu * 1e3, 3)}), flush=True)
         speedup = min(w for w, _ in times[1]) / min(w for w, _ in times[2])
         print(json.dumps({"case": name, "two_over_one_thread_speedup": round(speedup, 2)}), flush=True)
 

@@ -15,8 +15,11 @@
 //!
 //! **Accuracy**: the same operations in the same order as the scalar loop;
 //! Rust never contracts `a + z·b` into a fused multiply-add on its own, so
-//! every target gives the same bits as the baseline build (tested in
-//! `verify/tests/engine_lanes.rs`).
+//! every target computes the baseline build's bits (the quick report's
+//! accuracy figures are unchanged). Tested in f64 and f32 against 128-bit
+//! MPFR and against the one-line scalar recursion in
+//! `verify/tests/engine_lanes.rs`. **Source**: the recursions of Unser,
+//! Aldroubi and Eden (1993), as in [`LineFilter`](super::line_filter::LineFilter).
 
 use crate::scalar::Real;
 use multiversion::multiversion;

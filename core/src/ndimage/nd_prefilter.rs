@@ -6,7 +6,10 @@
 //! lines of a strided axis (standard layout) are filtered many at once:
 //! strips of `w` neighbouring lines are copied into an L2-sized buffer whose
 //! row `i` holds sample `i` of each line, and every step of the recursion is
-//! a vector operation over a row ([`LineFilter::apply_lines`]). Other
+//! a vector operation over a row ([`LineFilter::apply_lines`]); the
+//! contiguous axis transposes groups of 16 lines (32 in `f32`) into such
+//! rows. The row kernels are compiled for the CPU's vector units and
+//! chosen at run time (`ndimage::lanes`). Other
 //! layouts copy each strided line into a contiguous buffer. Error per axis: that of
 //! the [`LineFilter`] route; over `D` axes the truncated route's bound
 //! compounds to at most `((A + b)^D − A^D) · max|s|` with `A = Σ|c_j|` the
