@@ -30,6 +30,7 @@
 //!   (`D_k` reads `n` samples each side), as chunked filtering needs.
 
 use super::NdimageError;
+use super::lanes;
 use super::mode::Mode;
 use crate::scalar::Real;
 use crate::sspline::SplineFamily;
@@ -369,38 +370,15 @@ impl<T: Real> LineFilter<T> {
             }
             return;
         }
-        let gain = r.gain().clone();
-        for x in c.iter_mut() {
-            *x *= gain.clone();
-        }
+        lanes::scale(c, r.gain());
         let mut acc = vec![T::zero(); w];
         for (z, &k) in r.poles().iter().zip(r.horizons()) {
             causal_start_rows(c, w, z, k, mode, &mut acc);
             c[..w].clone_from_slice(&acc);
-            causal_rows(c, w, z);
+            lanes::causal_strided(c, w, z);
             anticausal_start_rows(c, w, z, k, mode, &mut acc);
             c[(len - 1) * w..].clone_from_slice(&acc);
-            anticausal_rows(c, w, z);
-        }
-    }
-}
-
-/// [`causal`] down every column of `c` (`L × w`): row `i` += ξ · row `i − 1`.
-fn causal_rows<T: Real>(c: &mut [T], w: usize, z: &T) {
-    for i in 1..c.len() / w {
-        let (head, tail) = c.split_at_mut(i * w);
-        for (x, p) in tail[..w].iter_mut().zip(&head[(i - 1) * w..]) {
-            *x += z.clone() * p;
-        }
-    }
-}
-
-/// [`anticausal`] up every column: row `i` = ξ (row `i + 1` − row `i`).
-fn anticausal_rows<T: Real>(c: &mut [T], w: usize, z: &T) {
-    for i in (0..c.len() / w - 1).rev() {
-        let (head, tail) = c.split_at_mut((i + 1) * w);
-        for (x, nx) in head[i * w..].iter_mut().zip(&tail[..w]) {
-            *x = z.clone() * (nx.clone() - x.clone());
+            lanes::anticausal_strided(c, w, z);
         }
     }
 }

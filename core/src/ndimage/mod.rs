@@ -40,6 +40,7 @@
 pub mod block_filter;
 pub mod error;
 pub mod interpolant;
+mod lanes;
 pub mod line_filter;
 pub mod mode;
 pub mod nd_prefilter;

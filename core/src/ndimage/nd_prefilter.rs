@@ -6,7 +6,10 @@
 //! lines of a strided axis (standard layout) are filtered many at once:
 //! strips of `w` neighbouring lines are copied into an L2-sized buffer whose
 //! row `i` holds sample `i` of each line, and every step of the recursion is
-//! a vector operation over a row ([`LineFilter::apply_lines`]). Other
+//! a vector operation over a row ([`LineFilter::apply_lines`]); the
+//! contiguous axis transposes groups of 16 lines (32 in `f32`) into such
+//! rows. The row kernels are compiled for the CPU's vector units and
+//! chosen at run time (`ndimage::lanes`). Other
 //! layouts copy each strided line into a contiguous buffer. Error per axis: that of
 //! the [`LineFilter`] route; over `D` axes the truncated route's bound
 //! compounds to at most `((A + b)^D − A^D) · max|s|` with `A = Σ|c_j|` the
@@ -14,6 +17,7 @@
 
 use super::NdimageError;
 use super::block_filter::BlockPrefilter;
+use super::lanes;
 use super::line_filter::LineFilter;
 use super::mode::Mode;
 use crate::scalar::Real;
@@ -237,11 +241,30 @@ where
     });
 }
 
-/// Contiguous lines filtered [`GROUP`] at a time: each group is transposed
+/// Contiguous lines filtered `G` at a time: each group is transposed
 /// into a buffer (row `i` = sample `i` of the group's lines) so that the
 /// recursion, latency-bound on one line, runs as vector operations over
-/// the group ([`LineFilter::apply_lines`]); lines left over run alone.
+/// the group ([`LineFilter::apply_lines`]); lines left over run alone. The
+/// transposition runs in strips of [`STRIP`] rows that stay in L1, reading
+/// (and writing back) the lines front to back. `G` is 16 lines of `f64`
+/// (two AVX-512 registers, enough independent chains to hide the
+/// recursion's latency) and 32 of `f32`: the same bytes per row, twice
+/// the lanes.
 fn filter_last_axis<T, S, D>(a: &mut ArrayBase<S, D>, filter: &LineFilter<T>)
+where
+    T: Real + Send + Sync,
+    S: DataMut<Elem = T>,
+    D: Dimension,
+{
+    if std::mem::size_of::<T>() <= 4 {
+        filter_last_axis_in::<T, S, D, { 2 * lanes::LINES }>(a, filter)
+    } else {
+        filter_last_axis_in::<T, S, D, { lanes::LINES }>(a, filter)
+    }
+}
+
+/// [`filter_last_axis`] in groups of `G` lines.
+fn filter_last_axis_in<T, S, D, const G: usize>(a: &mut ArrayBase<S, D>, filter: &LineFilter<T>)
 where
     T: Real + Send + Sync,
     S: DataMut<Elem = T>,
@@ -250,27 +273,32 @@ where
     let n = a.shape()[a.ndim() - 1];
     let data = a.as_slice_mut().expect("standard layout");
     let stash = Stash::default();
-    data.par_chunks_mut(n * GROUP).for_each(|lines| {
-        stash.with(|(buf, scratch): &mut (Vec<T>, Vec<T>)| {
-            if lines.len() < n * GROUP {
+    let one = T::one();
+    data.par_chunks_mut(n * G).for_each(|lines| {
+        stash.with(|(buf, scratch): &mut (Vec<[T; G]>, Vec<T>)| {
+            if lines.len() < n * G {
                 for line in lines.chunks_mut(n) {
                     filter.apply(line, scratch);
                 }
                 return;
             }
-            buf.clear();
-            for i in 0..n {
-                buf.extend((0..GROUP).map(|j| lines[j * n + i].clone()));
+            buf.resize(n, std::array::from_fn(|_| T::zero()));
+            let srcs: Vec<&[T]> = lines.chunks(n).collect();
+            for (k, strip) in buf.chunks_mut(STRIP).enumerate() {
+                // × 1: exact, the gain is applied by the filter.
+                lanes::load_strip(strip, k * STRIP, &srcs, &one);
             }
-            filter.apply_lines(buf, GROUP, scratch);
-            for (i, row) in buf.chunks(GROUP).enumerate() {
-                for (j, x) in row.iter().enumerate() {
-                    lines[j * n + i] = x.clone();
-                }
+            filter.apply_lines(buf.as_flattened_mut(), G, scratch);
+            let mut outs: Vec<&mut [T]> = lines.chunks_mut(n).collect();
+            for (k, strip) in buf.chunks(STRIP).enumerate() {
+                lanes::store_strip(&mut outs, strip, k * STRIP);
             }
         })
     });
 }
+
+/// Rows per strip of [`filter_last_axis`]'s transposition.
+const STRIP: usize = 64;
 
 /// Work buffers shared by the tasks of one pass, each task taking one
 /// and putting it back: a fresh multi-megabyte `Vec` per task is a fresh
@@ -294,9 +322,6 @@ impl<B: Default> Stash<B> {
         r
     }
 }
-
-/// Lines per group of [`filter_last_axis`]: two AVX registers of `f64`.
-const GROUP: usize = 8;
 
 /// Bytes of one strip's work buffer (measured: wider strips read longer
 /// contiguous runs of each row, which the prefetcher needs more than the
