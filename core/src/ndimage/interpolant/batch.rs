@@ -1,6 +1,6 @@
 //! Batch evaluation of an [`Interpolant`] at many points
 //! ([`Interpolant::eval_many`]): the same sums as [`Interpolant::eval`]
-//! (cubic weights in closed form, see [`window_weights_into`]), arranged so
+//! (weights of degrees 1 to 5 in closed form, see [`cell_weights_into`]), arranged so
 //! that the coefficient reads of many points overlap.
 //!
 //! Why: for a grid of a few megabytes and scattered points each point reads
@@ -11,10 +11,10 @@
 //! on their way. Results are bit-identical to the unbatched order (the
 //! prefetch is only a hint).
 
-use super::{Interpolant, Scratch};
+use super::{Interpolant, Scratch, cell_weights_into};
 use crate::ndimage::NdimageError;
 use crate::scalar::Real;
-use crate::sspline::bspline_uniform::{cell_derivatives_into, centred_cell};
+use crate::sspline::bspline_uniform::centred_cell;
 use ndarray::{ArrayView2, s};
 use rayon::prelude::*;
 
@@ -180,7 +180,7 @@ impl<T: Real + Send + Sync> Interpolant<T> {
     /// The weights of `x` on every axis into `w` (`ndim × m`) and the flat
     /// offset of its first coefficient, when every coefficient the point
     /// reads lies inside the padded array (always, except `grid-constant`
-    /// far outside); `None` otherwise. Weights by [`window_weights_into`].
+    /// far outside); `None` otherwise. Weights by [`cell_weights_into`].
     fn locate(&self, x: &[f64], w: &mut [T]) -> Option<usize> {
         let m = self.order as usize;
         let mut base = 0;
@@ -198,7 +198,7 @@ impl<T: Real + Send + Sync> Interpolant<T> {
                 return None;
             }
             base += i0 as usize * self.strides[a];
-            window_weights_into(self.order, u, &mut w[a * m..(a + 1) * m]);
+            cell_weights_into(self.order, 0, u, &mut w[a * m..(a + 1) * m]);
         }
         Some(base)
     }
@@ -298,25 +298,4 @@ pub(super) fn prefetch<T>(c: &[T], at: usize, len: usize) {
     }
     #[cfg(not(target_arch = "x86_64"))]
     let _ = (c, at, len);
-}
-
-/// `w[l] = β_m(x − first − l)` of the cell position `u` ([`centred_cell`]),
-/// `l = 0..m−1`. Cubics (`m = 4`) in closed form, symmetric in `u` and
-/// `v = 1 − u`: `v³/6`, `2/3 − u²(2 − u)/2`, `2/3 − v²(2 − v)/2`, `u³/6`
-/// (all terms non-negative or a difference from 2/3 of at most 1/2, so
-/// each weight is within a few ulps); other orders by de Boor–Cox
-/// ([`cell_derivatives_into`] with `d = 0`). `O(1)` resp. `O(m²)`. The
-/// closed form runs in `f64`, so it serves scalars of at most 53 bits.
-pub(super) fn window_weights_into<T: Real>(m: u32, u: f64, w: &mut [T]) {
-    if m == 4 && T::BITS <= 53 {
-        let v = 1.0 - u;
-        let (u2, v2) = (u * u, v * v);
-        w[0] = T::from_f64_exact(v2 * v / 6.0);
-        w[1] = T::from_f64_exact(2.0 / 3.0 - 0.5 * u2 * (2.0 - u));
-        w[2] = T::from_f64_exact(2.0 / 3.0 - 0.5 * v2 * (2.0 - v));
-        w[3] = T::from_f64_exact(u2 * u / 6.0);
-        return;
-    }
-    cell_derivatives_into(m, 0, &T::from_f64_exact(u), w);
-    w.reverse();
 }

@@ -7,55 +7,25 @@
 //! [`Interpolant::tensor_sum`]) loops over run-time `ndim` and `m` with
 //! slices of weights, so every point pays loop control, bounds checks and
 //! a call per axis; here the weights of a point are `[[T; M]; D]` on the
-//! stack, the de Boor–Cox recursion is unrolled with its constants folded,
+//! stack, the closed-form weights (`weights.rs`) are inlined,
 //! and each row of `M` coefficients is one bounds check. A point whose
 //! coordinate lies inside `[0, n − 1]` is not folded (every mode's fold is
 //! the identity there).
 //!
-//! **Same values**: the weights are de Boor–Cox's in `f64`
-//! ([`bspline_weights`], the arithmetic of
-//! [`cell_values_into`](crate::sspline::bspline_uniform::cell_values_into)
-//! step for step; cubics in the closed form of [`window_weights_into`]),
-//! and the sums are added in the order of [`Interpolant::tensor_sum`], so
-//! in `f64` the results are those of the general path bit for bit
+//! **Same values**: the weights are those of every other path
+//! ([`cell_weights_into`](super::cell_weights_into): closed forms for
+//! degrees 1 to 5, `weights.rs`, in `f64`), and the sums are added in the
+//! order of [`Interpolant::tensor_sum`], so in `f64` the results are those
+//! of the general path and of [`Interpolant::eval`] bit for bit
 //! (`verify/tests/engine_batch.rs::batch_equals_single_point_evaluation`).
-//! In `f32` the weights are rounded once from `f64` (the general path
-//! forms them in `f32`), within an ulp of them.
+//! In `f32` the weights are rounded once from `f64`, as there.
 
-use super::batch::{BATCH, PointSource, prefetch, window_weights_into};
+use super::batch::{BATCH, PointSource, prefetch};
+use super::weights::closed_form;
 use super::{Interpolant, Scratch};
 use crate::ndimage::NdimageError;
 use crate::scalar::Real;
 use crate::sspline::bspline_uniform::centred_cell;
-
-/// The `M` weights `β_M(x − first − l)`, `l = 0..M−1`, of the cell position
-/// `u` ([`centred_cell`]), in `f64`: de Boor–Cox on uniform knots,
-/// `N_{0,k}(u + s) = ((u + s) N_{0,k−1}(u + s) + (k − u − s) N_{0,k−1}(u +
-/// s − 1)) / (k − 1)`, every term non-negative (relative error `O(M² u)`),
-/// then reversed. `O(M²)` operations, unrolled for a constant `M`.
-/// **Source**: de Boor, *A Practical Guide to Splines*, ch. IX; seed 000 eq 7.
-#[inline(always)]
-pub(super) fn bspline_weights<const M: usize>(u: f64) -> [f64; M] {
-    let mut a = [0.0; M];
-    a[0] = 1.0;
-    for k in 2..=M {
-        let kk = k as f64;
-        let inv = 1.0 / (k as f64 - 1.0);
-        for s in (0..k).rev() {
-            let t = u + s as f64;
-            let mut v = 0.0;
-            if s + 1 < k {
-                v += t * a[s];
-            }
-            if s >= 1 {
-                v += (kk - t) * a[s - 1];
-            }
-            a[s] = v * inv;
-        }
-    }
-    a.reverse();
-    a
-}
 
 /// [`centred_cell`] for order `M`, the same `(first, u)`, without a call
 /// to libm's `floor` (not inlined on the x86-64 baseline): below `2^52` in
@@ -190,13 +160,9 @@ impl<T: Real + Send + Sync> Interpolant<T> {
                 return None;
             }
             base += i0 as usize * self.strides[a];
-            if M == 4 {
-                window_weights_into(4, u, &mut w[a]);
-            } else {
-                let f = bspline_weights::<M>(u);
-                for (t, v) in w[a].iter_mut().zip(f) {
-                    *t = T::from_f64_exact(v);
-                }
+            let f = closed_form::<M>(u).expect("kernels serve orders 2 to 6");
+            for (t, v) in w[a].iter_mut().zip(f) {
+                *t = T::from_f64_exact(v);
             }
         }
         Some(base)
