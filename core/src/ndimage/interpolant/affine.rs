@@ -108,8 +108,10 @@ struct AffinePoints<'a> {
 
 impl PointSource for AffinePoints<'_> {
     /// Along the last output axis only its term changes: the sum of the
-    /// others (`offset_h + o_0 M_{h0} + …`, scipy's order) is kept per row,
-    /// so each point costs one multiply-add per input axis, same bits.
+    /// others (`offset_h + o_0 M_{h0} + …`, scipy's order) is formed once
+    /// per run of the batch along that axis, so each point costs one
+    /// multiply-add per input axis, same bits; no allocation for up to
+    /// [`STACK_AXES`] axes.
     fn fill(
         &self,
         start: usize,
@@ -117,15 +119,58 @@ impl PointSource for AffinePoints<'_> {
         take_cval: &mut [bool],
     ) -> Result<(), NdimageError> {
         let (n, k) = (self.shape.len(), self.out_shape.len());
-        let mut index = unflatten(start, self.out_shape);
-        let mut row = vec![0.0; n];
-        self.row_sums(&index, &mut row);
-        for (j, cv) in take_cval.iter_mut().enumerate() {
-            let last = index[k - 1] as f64;
-            let x = &mut xs[j * n..(j + 1) * n];
+        let (mut index_stack, mut row_stack) = ([0; STACK_AXES], [0.0; STACK_AXES]);
+        let (mut index_heap, mut row_heap) = (Vec::new(), Vec::new());
+        let index = on_stack_or_heap(&mut index_stack, &mut index_heap, k);
+        let row = on_stack_or_heap(&mut row_stack, &mut row_heap, n);
+        let run_len = self.out_shape[k - 1];
+        let mut done = 0;
+        while done < take_cval.len() {
+            unflatten_into(start + done, self.out_shape, index);
+            self.row_sums(index, row);
+            let first = index[k - 1];
+            let run = (run_len - first).min(take_cval.len() - done);
+            let at = done * n..(done + run) * n;
+            self.fill_run(row, first, &mut xs[at], &mut take_cval[done..done + run]);
+            done += run;
+        }
+        // One pass for the rare overflow to infinity (finite matrix and
+        // offset, huge indices); the position only then.
+        if !xs.iter().fold(true, |ok, t| ok & t.is_finite()) {
+            let at = xs.iter().position(|t| !t.is_finite()).unwrap_or(0);
+            return Err(NdimageError::NonFiniteCoordinate(start * n + at));
+        }
+        Ok(())
+    }
+}
+
+/// Axes of the output and input an [`AffinePoints`] batch keeps on the stack.
+const STACK_AXES: usize = 8;
+
+/// The first `len` elements of `stack`, or of `heap` (resized) when longer.
+fn on_stack_or_heap<'a, V: Copy + Default>(
+    stack: &'a mut [V; STACK_AXES],
+    heap: &'a mut Vec<V>,
+    len: usize,
+) -> &'a mut [V] {
+    if len <= STACK_AXES {
+        &mut stack[..len]
+    } else {
+        heap.resize(len, V::default());
+        heap
+    }
+}
+
+impl AffinePoints<'_> {
+    /// The points of one run along the last output axis, from its index
+    /// `first`, of row sums `row`: `x_h = (row_h + o M_{h,k−1}) + shift`,
+    /// then the rule.
+    fn fill_run(&self, row: &[f64], first: usize, xs: &mut [f64], take_cval: &mut [bool]) {
+        let (n, k) = (self.shape.len(), self.out_shape.len());
+        for (s, (x, cv)) in xs.chunks_exact_mut(n).zip(take_cval.iter_mut()).enumerate() {
+            let last = (first + s) as f64;
             for (h, xh) in x.iter_mut().enumerate() {
-                let t = row[h] + last * self.matrix[h * k + k - 1];
-                *xh = t + self.shift;
+                *xh = (row[h] + last * self.matrix[h * k + k - 1]) + self.shift;
             }
             *cv = match self.rule {
                 PointRule::Fold => false,
@@ -140,21 +185,9 @@ impl PointSource for AffinePoints<'_> {
                     false
                 }
             };
-            if step(&mut index, self.out_shape) < k - 1 {
-                self.row_sums(&index, &mut row);
-            }
         }
-        // One pass for the rare overflow to infinity (finite matrix and
-        // offset, huge indices); the position only then.
-        if !xs.iter().fold(true, |ok, t| ok & t.is_finite()) {
-            let at = xs.iter().position(|t| !t.is_finite()).unwrap_or(0);
-            return Err(NdimageError::NonFiniteCoordinate(start * n + at));
-        }
-        Ok(())
     }
-}
 
-impl AffinePoints<'_> {
     /// `offset_h + o_0 M_{h0} + … + o_{k−2} M_{h,k−2}` for every input axis
     /// `h`, added in scipy's order (all but the last output axis).
     fn row_sums(&self, o: &[usize], row: &mut [f64]) {
@@ -183,27 +216,12 @@ fn wrap_period_n_minus_1(x: f64, len: usize) -> f64 {
     }
 }
 
-/// The multi-index of flat C-order position `flat` in `shape`.
-fn unflatten(mut flat: usize, shape: &[usize]) -> Vec<usize> {
-    let mut index = vec![0; shape.len()];
+/// The multi-index of flat C-order position `flat` in `shape`, into `index`.
+fn unflatten_into(mut flat: usize, shape: &[usize], index: &mut [usize]) {
     for (i, &n) in index.iter_mut().zip(shape).rev() {
         *i = flat % n.max(1);
         flat /= n.max(1);
     }
-    index
-}
-
-/// The next multi-index in C order; returns the axis that advanced
-/// (`shape.len() − 1` unless the last one wrapped; 0 at the end too).
-fn step(index: &mut [usize], shape: &[usize]) -> usize {
-    for (a, (i, &n)) in index.iter_mut().zip(shape).enumerate().rev() {
-        *i += 1;
-        if *i < n {
-            return a;
-        }
-        *i = 0;
-    }
-    0
 }
 
 #[cfg(test)]

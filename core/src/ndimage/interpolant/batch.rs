@@ -84,7 +84,7 @@ impl<T: Real + Send + Sync> Interpolant<T> {
                 got: out.len(),
             });
         }
-        if let Some(k) = points.iter().position(|c| !c.is_finite()) {
+        if let Some(k) = first_non_finite(points) {
             return Err(NdimageError::NonFiniteCoordinate(k));
         }
         self.eval_source(&Rows(points), out)
@@ -274,6 +274,24 @@ impl<T: Real + Send + Sync> Interpolant<T> {
         }
         sum
     }
+}
+
+/// The flat (row-major) index of the first non-finite coordinate of
+/// `points`, if any: the rows checked in parallel in chunks of [`CHUNK`]
+/// (a pass over the points that would otherwise be the evaluation's serial
+/// part), the first chunk with one named.
+fn first_non_finite(points: ArrayView2<'_, f64>) -> Option<usize> {
+    let (count, ndim) = points.dim();
+    (0..count.div_ceil(CHUNK))
+        .into_par_iter()
+        .find_map_first(|c| {
+            let rows = points.slice(s![c * CHUNK..((c + 1) * CHUNK).min(count), ..]);
+            let ok = rows.iter().fold(true, |ok, x| ok & x.is_finite());
+            (!ok).then(|| {
+                let at = rows.iter().position(|x| !x.is_finite()).unwrap_or(0);
+                c * CHUNK * ndim + at
+            })
+        })
 }
 
 /// Ask the cache for `c[at..at + len]` (its first and last byte: a run of at

@@ -26,29 +26,58 @@ use super::{Interpolant, Scratch};
 use crate::ndimage::NdimageError;
 use crate::scalar::Real;
 use crate::sspline::bspline_uniform::centred_cell;
+use multiversion::multiversion;
 
-/// [`centred_cell`] for order `M`, the same `(first, u)`, without a call
-/// to libm's `floor` (not inlined on the x86-64 baseline): below `2^52` in
-/// magnitude `⌊x⌋` is the truncation `x as i64`, less one where that
-/// exceeds `x`; beyond, `centred_cell` itself.
+/// Below this magnitude [`cell_lanes`] rounds exactly (`1.5 · 2^52` added
+/// and subtracted rounds to an integer while `|x| < 2^51`).
+const LANE_CELL_LIMIT: f64 = (1u64 << 51) as f64;
+
+/// [`centred_cell`] for order `M` as `(first, u)` with `first` an integer
+/// in `f64`, the same values for `|x| < 2^51`, branch-free so that a loop
+/// of them runs in SIMD lanes (no call to libm's `floor`, not inlined on
+/// the x86-64 baseline): `⌊x⌋` is `x` rounded to an integer by adding and
+/// subtracting `1.5 · 2^52`, less one where that exceeds `x`; then `t = x −
+/// ⌊x⌋` is exact, and odd orders take the cell centred on the half-integer.
 #[inline(always)]
-fn cell_of<const M: usize>(x: f64) -> (i64, f64) {
-    const EXACT: f64 = (1u64 << 52) as f64;
-    if x.abs() >= EXACT || x.is_nan() {
-        return centred_cell(M as u32, x);
-    }
-    let i = x as i64;
-    let i = if (i as f64) > x { i - 1 } else { i };
-    let t = x - i as f64;
-    let half = (M / 2) as i64;
-    let (fl, u) = if M.is_multiple_of(2) {
-        (i + half, t)
-    } else if t >= 0.5 {
-        (i + half + 1, t - 0.5)
+fn cell_lanes<const M: usize>(x: f64) -> (f64, f64) {
+    const ROUND: f64 = 6_755_399_441_055_744.0;
+    let r = (x + ROUND) - ROUND;
+    let fl = if r > x { r - 1.0 } else { r };
+    let t = x - fl;
+    // first = ⌊x⌋ + ⌊M/2⌋ − M + 1 (+ 1 for an odd order past the half).
+    let lead = (M / 2) as f64 + 1.0 - M as f64;
+    if M.is_multiple_of(2) {
+        (fl + lead, t)
     } else {
-        (i + half, t + 0.5)
-    };
-    (fl - M as i64 + 1, u)
+        let past = t >= 0.5;
+        let first = fl + lead + if past { 1.0 } else { 0.0 };
+        (first, if past { t - 0.5 } else { t + 0.5 })
+    }
+}
+
+/// The cells ([`cell_lanes`]) and closed-form weights
+/// ([`closed_form`](super::weights::closed_form)) of a batch of folded
+/// coordinates on one axis: `first[j]`, `w[l][j] = β(x_j − first_j − l)`.
+/// One branch-free loop over the points, compiled for AVX-512 and for
+/// AVX2 + FMA besides the baseline and chosen at run time by the CPU's
+/// features (`multiversion`): the points run in 8, 4 or 2 lanes. The
+/// arithmetic is the same IEEE operations in every version (no
+/// contraction into fused multiply-adds), so every version gives the same
+/// bits. Coordinates of `2^51` or more are redone by the caller.
+#[multiversion(targets("x86_64+avx512f+avx512vl+avx2+fma", "x86_64+avx2+fma"))]
+fn cells_and_weights<T: Real, const M: usize>(
+    x: &[f64; BATCH],
+    first: &mut [f64; BATCH],
+    w: &mut [[T; BATCH]; M],
+) {
+    for j in 0..BATCH {
+        let (f, u) = cell_lanes::<M>(x[j]);
+        first[j] = f;
+        let c = closed_form::<M>(u).expect("kernels serve orders 2 to 6");
+        for l in 0..M {
+            w[l][j] = T::from_f64_exact(c[l]);
+        }
+    }
 }
 
 impl<T: Real + Send + Sync> Interpolant<T> {
@@ -86,9 +115,11 @@ impl<T: Real + Send + Sync> Interpolant<T> {
     }
 
     /// [`Self::eval_kernel`] for dimension `D` and order `M`: batches of
-    /// [`BATCH`] points located (rows prefetched), then summed; a point
-    /// whose window leaves the padded coefficients (`grid-constant` far
-    /// outside) by the general [`Interpolant::eval_in`].
+    /// [`BATCH`] points folded, then their cells and weights formed axis by
+    /// axis with the points in SIMD lanes ([`cells_and_weights`]), then
+    /// located (rows prefetched), then summed; a point whose window leaves
+    /// the padded coefficients (`grid-constant` far outside) by the general
+    /// [`Interpolant::eval_in`].
     fn eval_fixed<S: PointSource, const D: usize, const M: usize>(
         &self,
         src: &S,
@@ -98,31 +129,47 @@ impl<T: Real + Send + Sync> Interpolant<T> {
         let c = self.coeffs.as_slice().expect("standard layout");
         let mut xs = [0.0; BATCH * 3];
         let mut take_cval = [false; BATCH];
-        // Weights and first offsets of a batch, written in place (no
-        // per-point initialisation or move).
-        let mut ws: [[[T; M]; D]; BATCH] =
+        // A batch by axis, points in lanes: folded coordinates, first
+        // window indices (integers in f64) and weights `[axis][l][point]`.
+        let mut folded = [[0.0; BATCH]; D];
+        let mut firsts = [[0.0; BATCH]; D];
+        let mut ws: [[[T; BATCH]; M]; D] =
             std::array::from_fn(|_| std::array::from_fn(|_| std::array::from_fn(|_| T::zero())));
         let mut bases = [None; BATCH];
         let mut fallback = None;
         for (b, batch) in out.chunks_mut(BATCH).enumerate() {
             let n = batch.len();
             src.fill(start + b * BATCH, &mut xs[..n * D], &mut take_cval[..n])?;
+            for j in 0..n {
+                for (a, f) in folded.iter_mut().enumerate() {
+                    // A point that takes cval is not located (no fold).
+                    f[j] = if take_cval[j] {
+                        0.0
+                    } else {
+                        self.fold_fixed(xs[j * D + a], a)
+                    };
+                }
+            }
+            for a in 0..D {
+                cells_and_weights::<T, M>(&folded[a], &mut firsts[a], &mut ws[a]);
+            }
             for (j, o) in batch.iter_mut().enumerate() {
                 bases[j] = None;
                 if take_cval[j] {
                     *o = self.cval.clone();
                     continue;
                 }
-                let x: &[f64; D] = xs[j * D..(j + 1) * D].try_into().expect("D coordinates");
-                bases[j] = self.locate_fixed::<D, M>(x, &mut ws[j]);
+                bases[j] = self.base_fixed::<D, M>(&folded, &mut firsts, &mut ws, j);
                 match bases[j] {
                     Some(base) => self.prefetch_fixed::<D, M>(c, base),
-                    None => *o = self.eval_slow(x, &mut fallback),
+                    None => *o = self.eval_slow(&xs[j * D..(j + 1) * D], &mut fallback),
                 }
             }
-            for ((o, base), w) in batch.iter_mut().zip(&bases).zip(&ws) {
+            for (j, (o, base)) in batch.iter_mut().zip(&bases).enumerate() {
                 if let Some(base) = *base {
-                    *o = sum_fixed::<T, D, M>(c, base, w, &self.strides);
+                    let w: [[T; M]; D] =
+                        std::array::from_fn(|a| std::array::from_fn(|l| ws[a][l][j].clone()));
+                    *o = sum_fixed::<T, D, M>(c, base, &w, &self.strides);
                 }
             }
         }
@@ -137,33 +184,46 @@ impl<T: Real + Send + Sync> Interpolant<T> {
         self.eval_in(x, &zero[..x.len()], &mut sc)
     }
 
-    /// The weights of `x` on every axis into `w` and the flat offset of its
-    /// first coefficient (folded by the mode unless inside `[0, n − 1]`), or
-    /// `None` when its window leaves the padded coefficients.
+    /// The point at which axis `a` is evaluated: `x` itself inside `[0,
+    /// n − 1]` (every mode's fold is the identity there), else
+    /// [`Interpolant::coordinate`].
     #[inline(always)]
-    fn locate_fixed<const D: usize, const M: usize>(
+    fn fold_fixed(&self, x: f64, a: usize) -> f64 {
+        if x >= 0.0 && x <= (self.shape[a] - 1) as f64 {
+            x
+        } else {
+            self.coordinate(x, a)
+        }
+    }
+
+    /// The flat offset of the first coefficient of point `j` of a batch
+    /// (its cells in `firsts`), or `None` when its window leaves the padded
+    /// coefficients. A coordinate of `2^51` or more in magnitude, beyond
+    /// [`cells_and_weights`]' rounding, gets its cell and weights here from
+    /// [`centred_cell`].
+    #[inline(always)]
+    fn base_fixed<const D: usize, const M: usize>(
         &self,
-        x: &[f64; D],
-        w: &mut [[T; M]; D],
+        folded: &[[f64; BATCH]; D],
+        firsts: &mut [[f64; BATCH]; D],
+        ws: &mut [[[T; BATCH]; M]; D],
+        j: usize,
     ) -> Option<usize> {
         let mut base = 0;
         for a in 0..D {
-            let n = self.shape[a];
-            let xa = if x[a] >= 0.0 && x[a] <= (n - 1) as f64 {
-                x[a]
-            } else {
-                self.coordinate(x[a], a)
-            };
-            let (first, u) = cell_of::<M>(xa);
-            let i0 = first + self.pad as i64;
-            if i0 < 0 || i0 as usize + M > n + 2 * self.pad {
+            if folded[a][j].abs() >= LANE_CELL_LIMIT {
+                let (first, u) = centred_cell(M as u32, folded[a][j]);
+                firsts[a][j] = first as f64;
+                let f = closed_form::<M>(u).expect("kernels serve orders 2 to 6");
+                for (l, v) in f.into_iter().enumerate() {
+                    ws[a][l][j] = T::from_f64_exact(v);
+                }
+            }
+            let i0 = firsts[a][j] as i64 + self.pad as i64;
+            if i0 < 0 || i0 as usize + M > self.shape[a] + 2 * self.pad {
                 return None;
             }
             base += i0 as usize * self.strides[a];
-            let f = closed_form::<M>(u).expect("kernels serve orders 2 to 6");
-            for (t, v) in w[a].iter_mut().zip(f) {
-                *t = T::from_f64_exact(v);
-            }
         }
         Some(base)
     }
