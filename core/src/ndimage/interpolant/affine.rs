@@ -123,6 +123,16 @@ impl PointSource for AffinePoints<'_> {
         let (mut index_heap, mut row_heap) = (Vec::new(), Vec::new());
         let index = on_stack_or_heap(&mut index_stack, &mut index_heap, k);
         let row = on_stack_or_heap(&mut row_stack, &mut row_heap, n);
+        // The last output axis' column of the matrix and the input's upper
+        // ends, as f64 once per batch (no integer conversion per point).
+        let (mut step_stack, mut high_stack) = ([0.0; STACK_AXES], [0.0; STACK_AXES]);
+        let (mut step_heap, mut high_heap) = (Vec::new(), Vec::new());
+        let step = on_stack_or_heap(&mut step_stack, &mut step_heap, n);
+        let high = on_stack_or_heap(&mut high_stack, &mut high_heap, n);
+        for h in 0..n {
+            step[h] = self.matrix[h * k + k - 1];
+            high[h] = (self.shape[h] - 1) as f64;
+        }
         let run_len = self.out_shape[k - 1];
         let mut done = 0;
         while done < take_cval.len() {
@@ -131,7 +141,8 @@ impl PointSource for AffinePoints<'_> {
             let first = index[k - 1];
             let run = (run_len - first).min(take_cval.len() - done);
             let at = done * n..(done + run) * n;
-            self.fill_run(row, first, &mut xs[at], &mut take_cval[done..done + run]);
+            let cv = &mut take_cval[done..done + run];
+            self.fill_run(row, step, high, first as f64, &mut xs[at], cv);
             done += run;
         }
         // One pass for the rare overflow to infinity (finite matrix and
@@ -163,21 +174,31 @@ fn on_stack_or_heap<'a, V: Copy + Default>(
 
 impl AffinePoints<'_> {
     /// The points of one run along the last output axis, from its index
-    /// `first`, of row sums `row`: `x_h = (row_h + o M_{h,k−1}) + shift`,
-    /// then the rule.
-    fn fill_run(&self, row: &[f64], first: usize, xs: &mut [f64], take_cval: &mut [bool]) {
-        let (n, k) = (self.shape.len(), self.out_shape.len());
-        for (s, (x, cv)) in xs.chunks_exact_mut(n).zip(take_cval.iter_mut()).enumerate() {
-            let last = (first + s) as f64;
-            for (h, xh) in x.iter_mut().enumerate() {
-                *xh = (row[h] + last * self.matrix[h * k + k - 1]) + self.shift;
+    /// `first` (an integer below `2^53`, so `+ 1` stays exact), of row
+    /// sums `row`: `x_h = (row_h + o · step_h) + shift`, then the rule
+    /// (`high_h = n_h − 1`).
+    fn fill_run(
+        &self,
+        row: &[f64],
+        step: &[f64],
+        high: &[f64],
+        first: f64,
+        xs: &mut [f64],
+        take_cval: &mut [bool],
+    ) {
+        let n = row.len();
+        let mut last = first;
+        for (x, cv) in xs.chunks_exact_mut(n).zip(take_cval.iter_mut()) {
+            for ((xh, r), m) in x.iter_mut().zip(row).zip(step) {
+                *xh = (r + last * m) + self.shift;
             }
+            last += 1.0;
             *cv = match self.rule {
                 PointRule::Fold => false,
                 PointRule::CvalOutside => x
                     .iter()
-                    .zip(self.shape)
-                    .any(|(&t, &len)| t < 0.0 || t > (len - 1) as f64),
+                    .zip(high)
+                    .fold(false, |out, (&t, &hi)| out | (t < 0.0) | (t > hi)),
                 PointRule::WrapPeriodNMinus1 => {
                     for (t, &len) in x.iter_mut().zip(self.shape) {
                         *t = wrap_period_n_minus_1(*t, len);

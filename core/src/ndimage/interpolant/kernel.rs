@@ -167,9 +167,7 @@ impl<T: Real + Send + Sync> Interpolant<T> {
             }
             for (j, (o, base)) in batch.iter_mut().zip(&bases).enumerate() {
                 if let Some(base) = *base {
-                    let w: [[T; M]; D] =
-                        std::array::from_fn(|a| std::array::from_fn(|l| ws[a][l][j].clone()));
-                    *o = sum_fixed::<T, D, M>(c, base, &w, &self.strides);
+                    *o = sum_fixed::<T, D, M>(c, base, &ws, j, &self.strides);
                 }
             }
         }
@@ -245,37 +243,39 @@ impl<T: Real + Send + Sync> Interpolant<T> {
     }
 }
 
-/// `Σ_l w[l] · row[l]` over one row of `M` coefficients, from zero.
+/// `Σ_l w[l][j] · row[l]` over one row of `M` coefficients, from zero
+/// (`w` by order index, point `j` of the batch).
 #[inline(always)]
-fn dot<T: Real, const M: usize>(w: &[T; M], row: &[T]) -> T {
+fn dot<T: Real, const M: usize>(w: &[[T; BATCH]; M], j: usize, row: &[T]) -> T {
     let row: &[T; M] = row[..M].try_into().expect("M coefficients");
     let mut sum = T::zero();
     for l in 0..M {
-        sum += w[l].clone() * &row[l];
+        sum += w[l][j].clone() * &row[l];
     }
     sum
 }
 
-/// The tensor sum of a located point, in the order of
-/// [`Interpolant::tensor_sum`]: rows of the last axis dotted, then weighted
-/// by the middle axis, then by the first.
+/// The tensor sum of located point `j` of a batch (weights `w[axis][l][j]`),
+/// in the order of [`Interpolant::tensor_sum`]: rows of the last axis
+/// dotted, then weighted by the middle axis, then by the first.
 #[inline(always)]
 fn sum_fixed<T: Real, const D: usize, const M: usize>(
     c: &[T],
     base: usize,
-    w: &[[T; M]; D],
+    w: &[[[T; BATCH]; M]; D],
+    j: usize,
     strides: &[usize],
 ) -> T {
     // A slice, so that the arms of the other dimensions index it without
     // constant out-of-bounds indices.
-    let w: &[[T; M]] = w;
+    let w: &[[[T; BATCH]; M]] = w;
     match D {
-        1 => dot(&w[0], &c[base..]),
+        1 => dot(&w[0], j, &c[base..]),
         2 => {
             let mut sum = T::zero();
             for l0 in 0..M {
                 let at = base + l0 * strides[0];
-                sum += w[0][l0].clone() * dot(&w[1], &c[at..]);
+                sum += w[0][l0][j].clone() * dot(&w[1], j, &c[at..]);
             }
             sum
         }
@@ -285,9 +285,9 @@ fn sum_fixed<T: Real, const D: usize, const M: usize>(
                 let mut plane = T::zero();
                 for l1 in 0..M {
                     let at = base + l0 * strides[0] + l1 * strides[1];
-                    plane += w[1][l1].clone() * dot(&w[2], &c[at..]);
+                    plane += w[1][l1][j].clone() * dot(&w[2], j, &c[at..]);
                 }
-                sum += w[0][l0].clone() * plane;
+                sum += w[0][l0][j].clone() * plane;
             }
             sum
         }
