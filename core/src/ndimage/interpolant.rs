@@ -12,7 +12,8 @@
 //! (never `x + m/2`, see [`centred_cell`]), so the error is relative to the
 //! position inside the cell however large `x` is.
 //!
-//! **Cost** per point: `D` weight windows (`O(m²)` each) and `m^D`
+//! **Cost** per point: `D` weight windows (`O(m)` each in closed form for
+//! degrees 1 to 5, `O(m²)` by de Boor–Cox above) and `m^D`
 //! multiply-adds. **Error**: the coefficients' (see [`LineFilter`]) plus the
 //! rounding of `m^D` non-negative-weight terms, `≤ m D u Σ|D_i| w_i`.
 

@@ -293,3 +293,43 @@ fn sum_fixed<T: Real, const D: usize, const M: usize>(
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The branch-free cell of the lanes equals [`centred_cell`] (floor by
+    /// libm) for every order, at integers, half-integers, their floating
+    /// neighbours, negative and tiny coordinates and up to just below
+    /// [`LANE_CELL_LIMIT`].
+    #[test]
+    fn lane_cells_equal_centred_cells() {
+        let mut xs = vec![0.0, -0.0, 1e-300, -1e-300, 0.5, -0.5, 2.5, -3.5, 7.0, -7.0];
+        for x in [0.5f64, 1.0, 2.5, 1e6 + 0.5, 1e15, (LANE_CELL_LIMIT) - 1.5] {
+            for s in [1.0, -1.0] {
+                let x = s * x;
+                xs.extend([
+                    x,
+                    f64::from_bits(x.to_bits() + 1),
+                    f64::from_bits(x.to_bits() - 1),
+                ]);
+            }
+        }
+        fn check<const M: usize>(xs: &[f64]) {
+            for &x in xs {
+                let (first, u) = centred_cell(M as u32, x);
+                let (lane_first, lane_u) = cell_lanes::<M>(x);
+                assert_eq!(
+                    (first as f64, u),
+                    (lane_first, lane_u),
+                    "order {M} at {x:e}"
+                );
+            }
+        }
+        check::<2>(&xs);
+        check::<3>(&xs);
+        check::<4>(&xs);
+        check::<5>(&xs);
+        check::<6>(&xs);
+    }
+}
