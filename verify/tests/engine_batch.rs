@@ -3,7 +3,7 @@
 //! recursive sum with per-index bounds), itself tested against scipy and
 //! MPFR elsewhere; both take the same weights (closed forms for degrees 1
 //! to 5, de Boor–Cox above). Counts that are
-//! not multiples of the batch (32) or chunk (2048) sizes, points inside,
+//! not multiples of the batch (64) or chunk (2048) sizes, points inside,
 //! outside and far outside the grid (the `grid-constant` fallback), any
 //! strides, 1 to 4 dimensions, degrees 0 to 7, every mode.
 

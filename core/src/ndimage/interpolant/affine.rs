@@ -1,7 +1,7 @@
 //! Affine resampling of an [`Interpolant`] without a coordinate array
 //! ([`Interpolant::resample_affine`]): scipy.ndimage's `affine_transform`
 //! and `rotate` (`NI_GeometricTransform` with a matrix). The point of each
-//! output index `o` is generated where it is evaluated, 32 at a time, in
+//! output index `o` is generated where it is evaluated, 64 at a time, in
 //! chunks of 2048 outputs in parallel, and evaluated as
 //! [`Interpolant::eval_many`] evaluates (batched, prefetched, the fixed-size
 //! kernels of `kernel.rs`): no `ndim × count` array of coordinates in
