@@ -194,17 +194,11 @@ impl AffinePoints<'_> {
             }
             last += 1.0;
             *cv = match self.rule {
-                PointRule::Fold => false,
                 PointRule::CvalOutside => x
                     .iter()
                     .zip(high)
                     .fold(false, |out, (&t, &hi)| out | (t < 0.0) | (t > hi)),
-                PointRule::WrapPeriodNMinus1 => {
-                    for (t, &len) in x.iter_mut().zip(self.shape) {
-                        *t = wrap_period_n_minus_1(*t, len);
-                    }
-                    false
-                }
+                rule => rule.apply(x, self.shape),
             };
         }
     }
@@ -217,6 +211,26 @@ impl AffinePoints<'_> {
             *t = self.offset[h];
             for (l, &ol) in o[..k - 1].iter().enumerate() {
                 *t += ol as f64 * self.matrix[h * k + l];
+            }
+        }
+    }
+}
+
+impl PointRule {
+    /// The rule applied to point `x` of a grid of `shape`: whether it takes
+    /// `cval` (moving it by whole periods for the `wrap` rule).
+    pub(super) fn apply(self, x: &mut [f64], shape: &[usize]) -> bool {
+        match self {
+            PointRule::Fold => false,
+            PointRule::CvalOutside => x
+                .iter()
+                .zip(shape)
+                .any(|(&t, &len)| t < 0.0 || t > (len - 1) as f64),
+            PointRule::WrapPeriodNMinus1 => {
+                for (t, &len) in x.iter_mut().zip(shape) {
+                    *t = wrap_period_n_minus_1(*t, len);
+                }
+                false
             }
         }
     }

@@ -11,7 +11,7 @@
 //! on their way. Results are bit-identical to the unbatched order (the
 //! prefetch is only a hint).
 
-use super::{Interpolant, Scratch, cell_weights_into};
+use super::{Interpolant, PointRule, Scratch, cell_weights_into};
 use crate::ndimage::NdimageError;
 use crate::scalar::Real;
 use crate::sspline::bspline_uniform::centred_cell;
@@ -21,10 +21,8 @@ use rayon::prelude::*;
 /// Points per parallel task (one work space each).
 pub(super) const CHUNK: usize = 2048;
 /// Points located (and prefetched) before their sums are formed: 64
-/// measured fastest of 16, 32, 64 and 128 (map_coordinates 10^6 points,
-/// 1024² cubic, prefilter=False: 0.0406, 0.0336, 0.0306, 0.0299 s, one
-/// thread, min of 7, on a shared 2-core machine; 128 no better than 64
-/// elsewhere).
+/// measured fastest of 16, 32, 64 and 128 on map_coordinates (figures in
+/// the commit that set it; `python/bench/map_coordinates.py` remeasures).
 pub(super) const BATCH: usize = 64;
 
 /// Where the points of a batch evaluation come from: an array of points
@@ -42,8 +40,15 @@ pub(super) trait PointSource: Sync {
     ) -> Result<(), NdimageError>;
 }
 
-/// The rows of a `(count, ndim)` array (any strides), checked finite beforehand.
-struct Rows<'a>(ArrayView2<'a, f64>);
+/// The rows of a `(count, ndim)` array (any strides), checked finite
+/// beforehand, and what happens to a row outside the grid
+/// ([`PointRule::CvalOutside`]: `cval`; [`PointRule::Fold`]: nothing;
+/// [`PointRule::WrapPeriodNMinus1`]: folded by scipy's `wrap`).
+struct Rows<'a> {
+    points: ArrayView2<'a, f64>,
+    rule: PointRule,
+    shape: &'a [usize],
+}
 
 impl PointSource for Rows<'_> {
     fn fill(
@@ -53,11 +58,14 @@ impl PointSource for Rows<'_> {
         take_cval: &mut [bool],
     ) -> Result<(), NdimageError> {
         let n = take_cval.len();
-        let rows = self.0.slice(s![start..start + n, ..]);
+        let rows = self.points.slice(s![start..start + n, ..]);
         for (x, p) in xs.iter_mut().zip(rows.iter()) {
             *x = *p;
         }
-        take_cval.fill(false);
+        let ndim = self.shape.len();
+        for (x, cv) in xs.chunks_exact_mut(ndim).zip(take_cval.iter_mut()) {
+            *cv = self.rule.apply(x, self.shape);
+        }
         Ok(())
     }
 }
@@ -76,6 +84,22 @@ impl<T: Real + Send + Sync> Interpolant<T> {
         points: ArrayView2<'_, f64>,
         out: &mut [T],
     ) -> Result<(), NdimageError> {
+        self.eval_many_with(points, PointRule::Fold, out)
+    }
+
+    /// [`Self::eval_many`] with a [`PointRule`] applied to each point first:
+    /// scipy's `map_coordinates(mode="constant")` is
+    /// [`PointRule::CvalOutside`] on the `mirror` interpolant (`cval` at
+    /// every point outside `[0, n − 1]` on some axis, decided in the
+    /// parallel evaluation rather than by a pass over the points after it).
+    /// Same values as [`Self::eval_many`] at the points the rule leaves
+    /// (`batch.rs::tests::cval_outside_rows_take_cval_and_equal_eval_many_inside`).
+    pub fn eval_many_with(
+        &self,
+        points: ArrayView2<'_, f64>,
+        rule: PointRule,
+        out: &mut [T],
+    ) -> Result<(), NdimageError> {
         if points.ncols() != self.ndim() {
             return Err(NdimageError::PointDimension {
                 expected: self.ndim(),
@@ -91,7 +115,12 @@ impl<T: Real + Send + Sync> Interpolant<T> {
         if let Some(k) = first_non_finite(points) {
             return Err(NdimageError::NonFiniteCoordinate(k));
         }
-        self.eval_source(&Rows(points), out)
+        let rows = Rows {
+            points,
+            rule,
+            shape: &self.shape,
+        };
+        self.eval_source(&rows, out)
     }
 
     /// The points of `src` into `out` (one per element), in parallel over
@@ -320,4 +349,42 @@ pub(super) fn prefetch<T>(c: &[T], at: usize, len: usize) {
     }
     #[cfg(not(target_arch = "x86_64"))]
     let _ = (c, at, len);
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::prelude::*;
+
+    /// Under [`PointRule::CvalOutside`] a point outside `[0, n − 1]` on
+    /// some axis takes `cval`, every other point the value of
+    /// [`Interpolant::eval_many`]; under [`PointRule::Fold`] all are its values.
+    #[test]
+    fn cval_outside_rows_take_cval_and_equal_eval_many_inside() {
+        let data =
+            ndarray::Array2::from_shape_fn((6, 7), |(i, j)| (i as f64 * 0.7 + j as f64).sin());
+        let mut opts = Options::new(3, Mode::Mirror);
+        opts.cval = -2.5;
+        let f = Interpolant::<f64>::new(&data, opts).unwrap();
+        let pts = ndarray::Array2::from_shape_fn((300, 2), |(k, a)| {
+            -1.5 + ((k * (a + 3)) % 97) as f64 * 0.1 + if a == 1 { 0.05 } else { 0.0 }
+        });
+        let (mut all, mut ruled, mut folded) = (vec![0.0; 300], vec![0.0; 300], vec![0.0; 300]);
+        f.eval_many(pts.view(), &mut all).unwrap();
+        f.eval_many_with(pts.view(), PointRule::CvalOutside, &mut ruled)
+            .unwrap();
+        f.eval_many_with(pts.view(), PointRule::Fold, &mut folded)
+            .unwrap();
+        assert_eq!(all, folded);
+        let mut outside = 0;
+        for (k, p) in pts.rows().into_iter().enumerate() {
+            if p[0] < 0.0 || p[0] > 5.0 || p[1] < 0.0 || p[1] > 6.0 {
+                outside += 1;
+                assert_eq!(ruled[k], -2.5, "{p}");
+            } else {
+                assert_eq!(ruled[k], all[k], "{p}");
+            }
+        }
+        assert!(outside > 50 && outside < 250, "{outside}");
+    }
 }
