@@ -434,6 +434,11 @@ class _Points:
     def run(self, a, d, mode, cv, tol, prefilter, threads, deriv, cval_outside=False):
         """The values (flat), ``cval`` (its derivative 0) at points outside
         the grid with ``cval_outside`` (scipy's 'constant')."""
+        if cval_outside and not deriv and type(self) is _Points:
+            # cval outside decided by the engine per point, in parallel.
+            run = _ext.map_coordinates_f64 if a.dtype == np.float64 else _ext.map_coordinates_f32
+            return run(a, np.ascontiguousarray(np.asarray(self.flat, dtype=np.float64)), d, mode, cv, tol, prefilter,
+                       threads, None, True)
         values = self.evaluate(a, d, mode, cv, tol, prefilter, threads, deriv)
         if cval_outside:
             fill = 0.0 if deriv and any(deriv) else cv
@@ -455,6 +460,11 @@ class _Grid(_Points):
         """As :meth:`_Points.run`; ``cval`` written in place into the slabs
         of output indices outside ``[0, n - 1]`` on some axis (no mask of
         the whole output, no second output array)."""
+        if cval_outside and not deriv and type(self) is _Points:
+            # cval outside decided by the engine per point, in parallel.
+            run = _ext.map_coordinates_f64 if a.dtype == np.float64 else _ext.map_coordinates_f32
+            return run(a, np.ascontiguousarray(np.asarray(self.flat, dtype=np.float64)), d, mode, cv, tol, prefilter,
+                       threads, None, True)
         values = self.evaluate(a, d, mode, cv, tol, prefilter, threads, deriv)
         if cval_outside:
             fill = 0.0 if deriv and any(deriv) else cv

@@ -3,13 +3,15 @@
 //! With `prefilter` the array holds samples (the engine solves for the
 //! coefficients); without, it already holds coefficients (scipy's
 //! `prefilter=False`), which are extended by the mode and evaluated as given.
-//! With `deriv`, a partial derivative of the interpolant instead of its values.
+//! With `deriv`, a partial derivative of the interpolant instead of its values;
+//! with `cval_outside`, `cval` at points outside the grid (scipy's 'constant').
 
 use crate::error::value_error;
 use crate::pool::run_with;
 use numpy::{Element, IntoPyArray, PyArray1, PyReadonlyArray2, PyReadonlyArrayDyn};
 use pyo3::prelude::*;
 use rayon::prelude::*;
+use splinelab::ndimage::interpolant::PointRule;
 use splinelab::prelude::*;
 
 pub(crate) fn options(degree: u32, mode: &str, cval: f64, tol: Option<f64>) -> PyResult<Options> {
@@ -49,6 +51,7 @@ fn derivatives<T: Real + Send + Sync>(
         .collect()
 }
 
+#[allow(clippy::too_many_arguments)]
 fn map_generic<'py, T>(
     py: Python<'py>,
     input: PyReadonlyArrayDyn<'py, T>,
@@ -57,23 +60,28 @@ fn map_generic<'py, T>(
     prefilter: bool,
     threads: Option<usize>,
     deriv: Option<Vec<u32>>,
+    cval_outside: bool,
 ) -> PyResult<Bound<'py, PyArray1<T>>>
 where
     T: Real + Element + Send + Sync,
 {
     let data = input.as_array();
     let at = coordinates.as_array();
+    // scipy's 'constant': cval outside the grid, decided per point in the
+    // parallel evaluation (not by passes over the points in numpy after it).
+    let rule = if cval_outside {
+        PointRule::CvalOutside
+    } else {
+        PointRule::Fold
+    };
     let run = || {
         let deriv = deriv.filter(|d| d.iter().any(|&k| k > 0));
-        if prefilter && deriv.is_none() {
-            return map_coordinates(&data, at, opts);
-        }
         let f = interpolant(&data, opts, prefilter)?;
         if let Some(d) = deriv {
             return derivatives(&f, at, &d);
         }
         let mut out = vec![T::zero(); at.ncols()];
-        f.eval_many(at.t(), &mut out).map(|()| out)
+        f.eval_many_with(at.t(), rule, &mut out).map(|()| out)
     };
     let out = py.detach(|| run_with(threads, run))?;
     Ok(out.map_err(value_error)?.into_pyarray(py))
@@ -84,7 +92,7 @@ macro_rules! map_fn {
     ($name:ident, $t:ty, $doc:literal) => {
         #[doc = $doc]
         #[pyfunction]
-        #[pyo3(signature = (input, coordinates, degree, mode, cval, tol, prefilter, threads, deriv=None))]
+        #[pyo3(signature = (input, coordinates, degree, mode, cval, tol, prefilter, threads, deriv=None, cval_outside=false))]
         #[allow(clippy::too_many_arguments)]
         pub fn $name<'py>(
             py: Python<'py>,
@@ -97,9 +105,19 @@ macro_rules! map_fn {
             prefilter: bool,
             threads: Option<usize>,
             deriv: Option<Vec<u32>>,
+            cval_outside: bool,
         ) -> PyResult<Bound<'py, PyArray1<$t>>> {
             let opts = options(degree, mode, cval, tol)?;
-            map_generic(py, input, coordinates, opts, prefilter, threads, deriv)
+            map_generic(
+                py,
+                input,
+                coordinates,
+                opts,
+                prefilter,
+                threads,
+                deriv,
+                cval_outside,
+            )
         }
     };
 }

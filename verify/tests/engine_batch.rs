@@ -1,8 +1,9 @@
 //! Batch evaluation (`Interpolant::eval_many`: located in batches, rows
-//! prefetched, closed-form cubic weights) against the single-point path
-//! (`Interpolant::eval`: de Boor weights, the recursive sum with per-index
-//! bounds), itself tested against scipy and MPFR elsewhere. Counts that are
-//! not multiples of the batch (32) or chunk (2048) sizes, points inside,
+//! prefetched) against the single-point path (`Interpolant::eval`: the
+//! recursive sum with per-index bounds), itself tested against scipy and
+//! MPFR elsewhere; both take the same weights (closed forms for degrees 1
+//! to 5, de Boor–Cox above). Counts that are
+//! not multiples of the batch (64) or chunk (2048) sizes, points inside,
 //! outside and far outside the grid (the `grid-constant` fallback), any
 //! strides, 1 to 4 dimensions, degrees 0 to 7, every mode.
 
@@ -72,17 +73,11 @@ fn batch_equals_single_point_evaluation() {
                 opts.cval = 0.375;
                 let f = Interpolant::new(&a, opts).unwrap();
                 let (worst, cmax) = compare(&f, &pts);
-                // Other degrees: the same weights and sums, bit for bit. Cubic:
-                // closed-form weights, each within a few ulps of de Boor's;
-                // `m^D` terms of non-negative weights summing to 1.
-                let tol = if d == 3 {
-                    8.0 * f64::EPSILON * cmax
-                } else {
-                    0.0
-                };
+                // Every degree: the same weights (closed forms for degrees
+                // 1 to 5 on both paths) and the same sums, bit for bit.
                 assert!(
-                    worst <= tol,
-                    "{shape:?} degree {d} {mode:?}: batch differs by {worst:e} > {tol:e}"
+                    worst == 0.0,
+                    "{shape:?} degree {d} {mode:?}: batch differs by {worst:e} (max|c| {cmax:e})"
                 );
             }
         }

@@ -1,7 +1,7 @@
 //! Affine resampling of an [`Interpolant`] without a coordinate array
 //! ([`Interpolant::resample_affine`]): scipy.ndimage's `affine_transform`
 //! and `rotate` (`NI_GeometricTransform` with a matrix). The point of each
-//! output index `o` is generated where it is evaluated, 32 at a time, in
+//! output index `o` is generated where it is evaluated, 64 at a time, in
 //! chunks of 2048 outputs in parallel, and evaluated as
 //! [`Interpolant::eval_many`] evaluates (batched, prefetched, the fixed-size
 //! kernels of `kernel.rs`): no `ndim × count` array of coordinates in
@@ -108,8 +108,10 @@ struct AffinePoints<'a> {
 
 impl PointSource for AffinePoints<'_> {
     /// Along the last output axis only its term changes: the sum of the
-    /// others (`offset_h + o_0 M_{h0} + …`, scipy's order) is kept per row,
-    /// so each point costs one multiply-add per input axis, same bits.
+    /// others (`offset_h + o_0 M_{h0} + …`, scipy's order) is formed once
+    /// per run of the batch along that axis, so each point costs one
+    /// multiply-add per input axis, same bits; no allocation for up to
+    /// [`STACK_AXES`] axes.
     fn fill(
         &self,
         start: usize,
@@ -117,32 +119,31 @@ impl PointSource for AffinePoints<'_> {
         take_cval: &mut [bool],
     ) -> Result<(), NdimageError> {
         let (n, k) = (self.shape.len(), self.out_shape.len());
-        let mut index = unflatten(start, self.out_shape);
-        let mut row = vec![0.0; n];
-        self.row_sums(&index, &mut row);
-        for (j, cv) in take_cval.iter_mut().enumerate() {
-            let last = index[k - 1] as f64;
-            let x = &mut xs[j * n..(j + 1) * n];
-            for (h, xh) in x.iter_mut().enumerate() {
-                let t = row[h] + last * self.matrix[h * k + k - 1];
-                *xh = t + self.shift;
-            }
-            *cv = match self.rule {
-                PointRule::Fold => false,
-                PointRule::CvalOutside => x
-                    .iter()
-                    .zip(self.shape)
-                    .any(|(&t, &len)| t < 0.0 || t > (len - 1) as f64),
-                PointRule::WrapPeriodNMinus1 => {
-                    for (t, &len) in x.iter_mut().zip(self.shape) {
-                        *t = wrap_period_n_minus_1(*t, len);
-                    }
-                    false
-                }
-            };
-            if step(&mut index, self.out_shape) < k - 1 {
-                self.row_sums(&index, &mut row);
-            }
+        let (mut index_stack, mut row_stack) = ([0; STACK_AXES], [0.0; STACK_AXES]);
+        let (mut index_heap, mut row_heap) = (Vec::new(), Vec::new());
+        let index = on_stack_or_heap(&mut index_stack, &mut index_heap, k);
+        let row = on_stack_or_heap(&mut row_stack, &mut row_heap, n);
+        // The last output axis' column of the matrix and the input's upper
+        // ends, as f64 once per batch (no integer conversion per point).
+        let (mut step_stack, mut high_stack) = ([0.0; STACK_AXES], [0.0; STACK_AXES]);
+        let (mut step_heap, mut high_heap) = (Vec::new(), Vec::new());
+        let step = on_stack_or_heap(&mut step_stack, &mut step_heap, n);
+        let high = on_stack_or_heap(&mut high_stack, &mut high_heap, n);
+        for h in 0..n {
+            step[h] = self.matrix[h * k + k - 1];
+            high[h] = (self.shape[h] - 1) as f64;
+        }
+        let run_len = self.out_shape[k - 1];
+        let mut done = 0;
+        while done < take_cval.len() {
+            unflatten_into(start + done, self.out_shape, index);
+            self.row_sums(index, row);
+            let first = index[k - 1];
+            let run = (run_len - first).min(take_cval.len() - done);
+            let at = done * n..(done + run) * n;
+            let cv = &mut take_cval[done..done + run];
+            self.fill_run(row, step, high, first as f64, &mut xs[at], cv);
+            done += run;
         }
         // One pass for the rare overflow to infinity (finite matrix and
         // offset, huge indices); the position only then.
@@ -154,7 +155,54 @@ impl PointSource for AffinePoints<'_> {
     }
 }
 
+/// Axes of the output and input an [`AffinePoints`] batch keeps on the stack.
+const STACK_AXES: usize = 8;
+
+/// The first `len` elements of `stack`, or of `heap` (resized) when longer.
+fn on_stack_or_heap<'a, V: Copy + Default>(
+    stack: &'a mut [V; STACK_AXES],
+    heap: &'a mut Vec<V>,
+    len: usize,
+) -> &'a mut [V] {
+    if len <= STACK_AXES {
+        &mut stack[..len]
+    } else {
+        heap.resize(len, V::default());
+        heap
+    }
+}
+
 impl AffinePoints<'_> {
+    /// The points of one run along the last output axis, from its index
+    /// `first` (an integer below `2^53`, so `+ 1` stays exact), of row
+    /// sums `row`: `x_h = (row_h + o · step_h) + shift`, then the rule
+    /// (`high_h = n_h − 1`).
+    fn fill_run(
+        &self,
+        row: &[f64],
+        step: &[f64],
+        high: &[f64],
+        first: f64,
+        xs: &mut [f64],
+        take_cval: &mut [bool],
+    ) {
+        let n = row.len();
+        let mut last = first;
+        for (x, cv) in xs.chunks_exact_mut(n).zip(take_cval.iter_mut()) {
+            for ((xh, r), m) in x.iter_mut().zip(row).zip(step) {
+                *xh = (r + last * m) + self.shift;
+            }
+            last += 1.0;
+            *cv = match self.rule {
+                PointRule::CvalOutside => x
+                    .iter()
+                    .zip(high)
+                    .fold(false, |out, (&t, &hi)| out | (t < 0.0) | (t > hi)),
+                rule => rule.apply(x, self.shape),
+            };
+        }
+    }
+
     /// `offset_h + o_0 M_{h0} + … + o_{k−2} M_{h,k−2}` for every input axis
     /// `h`, added in scipy's order (all but the last output axis).
     fn row_sums(&self, o: &[usize], row: &mut [f64]) {
@@ -163,6 +211,26 @@ impl AffinePoints<'_> {
             *t = self.offset[h];
             for (l, &ol) in o[..k - 1].iter().enumerate() {
                 *t += ol as f64 * self.matrix[h * k + l];
+            }
+        }
+    }
+}
+
+impl PointRule {
+    /// The rule applied to point `x` of a grid of `shape`: whether it takes
+    /// `cval` (moving it by whole periods for the `wrap` rule).
+    pub(super) fn apply(self, x: &mut [f64], shape: &[usize]) -> bool {
+        match self {
+            PointRule::Fold => false,
+            PointRule::CvalOutside => x
+                .iter()
+                .zip(shape)
+                .any(|(&t, &len)| t < 0.0 || t > (len - 1) as f64),
+            PointRule::WrapPeriodNMinus1 => {
+                for (t, &len) in x.iter_mut().zip(shape) {
+                    *t = wrap_period_n_minus_1(*t, len);
+                }
+                false
             }
         }
     }
@@ -183,27 +251,12 @@ fn wrap_period_n_minus_1(x: f64, len: usize) -> f64 {
     }
 }
 
-/// The multi-index of flat C-order position `flat` in `shape`.
-fn unflatten(mut flat: usize, shape: &[usize]) -> Vec<usize> {
-    let mut index = vec![0; shape.len()];
+/// The multi-index of flat C-order position `flat` in `shape`, into `index`.
+fn unflatten_into(mut flat: usize, shape: &[usize], index: &mut [usize]) {
     for (i, &n) in index.iter_mut().zip(shape).rev() {
         *i = flat % n.max(1);
         flat /= n.max(1);
     }
-    index
-}
-
-/// The next multi-index in C order; returns the axis that advanced
-/// (`shape.len() − 1` unless the last one wrapped; 0 at the end too).
-fn step(index: &mut [usize], shape: &[usize]) -> usize {
-    for (a, (i, &n)) in index.iter_mut().zip(shape).enumerate().rev() {
-        *i += 1;
-        if *i < n {
-            return a;
-        }
-        *i = 0;
-    }
-    0
 }
 
 #[cfg(test)]

@@ -1,6 +1,6 @@
 //! Batch evaluation of an [`Interpolant`] at many points
 //! ([`Interpolant::eval_many`]): the same sums as [`Interpolant::eval`]
-//! (cubic weights in closed form, see [`window_weights_into`]), arranged so
+//! (weights of degrees 1 to 5 in closed form, see [`cell_weights_into`]), arranged so
 //! that the coefficient reads of many points overlap.
 //!
 //! Why: for a grid of a few megabytes and scattered points each point reads
@@ -11,17 +11,19 @@
 //! on their way. Results are bit-identical to the unbatched order (the
 //! prefetch is only a hint).
 
-use super::{Interpolant, Scratch};
+use super::{Interpolant, PointRule, Scratch, cell_weights_into};
 use crate::ndimage::NdimageError;
 use crate::scalar::Real;
-use crate::sspline::bspline_uniform::{cell_derivatives_into, centred_cell};
+use crate::sspline::bspline_uniform::centred_cell;
 use ndarray::{ArrayView2, s};
 use rayon::prelude::*;
 
 /// Points per parallel task (one work space each).
 pub(super) const CHUNK: usize = 2048;
-/// Points located (and prefetched) before their sums are formed.
-pub(super) const BATCH: usize = 32;
+/// Points located (and prefetched) before their sums are formed: 64
+/// measured fastest of 16, 32, 64 and 128 on map_coordinates (figures in
+/// the commit that set it; `python/bench/map_coordinates.py` remeasures).
+pub(super) const BATCH: usize = 64;
 
 /// Where the points of a batch evaluation come from: an array of points
 /// ([`Interpolant::eval_many`]) or points generated where they are
@@ -38,8 +40,15 @@ pub(super) trait PointSource: Sync {
     ) -> Result<(), NdimageError>;
 }
 
-/// The rows of a `(count, ndim)` array (any strides), checked finite beforehand.
-struct Rows<'a>(ArrayView2<'a, f64>);
+/// The rows of a `(count, ndim)` array (any strides), checked finite
+/// beforehand, and what happens to a row outside the grid
+/// ([`PointRule::CvalOutside`]: `cval`; [`PointRule::Fold`]: nothing;
+/// [`PointRule::WrapPeriodNMinus1`]: folded by scipy's `wrap`).
+struct Rows<'a> {
+    points: ArrayView2<'a, f64>,
+    rule: PointRule,
+    shape: &'a [usize],
+}
 
 impl PointSource for Rows<'_> {
     fn fill(
@@ -49,11 +58,14 @@ impl PointSource for Rows<'_> {
         take_cval: &mut [bool],
     ) -> Result<(), NdimageError> {
         let n = take_cval.len();
-        let rows = self.0.slice(s![start..start + n, ..]);
+        let rows = self.points.slice(s![start..start + n, ..]);
         for (x, p) in xs.iter_mut().zip(rows.iter()) {
             *x = *p;
         }
-        take_cval.fill(false);
+        let ndim = self.shape.len();
+        for (x, cv) in xs.chunks_exact_mut(ndim).zip(take_cval.iter_mut()) {
+            *cv = self.rule.apply(x, self.shape);
+        }
         Ok(())
     }
 }
@@ -63,13 +75,29 @@ impl<T: Real + Send + Sync> Interpolant<T> {
     /// (any strides), in parallel over chunks of 2048 points, one work space
     /// per chunk: no allocation per point. Every coordinate must be finite
     /// (else the error names the first flat index). Cost per point as
-    /// [`Interpolant::eval`]; the coefficient rows of 32 points are
+    /// [`Interpolant::eval`]; the coefficient rows of 64 points are
     /// prefetched before they are summed (module documentation); 1 to 3
     /// dimensions of degree 1 to 5 in `f64`/`f32` by fixed-size kernels
     /// (`kernel.rs`).
     pub fn eval_many(
         &self,
         points: ArrayView2<'_, f64>,
+        out: &mut [T],
+    ) -> Result<(), NdimageError> {
+        self.eval_many_with(points, PointRule::Fold, out)
+    }
+
+    /// [`Self::eval_many`] with a [`PointRule`] applied to each point first:
+    /// scipy's `map_coordinates(mode="constant")` is
+    /// [`PointRule::CvalOutside`] on the `mirror` interpolant (`cval` at
+    /// every point outside `[0, n − 1]` on some axis, decided in the
+    /// parallel evaluation rather than by a pass over the points after it).
+    /// Same values as [`Self::eval_many`] at the points the rule leaves
+    /// (`batch.rs::tests::cval_outside_rows_take_cval_and_equal_eval_many_inside`).
+    pub fn eval_many_with(
+        &self,
+        points: ArrayView2<'_, f64>,
+        rule: PointRule,
         out: &mut [T],
     ) -> Result<(), NdimageError> {
         if points.ncols() != self.ndim() {
@@ -84,10 +112,15 @@ impl<T: Real + Send + Sync> Interpolant<T> {
                 got: out.len(),
             });
         }
-        if let Some(k) = points.iter().position(|c| !c.is_finite()) {
+        if let Some(k) = first_non_finite(points) {
             return Err(NdimageError::NonFiniteCoordinate(k));
         }
-        self.eval_source(&Rows(points), out)
+        let rows = Rows {
+            points,
+            rule,
+            shape: &self.shape,
+        };
+        self.eval_source(&rows, out)
     }
 
     /// The points of `src` into `out` (one per element), in parallel over
@@ -180,7 +213,7 @@ impl<T: Real + Send + Sync> Interpolant<T> {
     /// The weights of `x` on every axis into `w` (`ndim × m`) and the flat
     /// offset of its first coefficient, when every coefficient the point
     /// reads lies inside the padded array (always, except `grid-constant`
-    /// far outside); `None` otherwise. Weights by [`window_weights_into`].
+    /// far outside); `None` otherwise. Weights by [`cell_weights_into`].
     fn locate(&self, x: &[f64], w: &mut [T]) -> Option<usize> {
         let m = self.order as usize;
         let mut base = 0;
@@ -198,7 +231,7 @@ impl<T: Real + Send + Sync> Interpolant<T> {
                 return None;
             }
             base += i0 as usize * self.strides[a];
-            window_weights_into(self.order, u, &mut w[a * m..(a + 1) * m]);
+            cell_weights_into(self.order, 0, u, &mut w[a * m..(a + 1) * m]);
         }
         Some(base)
     }
@@ -276,6 +309,24 @@ impl<T: Real + Send + Sync> Interpolant<T> {
     }
 }
 
+/// The flat (row-major) index of the first non-finite coordinate of
+/// `points`, if any: the rows checked in parallel in chunks of [`CHUNK`]
+/// (a pass over the points that would otherwise be the evaluation's serial
+/// part), the first chunk with one named.
+fn first_non_finite(points: ArrayView2<'_, f64>) -> Option<usize> {
+    let (count, ndim) = points.dim();
+    (0..count.div_ceil(CHUNK))
+        .into_par_iter()
+        .find_map_first(|c| {
+            let rows = points.slice(s![c * CHUNK..((c + 1) * CHUNK).min(count), ..]);
+            let ok = rows.iter().fold(true, |ok, x| ok & x.is_finite());
+            (!ok).then(|| {
+                let at = rows.iter().position(|x| !x.is_finite()).unwrap_or(0);
+                c * CHUNK * ndim + at
+            })
+        })
+}
+
 /// Ask the cache for `c[at..at + len]` (its first and last byte: a run of at
 /// most 64 bytes spans at most two lines). A hint: no effect on results, and
 /// none at all off x86_64. Addresses are formed with wrapping arithmetic and
@@ -300,23 +351,40 @@ pub(super) fn prefetch<T>(c: &[T], at: usize, len: usize) {
     let _ = (c, at, len);
 }
 
-/// `w[l] = β_m(x − first − l)` of the cell position `u` ([`centred_cell`]),
-/// `l = 0..m−1`. Cubics (`m = 4`) in closed form, symmetric in `u` and
-/// `v = 1 − u`: `v³/6`, `2/3 − u²(2 − u)/2`, `2/3 − v²(2 − v)/2`, `u³/6`
-/// (all terms non-negative or a difference from 2/3 of at most 1/2, so
-/// each weight is within a few ulps); other orders by de Boor–Cox
-/// ([`cell_derivatives_into`] with `d = 0`). `O(1)` resp. `O(m²)`. The
-/// closed form runs in `f64`, so it serves scalars of at most 53 bits.
-pub(super) fn window_weights_into<T: Real>(m: u32, u: f64, w: &mut [T]) {
-    if m == 4 && T::BITS <= 53 {
-        let v = 1.0 - u;
-        let (u2, v2) = (u * u, v * v);
-        w[0] = T::from_f64_exact(v2 * v / 6.0);
-        w[1] = T::from_f64_exact(2.0 / 3.0 - 0.5 * u2 * (2.0 - u));
-        w[2] = T::from_f64_exact(2.0 / 3.0 - 0.5 * v2 * (2.0 - v));
-        w[3] = T::from_f64_exact(u2 * u / 6.0);
-        return;
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::prelude::*;
+
+    /// Under [`PointRule::CvalOutside`] a point outside `[0, n − 1]` on
+    /// some axis takes `cval`, every other point the value of
+    /// [`Interpolant::eval_many`]; under [`PointRule::Fold`] all are its values.
+    #[test]
+    fn cval_outside_rows_take_cval_and_equal_eval_many_inside() {
+        let data =
+            ndarray::Array2::from_shape_fn((6, 7), |(i, j)| (i as f64 * 0.7 + j as f64).sin());
+        let mut opts = Options::new(3, Mode::Mirror);
+        opts.cval = -2.5;
+        let f = Interpolant::<f64>::new(&data, opts).unwrap();
+        let pts = ndarray::Array2::from_shape_fn((300, 2), |(k, a)| {
+            -1.5 + ((k * (a + 3)) % 97) as f64 * 0.1 + if a == 1 { 0.05 } else { 0.0 }
+        });
+        let (mut all, mut ruled, mut folded) = (vec![0.0; 300], vec![0.0; 300], vec![0.0; 300]);
+        f.eval_many(pts.view(), &mut all).unwrap();
+        f.eval_many_with(pts.view(), PointRule::CvalOutside, &mut ruled)
+            .unwrap();
+        f.eval_many_with(pts.view(), PointRule::Fold, &mut folded)
+            .unwrap();
+        assert_eq!(all, folded);
+        let mut outside = 0;
+        for (k, p) in pts.rows().into_iter().enumerate() {
+            if p[0] < 0.0 || p[0] > 5.0 || p[1] < 0.0 || p[1] > 6.0 {
+                outside += 1;
+                assert_eq!(ruled[k], -2.5, "{p}");
+            } else {
+                assert_eq!(ruled[k], all[k], "{p}");
+            }
+        }
+        assert!(outside > 50 && outside < 250, "{outside}");
     }
-    cell_derivatives_into(m, 0, &T::from_f64_exact(u), w);
-    w.reverse();
 }

@@ -7,78 +7,77 @@
 //! [`Interpolant::tensor_sum`]) loops over run-time `ndim` and `m` with
 //! slices of weights, so every point pays loop control, bounds checks and
 //! a call per axis; here the weights of a point are `[[T; M]; D]` on the
-//! stack, the de Boor–Cox recursion is unrolled with its constants folded,
+//! stack, the closed-form weights (`weights.rs`) are inlined,
 //! and each row of `M` coefficients is one bounds check. A point whose
 //! coordinate lies inside `[0, n − 1]` is not folded (every mode's fold is
 //! the identity there).
 //!
-//! **Same values**: the weights are de Boor–Cox's in `f64`
-//! ([`bspline_weights`], the arithmetic of
-//! [`cell_values_into`](crate::sspline::bspline_uniform::cell_values_into)
-//! step for step; cubics in the closed form of [`window_weights_into`]),
-//! and the sums are added in the order of [`Interpolant::tensor_sum`], so
-//! in `f64` the results are those of the general path bit for bit
+//! **Same values**: the weights are those of every other path
+//! ([`cell_weights_into`](super::cell_weights_into): closed forms for
+//! degrees 1 to 5, `weights.rs`, in `f64`), and the sums are added in the
+//! order of [`Interpolant::tensor_sum`], so in `f64` the results are those
+//! of the general path and of [`Interpolant::eval`] bit for bit
 //! (`verify/tests/engine_batch.rs::batch_equals_single_point_evaluation`).
-//! In `f32` the weights are rounded once from `f64` (the general path
-//! forms them in `f32`), within an ulp of them.
+//! In `f32` the weights are rounded once from `f64`, as there.
 
-use super::batch::{BATCH, PointSource, prefetch, window_weights_into};
+use super::batch::{BATCH, PointSource, prefetch};
+use super::weights::closed_form;
 use super::{Interpolant, Scratch};
 use crate::ndimage::NdimageError;
 use crate::scalar::Real;
 use crate::sspline::bspline_uniform::centred_cell;
+use multiversion::multiversion;
 
-/// The `M` weights `β_M(x − first − l)`, `l = 0..M−1`, of the cell position
-/// `u` ([`centred_cell`]), in `f64`: de Boor–Cox on uniform knots,
-/// `N_{0,k}(u + s) = ((u + s) N_{0,k−1}(u + s) + (k − u − s) N_{0,k−1}(u +
-/// s − 1)) / (k − 1)`, every term non-negative (relative error `O(M² u)`),
-/// then reversed. `O(M²)` operations, unrolled for a constant `M`.
-/// **Source**: de Boor, *A Practical Guide to Splines*, ch. IX; seed 000 eq 7.
+/// Below this magnitude [`cell_lanes`] rounds exactly (`1.5 · 2^52` added
+/// and subtracted rounds to an integer while `|x| < 2^51`).
+const LANE_CELL_LIMIT: f64 = (1u64 << 51) as f64;
+
+/// [`centred_cell`] for order `M` as `(first, u)` with `first` an integer
+/// in `f64`, the same values for `|x| < 2^51`, branch-free so that a loop
+/// of them runs in SIMD lanes (no call to libm's `floor`, not inlined on
+/// the x86-64 baseline): `⌊x⌋` is `x` rounded to an integer by adding and
+/// subtracting `1.5 · 2^52`, less one where that exceeds `x`; then `t = x −
+/// ⌊x⌋` is exact, and odd orders take the cell centred on the half-integer.
 #[inline(always)]
-pub(super) fn bspline_weights<const M: usize>(u: f64) -> [f64; M] {
-    let mut a = [0.0; M];
-    a[0] = 1.0;
-    for k in 2..=M {
-        let kk = k as f64;
-        let inv = 1.0 / (k as f64 - 1.0);
-        for s in (0..k).rev() {
-            let t = u + s as f64;
-            let mut v = 0.0;
-            if s + 1 < k {
-                v += t * a[s];
-            }
-            if s >= 1 {
-                v += (kk - t) * a[s - 1];
-            }
-            a[s] = v * inv;
-        }
+fn cell_lanes<const M: usize>(x: f64) -> (f64, f64) {
+    const ROUND: f64 = 6_755_399_441_055_744.0;
+    let r = (x + ROUND) - ROUND;
+    let fl = if r > x { r - 1.0 } else { r };
+    let t = x - fl;
+    // first = ⌊x⌋ + ⌊M/2⌋ − M + 1 (+ 1 for an odd order past the half).
+    let lead = (M / 2) as f64 + 1.0 - M as f64;
+    if M.is_multiple_of(2) {
+        (fl + lead, t)
+    } else {
+        let past = t >= 0.5;
+        let first = fl + lead + if past { 1.0 } else { 0.0 };
+        (first, if past { t - 0.5 } else { t + 0.5 })
     }
-    a.reverse();
-    a
 }
 
-/// [`centred_cell`] for order `M`, the same `(first, u)`, without a call
-/// to libm's `floor` (not inlined on the x86-64 baseline): below `2^52` in
-/// magnitude `⌊x⌋` is the truncation `x as i64`, less one where that
-/// exceeds `x`; beyond, `centred_cell` itself.
-#[inline(always)]
-fn cell_of<const M: usize>(x: f64) -> (i64, f64) {
-    const EXACT: f64 = (1u64 << 52) as f64;
-    if x.abs() >= EXACT || x.is_nan() {
-        return centred_cell(M as u32, x);
+/// The cells ([`cell_lanes`]) and closed-form weights
+/// ([`closed_form`](super::weights::closed_form)) of a batch of folded
+/// coordinates on one axis: `first[j]`, `w[l][j] = β(x_j − first_j − l)`.
+/// One branch-free loop over the points, compiled for AVX-512 and for
+/// AVX2 + FMA besides the baseline and chosen at run time by the CPU's
+/// features (`multiversion`): the points run in 8, 4 or 2 lanes. The
+/// arithmetic is the same IEEE operations in every version (no
+/// contraction into fused multiply-adds), so every version gives the same
+/// bits. Coordinates of `2^51` or more are redone by the caller.
+#[multiversion(targets("x86_64+avx512f+avx512vl+avx2+fma", "x86_64+avx2+fma"))]
+fn cells_and_weights<T: Real, const M: usize>(
+    x: &[f64; BATCH],
+    first: &mut [f64; BATCH],
+    w: &mut [[T; BATCH]; M],
+) {
+    for j in 0..BATCH {
+        let (f, u) = cell_lanes::<M>(x[j]);
+        first[j] = f;
+        let c = closed_form::<M>(u).expect("kernels serve orders 2 to 6");
+        for l in 0..M {
+            w[l][j] = T::from_f64_exact(c[l]);
+        }
     }
-    let i = x as i64;
-    let i = if (i as f64) > x { i - 1 } else { i };
-    let t = x - i as f64;
-    let half = (M / 2) as i64;
-    let (fl, u) = if M.is_multiple_of(2) {
-        (i + half, t)
-    } else if t >= 0.5 {
-        (i + half + 1, t - 0.5)
-    } else {
-        (i + half, t + 0.5)
-    };
-    (fl - M as i64 + 1, u)
 }
 
 impl<T: Real + Send + Sync> Interpolant<T> {
@@ -116,9 +115,11 @@ impl<T: Real + Send + Sync> Interpolant<T> {
     }
 
     /// [`Self::eval_kernel`] for dimension `D` and order `M`: batches of
-    /// [`BATCH`] points located (rows prefetched), then summed; a point
-    /// whose window leaves the padded coefficients (`grid-constant` far
-    /// outside) by the general [`Interpolant::eval_in`].
+    /// [`BATCH`] points folded, then their cells and weights formed axis by
+    /// axis with the points in SIMD lanes ([`cells_and_weights`]), then
+    /// located (rows prefetched), then summed; a point whose window leaves
+    /// the padded coefficients (`grid-constant` far outside) by the general
+    /// [`Interpolant::eval_in`].
     fn eval_fixed<S: PointSource, const D: usize, const M: usize>(
         &self,
         src: &S,
@@ -128,31 +129,45 @@ impl<T: Real + Send + Sync> Interpolant<T> {
         let c = self.coeffs.as_slice().expect("standard layout");
         let mut xs = [0.0; BATCH * 3];
         let mut take_cval = [false; BATCH];
-        // Weights and first offsets of a batch, written in place (no
-        // per-point initialisation or move).
-        let mut ws: [[[T; M]; D]; BATCH] =
+        // A batch by axis, points in lanes: folded coordinates, first
+        // window indices (integers in f64) and weights `[axis][l][point]`.
+        let mut folded = [[0.0; BATCH]; D];
+        let mut firsts = [[0.0; BATCH]; D];
+        let mut ws: [[[T; BATCH]; M]; D] =
             std::array::from_fn(|_| std::array::from_fn(|_| std::array::from_fn(|_| T::zero())));
         let mut bases = [None; BATCH];
         let mut fallback = None;
         for (b, batch) in out.chunks_mut(BATCH).enumerate() {
             let n = batch.len();
             src.fill(start + b * BATCH, &mut xs[..n * D], &mut take_cval[..n])?;
+            for j in 0..n {
+                for (a, f) in folded.iter_mut().enumerate() {
+                    // A point that takes cval is not located (no fold).
+                    f[j] = if take_cval[j] {
+                        0.0
+                    } else {
+                        self.fold_fixed(xs[j * D + a], a)
+                    };
+                }
+            }
+            for a in 0..D {
+                cells_and_weights::<T, M>(&folded[a], &mut firsts[a], &mut ws[a]);
+            }
             for (j, o) in batch.iter_mut().enumerate() {
                 bases[j] = None;
                 if take_cval[j] {
                     *o = self.cval.clone();
                     continue;
                 }
-                let x: &[f64; D] = xs[j * D..(j + 1) * D].try_into().expect("D coordinates");
-                bases[j] = self.locate_fixed::<D, M>(x, &mut ws[j]);
+                bases[j] = self.base_fixed::<D, M>(&folded, &mut firsts, &mut ws, j);
                 match bases[j] {
                     Some(base) => self.prefetch_fixed::<D, M>(c, base),
-                    None => *o = self.eval_slow(x, &mut fallback),
+                    None => *o = self.eval_slow(&xs[j * D..(j + 1) * D], &mut fallback),
                 }
             }
-            for ((o, base), w) in batch.iter_mut().zip(&bases).zip(&ws) {
+            for (j, (o, base)) in batch.iter_mut().zip(&bases).enumerate() {
                 if let Some(base) = *base {
-                    *o = sum_fixed::<T, D, M>(c, base, w, &self.strides);
+                    *o = sum_fixed::<T, D, M>(c, base, &ws, j, &self.strides);
                 }
             }
         }
@@ -167,37 +182,46 @@ impl<T: Real + Send + Sync> Interpolant<T> {
         self.eval_in(x, &zero[..x.len()], &mut sc)
     }
 
-    /// The weights of `x` on every axis into `w` and the flat offset of its
-    /// first coefficient (folded by the mode unless inside `[0, n − 1]`), or
-    /// `None` when its window leaves the padded coefficients.
+    /// The point at which axis `a` is evaluated: `x` itself inside `[0,
+    /// n − 1]` (every mode's fold is the identity there), else
+    /// [`Interpolant::coordinate`].
     #[inline(always)]
-    fn locate_fixed<const D: usize, const M: usize>(
+    fn fold_fixed(&self, x: f64, a: usize) -> f64 {
+        if x >= 0.0 && x <= (self.shape[a] - 1) as f64 {
+            x
+        } else {
+            self.coordinate(x, a)
+        }
+    }
+
+    /// The flat offset of the first coefficient of point `j` of a batch
+    /// (its cells in `firsts`), or `None` when its window leaves the padded
+    /// coefficients. A coordinate of `2^51` or more in magnitude, beyond
+    /// [`cells_and_weights`]' rounding, gets its cell and weights here from
+    /// [`centred_cell`].
+    #[inline(always)]
+    fn base_fixed<const D: usize, const M: usize>(
         &self,
-        x: &[f64; D],
-        w: &mut [[T; M]; D],
+        folded: &[[f64; BATCH]; D],
+        firsts: &mut [[f64; BATCH]; D],
+        ws: &mut [[[T; BATCH]; M]; D],
+        j: usize,
     ) -> Option<usize> {
         let mut base = 0;
         for a in 0..D {
-            let n = self.shape[a];
-            let xa = if x[a] >= 0.0 && x[a] <= (n - 1) as f64 {
-                x[a]
-            } else {
-                self.coordinate(x[a], a)
-            };
-            let (first, u) = cell_of::<M>(xa);
-            let i0 = first + self.pad as i64;
-            if i0 < 0 || i0 as usize + M > n + 2 * self.pad {
+            if folded[a][j].abs() >= LANE_CELL_LIMIT {
+                let (first, u) = centred_cell(M as u32, folded[a][j]);
+                firsts[a][j] = first as f64;
+                let f = closed_form::<M>(u).expect("kernels serve orders 2 to 6");
+                for (l, v) in f.into_iter().enumerate() {
+                    ws[a][l][j] = T::from_f64_exact(v);
+                }
+            }
+            let i0 = firsts[a][j] as i64 + self.pad as i64;
+            if i0 < 0 || i0 as usize + M > self.shape[a] + 2 * self.pad {
                 return None;
             }
             base += i0 as usize * self.strides[a];
-            if M == 4 {
-                window_weights_into(4, u, &mut w[a]);
-            } else {
-                let f = bspline_weights::<M>(u);
-                for (t, v) in w[a].iter_mut().zip(f) {
-                    *t = T::from_f64_exact(v);
-                }
-            }
         }
         Some(base)
     }
@@ -219,37 +243,39 @@ impl<T: Real + Send + Sync> Interpolant<T> {
     }
 }
 
-/// `Σ_l w[l] · row[l]` over one row of `M` coefficients, from zero.
+/// `Σ_l w[l][j] · row[l]` over one row of `M` coefficients, from zero
+/// (`w` by order index, point `j` of the batch).
 #[inline(always)]
-fn dot<T: Real, const M: usize>(w: &[T; M], row: &[T]) -> T {
+fn dot<T: Real, const M: usize>(w: &[[T; BATCH]; M], j: usize, row: &[T]) -> T {
     let row: &[T; M] = row[..M].try_into().expect("M coefficients");
     let mut sum = T::zero();
     for l in 0..M {
-        sum += w[l].clone() * &row[l];
+        sum += w[l][j].clone() * &row[l];
     }
     sum
 }
 
-/// The tensor sum of a located point, in the order of
-/// [`Interpolant::tensor_sum`]: rows of the last axis dotted, then weighted
-/// by the middle axis, then by the first.
+/// The tensor sum of located point `j` of a batch (weights `w[axis][l][j]`),
+/// in the order of [`Interpolant::tensor_sum`]: rows of the last axis
+/// dotted, then weighted by the middle axis, then by the first.
 #[inline(always)]
 fn sum_fixed<T: Real, const D: usize, const M: usize>(
     c: &[T],
     base: usize,
-    w: &[[T; M]; D],
+    w: &[[[T; BATCH]; M]; D],
+    j: usize,
     strides: &[usize],
 ) -> T {
     // A slice, so that the arms of the other dimensions index it without
     // constant out-of-bounds indices.
-    let w: &[[T; M]] = w;
+    let w: &[[[T; BATCH]; M]] = w;
     match D {
-        1 => dot(&w[0], &c[base..]),
+        1 => dot(&w[0], j, &c[base..]),
         2 => {
             let mut sum = T::zero();
             for l0 in 0..M {
                 let at = base + l0 * strides[0];
-                sum += w[0][l0].clone() * dot(&w[1], &c[at..]);
+                sum += w[0][l0][j].clone() * dot(&w[1], j, &c[at..]);
             }
             sum
         }
@@ -259,11 +285,51 @@ fn sum_fixed<T: Real, const D: usize, const M: usize>(
                 let mut plane = T::zero();
                 for l1 in 0..M {
                     let at = base + l0 * strides[0] + l1 * strides[1];
-                    plane += w[1][l1].clone() * dot(&w[2], &c[at..]);
+                    plane += w[1][l1][j].clone() * dot(&w[2], j, &c[at..]);
                 }
-                sum += w[0][l0].clone() * plane;
+                sum += w[0][l0][j].clone() * plane;
             }
             sum
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The branch-free cell of the lanes equals [`centred_cell`] (floor by
+    /// libm) for every order, at integers, half-integers, their floating
+    /// neighbours, negative and tiny coordinates and up to just below
+    /// [`LANE_CELL_LIMIT`].
+    #[test]
+    fn lane_cells_equal_centred_cells() {
+        let mut xs = vec![0.0, -0.0, 1e-300, -1e-300, 0.5, -0.5, 2.5, -3.5, 7.0, -7.0];
+        for x in [0.5f64, 1.0, 2.5, 1e6 + 0.5, 1e15, (LANE_CELL_LIMIT) - 1.5] {
+            for s in [1.0, -1.0] {
+                let x = s * x;
+                xs.extend([
+                    x,
+                    f64::from_bits(x.to_bits() + 1),
+                    f64::from_bits(x.to_bits() - 1),
+                ]);
+            }
+        }
+        fn check<const M: usize>(xs: &[f64]) {
+            for &x in xs {
+                let (first, u) = centred_cell(M as u32, x);
+                let (lane_first, lane_u) = cell_lanes::<M>(x);
+                assert_eq!(
+                    (first as f64, u),
+                    (lane_first, lane_u),
+                    "order {M} at {x:e}"
+                );
+            }
+        }
+        check::<2>(&xs);
+        check::<3>(&xs);
+        check::<4>(&xs);
+        check::<5>(&xs);
+        check::<6>(&xs);
     }
 }

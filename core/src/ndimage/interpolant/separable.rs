@@ -27,7 +27,7 @@
 use super::Interpolant;
 use crate::ndimage::NdimageError;
 use crate::scalar::Real;
-use crate::sspline::bspline_uniform::{cell_derivatives_into, centred_cell};
+use crate::sspline::bspline_uniform::centred_cell;
 use rayon::prelude::*;
 
 /// One axis of the resampling: for each output index the `m` window
@@ -151,8 +151,7 @@ impl<T: Real + Copy + Send + Sync> Interpolant<T> {
                 continue;
             }
             let (first, u) = centred_cell(self.order, self.coordinate(x, a));
-            cell_derivatives_into(self.order, deriv, &T::from_f64_exact(u), w);
-            w.reverse();
+            super::cell_weights_into(self.order, deriv, u, w);
             for l in 0..m {
                 let i = first + l as i64 + self.pad as i64;
                 index.push(usize::try_from(i).ok().filter(|&i| i < padded));
