@@ -15,7 +15,7 @@ if [ ! -x "$bin" ]; then
   else
     gmp="GMP/MPFR from source: 2-4 min more unless ~/.cache/gmp-mpfr-sys has them"
   fi
-  echo "splinelab: first build of the release binary (about 3 min on 2 cores; $gmp); later runs rebuild in seconds" >&2
+  echo "splinelab: first build of the release binary (about 2 min 20 s on 2 cores; $gmp); later runs rebuild in seconds" >&2
 fi
 cargo build --release "${quiet[@]+"${quiet[@]}"}" --manifest-path "$root/Cargo.toml" -p splinelab-reports \
   --bin splinelab "${features[@]+"${features[@]}"}" >&2
