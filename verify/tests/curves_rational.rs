@@ -1,7 +1,8 @@
 //! Rational Bézier arcs and NURBS circles are exact circles: every
 //! evaluated point is at distance 1 from the centre within 4 ulps in f64
-//! (8u) and 2^(−BITS+8) in MPFR, measured in 2·BITS + 64 bits from the
-//! computed point; degree elevation keeps the curve.
+//! (8u) and 2^(−BITS+8) in MPFR, plus for arcs the rounding of their angles
+//! (`check_arc`), measured in 2·BITS + 64 bits from the computed point;
+//! degree elevation keeps the curve.
 
 use nalgebra::Vector2;
 use proptest::prelude::*;
@@ -21,13 +22,28 @@ fn circle_bound<T: Real>() -> f64 {
 }
 
 /// Arc from `start = a·π/1024` sweeping `s·π/1024` (`0 < s ≤ 1024`: up to 180°).
+///
+/// The bound: the evaluation's allowance ([`circle_bound`]) plus the
+/// rounding of the two angles the construction forms, `start + sweep/2`
+/// (the middle control point's direction) and `start + sweep` (the end),
+/// each off by up to `u·|angle|` radians. A point of the conic moves off the
+/// circle by at most about the angle inconsistency between its control
+/// points (the weight `cos(sweep/2)` enters only the denominator), so
+/// angles near 3π (start near 2π, sweep near π) may add up to ~19u to the
+/// radial error: found by proptest (start 2020π/1024, sweep 944π/1024:
+/// 8.6u against the 8u the bound once was).
 fn check_arc<T: Real>(a: usize, s: usize) {
     let start = T::pi() * frac::<T>(a, 1024);
     let sweep = T::pi() * frac::<T>(s, 1024);
     let e = arc_error(&start, &sweep, 32).unwrap();
+    let (mid, end) = (
+        start.to_f64() + sweep.to_f64() / 2.0,
+        start.to_f64() + sweep.to_f64(),
+    );
+    let bound = circle_bound::<T>() + mid.abs() + end.abs();
     assert!(
-        e <= circle_bound::<T>(),
-        "{}: arc {a}/{s}: {e} u",
+        e <= bound,
+        "{}: arc {a}/{s}: {e} u over {bound} u",
         T::type_name()
     );
 }

@@ -185,7 +185,9 @@ impl<T: Real> RationalBezier<T, 2> {
     ///
     /// **Accuracy**: control data within a few ulps (one `cos`/`sin` each);
     /// measured distance from the centre within 4 ulps of `r` in f64 for
-    /// `c = 0`, `r = 1` (see `verify/tests/curves_rational.rs`).
+    /// `c = 0`, `r = 1`, plus `u·(|start + sweep/2| + |start + sweep|)·r`
+    /// for the rounding of the two angles formed (up to ~19u near 3π; see
+    /// `verify/tests/curves_rational.rs`).
     /// **Source**: seed 002 (rational Bézier, exact circular arcs); Piegl &
     /// Tiller, *The NURBS Book*, §7.3; the test is
     /// `verify/tests/curves_rational.rs::arcs_up_to_180_degrees_are_on_the_circle_f64`.
