@@ -436,19 +436,17 @@ class _Points:
         the grid with ``cval_outside`` (scipy's 'constant')."""
         if cval_outside and not deriv and type(self) is _Points:
             # cval outside decided by the engine per point, in parallel.
-            run = _ext.map_coordinates_f64 if a.dtype == np.float64 else _ext.map_coordinates_f32
-            return run(a, np.ascontiguousarray(np.asarray(self.flat, dtype=np.float64)), d, mode, cv, tol, prefilter,
-                       threads, None, True)
+            return self.evaluate(a, d, mode, cv, tol, prefilter, threads, None, cval_outside=True)
         values = self.evaluate(a, d, mode, cv, tol, prefilter, threads, deriv)
         if cval_outside:
             fill = 0.0 if deriv and any(deriv) else cv
             values = np.where(self.outside(a.shape), np.asarray(fill, values.dtype), values)
         return values
 
-    def evaluate(self, a, d, mode, cv, tol, prefilter, threads, deriv):
+    def evaluate(self, a, d, mode, cv, tol, prefilter, threads, deriv, cval_outside=False):
         run = _ext.map_coordinates_f64 if a.dtype == np.float64 else _ext.map_coordinates_f32
         return run(a, np.ascontiguousarray(np.asarray(self.flat, dtype=np.float64)), d, mode, cv, tol, prefilter,
-                   threads, deriv)
+                   threads, deriv, cval_outside)
 
 
 class _Grid(_Points):
@@ -460,11 +458,6 @@ class _Grid(_Points):
         """As :meth:`_Points.run`; ``cval`` written in place into the slabs
         of output indices outside ``[0, n - 1]`` on some axis (no mask of
         the whole output, no second output array)."""
-        if cval_outside and not deriv and type(self) is _Points:
-            # cval outside decided by the engine per point, in parallel.
-            run = _ext.map_coordinates_f64 if a.dtype == np.float64 else _ext.map_coordinates_f32
-            return run(a, np.ascontiguousarray(np.asarray(self.flat, dtype=np.float64)), d, mode, cv, tol, prefilter,
-                       threads, None, True)
         values = self.evaluate(a, d, mode, cv, tol, prefilter, threads, deriv)
         if cval_outside:
             fill = 0.0 if deriv and any(deriv) else cv
