@@ -36,6 +36,7 @@ use crate::scalar::Real;
 use crate::sspline::SplineFamily;
 use crate::sspline::prefilter::{ConvolutionPrefilter, RecursivePrefilter};
 use crate::sspline::width::certified_width;
+use multiversion::multiversion;
 
 /// How the coefficients are computed.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -347,6 +348,61 @@ impl<T: Real> LineFilter<T> {
         }
     }
 
+    /// [`Self::apply_lines`] on rows that stay where they lie: `rows[i]` is
+    /// sample `i` of `w` lines (a strided axis of an array, read and written
+    /// in place). For the modes with closed-form starts the first pole's
+    /// gain and causal pass run while the rows are read into `buf`, and the
+    /// last anti-causal pass writes the rows directly: the array is read and
+    /// written once, and `buf` sees two passes per pole instead of five
+    /// (copy in, gain, causal, anti-causal, copy out). The same operations in
+    /// the same order as [`Self::apply_lines`], so the same bits; other
+    /// modes and routes copy the rows through `buf` into [`Self::apply_lines`].
+    ///
+    ///
+    /// **Accuracy**: [`Self::apply_lines`]'s, bit for bit
+    /// (`line_filter::tests::rows_in_place_equal_apply_lines_bit_for_bit`). **Source**: Unser,
+    /// Aldroubi and Eden (1993), the causal/anti-causal recursion.
+    pub(crate) fn apply_rows(&self, rows: &mut [&mut [T]], buf: &mut Vec<T>, scratch: &mut Vec<T>) {
+        let w = rows.first().map_or(0, |r| r.len());
+        let closed_form = matches!(self.mode, Mode::Mirror | Mode::Reflect | Mode::GridWrap);
+        if w == 0 || rows.len() < 2 || self.convolution.is_some() || !closed_form {
+            buf.clear();
+            rows.iter().for_each(|r| buf.extend_from_slice(r));
+            self.apply_lines(buf, w, scratch);
+            for (r, src) in rows.iter_mut().zip(buf.chunks(w)) {
+                r.clone_from_slice(src);
+            }
+            return;
+        }
+        let (n, mode, r) = (rows.len(), self.mode, &self.recursive);
+        if buf.len() != n * w {
+            // Every value is written before it is read: no clearing pass.
+            buf.resize(n * w, T::zero());
+        }
+        let mut acc = vec![T::zero(); w];
+        let scaled =
+            |i: usize| -> Vec<T> { rows[i].iter().map(|x| r.gain().clone() * x).collect() };
+        let (z0, k0) = (&r.poles()[0], r.horizons()[0]);
+        causal_start_of(n, scaled, z0, k0, mode, &mut acc);
+        buf[..w].clone_from_slice(&acc);
+        load_causal(rows, buf, r.gain(), z0);
+        let last = r.poles().len() - 1;
+        for (p, (z, &k)) in r.poles().iter().zip(r.horizons()).enumerate() {
+            if p > 0 {
+                causal_start_of(n, |i| &buf[i * w..(i + 1) * w], z, k, mode, &mut acc);
+                buf[..w].clone_from_slice(&acc);
+                lanes::causal_strided(buf, w, z);
+            }
+            anticausal_start_rows(buf, w, z, k, mode, &mut acc);
+            if p < last {
+                buf[(n - 1) * w..].clone_from_slice(&acc);
+                lanes::anticausal_strided(buf, w, z);
+            } else {
+                anticausal_store(rows, buf, z, &acc);
+            }
+        }
+    }
+
     /// Fills `ext` with the extended rows `lo .. lo + count` of `rows`.
     fn extend_rows_into(&self, rows: &[T], w: usize, lo: i64, count: usize, ext: &mut Vec<T>) {
         let len = rows.len() / w;
@@ -390,15 +446,66 @@ fn add_scaled<T: Real>(acc: &mut [T], f: &T, row: &[T]) {
     }
 }
 
-/// [`causal_start`] of every column, into `acc`.
+/// [`causal_start`] of every column of `c` (`L × w`), into `acc`.
 fn causal_start_rows<T: Real>(c: &[T], w: usize, z: &T, horizon: usize, mode: Mode, acc: &mut [T]) {
-    let n = c.len() / w;
+    causal_start_of(
+        c.len() / w,
+        |i| &c[i * w..(i + 1) * w],
+        z,
+        horizon,
+        mode,
+        acc,
+    );
+}
+
+/// [`causal_start`] of every column of the `n` rows `row(0) … row(n − 1)`,
+/// into `acc`.
+fn causal_start_of<T: Real, R: AsRef<[T]>>(
+    n: usize,
+    row: impl Fn(usize) -> R,
+    z: &T,
+    horizon: usize,
+    mode: Mode,
+    acc: &mut [T],
+) {
     acc.fill(T::zero());
     let mut zk = T::one();
     for j in 0..horizon.max(1) {
         let i = mode.fold(-(j as i64), n).unwrap_or(0);
-        add_scaled(acc, &zk, &c[i * w..(i + 1) * w]);
+        add_scaled(acc, &zk, row(i).as_ref());
         zk *= z.clone();
+    }
+}
+
+/// The first pole's gain and causal pass, reading `rows` into `buf` (row
+/// 0 of `buf` already holds the causal start): `buf_i = g·rows_i + ξ buf_{i−1}`,
+/// the operations of [`lanes::scale`] then [`lanes::causal_strided`].
+#[multiversion(targets("x86_64+avx512f+avx512vl+avx2+fma", "x86_64+avx2+fma", "aarch64+neon"))]
+fn load_causal<T: Real>(rows: &[&mut [T]], buf: &mut [T], gain: &T, z: &T) {
+    let w = buf.len() / rows.len();
+    for (i, src) in rows.iter().enumerate().skip(1) {
+        let (done, rest) = buf.split_at_mut(i * w);
+        let prev = &done[(i - 1) * w..];
+        for ((x, s), p) in rest[..w].iter_mut().zip(src.iter()).zip(prev) {
+            *x = gain.clone() * s + z.clone() * p;
+        }
+    }
+}
+
+/// The last anti-causal pass, writing `rows` from the causal values in
+/// `buf`: `rows_{n−1} = start`, `rows_i = ξ (rows_{i+1} − buf_i)`, the
+/// operations of [`lanes::anticausal_strided`].
+#[multiversion(targets("x86_64+avx512f+avx512vl+avx2+fma", "x86_64+avx2+fma", "aarch64+neon"))]
+fn anticausal_store<T: Real>(rows: &mut [&mut [T]], buf: &[T], z: &T, start: &[T]) {
+    let n = rows.len();
+    let w = start.len();
+    rows[n - 1].clone_from_slice(start);
+    for i in (0..n - 1).rev() {
+        let (lo, hi) = rows.split_at_mut(i + 1);
+        let next: &[T] = hi[0];
+        for ((o, nx), c) in lo[i].iter_mut().zip(next).zip(&buf[i * w..(i + 1) * w]) {
+            *o = z.clone() * (nx.clone() - c.clone());
+        }
     }
 }
 
@@ -539,5 +646,53 @@ fn anticausal_start<T: Real>(c: &[T], z: &T, horizon: usize, mode: Mode) -> T {
             -z * sum
         }
         _ => z.clone() / (z.clone() * &z - T::one()) * (c[n - 1].clone() + z * c[n - 2].clone()),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `apply_rows` (rows read and written in place, passes fused) against
+    /// `apply_lines` (rows copied, one pass per operation): every mode and
+    /// route, one to three poles, lines of 1 to 40 samples (shorter and
+    /// longer than the horizons), rows of 1, 3 and 8 lines.
+    #[test]
+    fn rows_in_place_equal_apply_lines_bit_for_bit() {
+        let modes = [
+            Mode::Mirror,
+            Mode::Reflect,
+            Mode::GridWrap,
+            Mode::Nearest,
+            Mode::GridConstant,
+        ];
+        for degree in [2u32, 3, 5, 7] {
+            let family = SplineFamily::Order(degree + 1);
+            for mode in modes {
+                for route in [
+                    Route::Exact,
+                    Route::Truncated { tol: 1e-9 },
+                    Route::Convolution { tol: 1e-9 },
+                ] {
+                    let f = LineFilter::<f64>::new(&family, mode, 0.5, route).unwrap();
+                    for (n, w) in [(1, 3), (2, 1), (3, 8), (7, 3), (40, 8)] {
+                        let data: Vec<f64> = (0..n * w)
+                            .map(|i| ((i * 7919) % 211) as f64 / 97.0 - 1.0)
+                            .collect();
+                        let mut want = data.clone();
+                        f.apply_lines(&mut want, w, &mut Vec::new());
+                        let mut got = data.clone();
+                        let mut rows: Vec<&mut [f64]> = got.chunks_mut(w).collect();
+                        f.apply_rows(&mut rows, &mut Vec::new(), &mut Vec::new());
+                        assert!(
+                            got.iter()
+                                .zip(&want)
+                                .all(|(a, b)| a.to_bits() == b.to_bits()),
+                            "degree {degree} {mode:?} {route:?} n {n} w {w}"
+                        );
+                    }
+                }
+            }
+        }
     }
 }

@@ -21,7 +21,9 @@ use super::lanes;
 use super::line_filter::LineFilter;
 use super::mode::Mode;
 use crate::scalar::Real;
-use ndarray::{Array, ArrayBase, ArrayViewMut3, Axis, Data, DataMut, Dimension, Zip};
+use ndarray::{
+    Array, ArrayBase, ArrayViewMut2, ArrayViewMut3, Axis, Data, DataMut, Dimension, Zip,
+};
 use rayon::prelude::*;
 use std::sync::Mutex;
 
@@ -364,31 +366,44 @@ where
 }
 
 /// One strip of [`filter_strided_axis`] (`outer × n × w`): each `n × w`
-/// block copied into `buf` (row `i` = sample `i` of the `w` lines),
-/// filtered and copied back.
+/// block filtered where it lies, its rows through `buf`
+/// ([`LineFilter::apply_rows`]: the array read and written once).
 fn filter_strip<T: Real>(
     strip: &mut ArrayViewMut3<'_, T>,
     filter: &LineFilter<T>,
     buf: &mut Vec<T>,
     scratch: &mut Vec<T>,
 ) {
-    let w = strip.shape()[2];
     for mut block in strip.outer_iter_mut() {
-        buf.clear();
-        for row in block.rows() {
-            match row.as_slice() {
-                Some(r) => buf.extend_from_slice(r),
-                None => buf.extend(row.iter().cloned()),
-            }
-        }
-        filter.apply_lines(buf, w, scratch);
-        for (mut row, src) in block.rows_mut().into_iter().zip(buf.chunks(w)) {
-            match row.as_slice_mut() {
-                Some(r) => r.clone_from_slice(src),
-                None => row.iter_mut().zip(src).for_each(|(d, s)| *d = s.clone()),
-            }
+        let n = block.nrows();
+        let mut rows: Vec<&mut [T]> = block
+            .axis_iter_mut(Axis(0))
+            .filter_map(|r| r.into_slice())
+            .collect();
+        if rows.len() == n {
+            filter.apply_rows(&mut rows, buf, scratch);
+        } else {
+            // Not contiguous rows (not a standard-layout strip): copied.
+            drop(rows);
+            filter_block_copied(&mut block, filter, buf, scratch);
         }
     }
+}
+
+/// One `n × w` block through `buf`: copied in, [`LineFilter::apply_lines`], copied back.
+fn filter_block_copied<T: Real>(
+    block: &mut ArrayViewMut2<'_, T>,
+    filter: &LineFilter<T>,
+    buf: &mut Vec<T>,
+    scratch: &mut Vec<T>,
+) {
+    buf.clear();
+    buf.extend(block.iter().cloned());
+    filter.apply_lines(buf, block.ncols(), scratch);
+    block
+        .iter_mut()
+        .zip(buf.iter())
+        .for_each(|(d, s)| *d = s.clone());
 }
 
 /// Replaces `a` by its coefficients along every axis (scipy's
