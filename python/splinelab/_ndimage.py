@@ -289,12 +289,13 @@ def _reflection_sign(flat, shape, mode, deriv):
     for axis, (x, n, k) in enumerate(zip(flat, shape, deriv)):
         if k % 2 == 0 or n < 2:
             continue
-        if mode == "mirror":
-            reflected = np.mod(x, 2.0 * (n - 1)) > n - 1
-        elif mode in ("reflect", "grid-mirror"):
-            reflected = np.mod(x + 0.5, 2.0 * n) > n
-        else:
-            continue
+        with np.errstate(invalid="ignore"):  # ±inf: the engine refuses the point
+            if mode == "mirror":
+                reflected = np.mod(x, 2.0 * (n - 1)) > n - 1
+            elif mode in ("reflect", "grid-mirror"):
+                reflected = np.mod(x + 0.5, 2.0 * n) > n
+            else:
+                continue
         sign[reflected] = -sign[reflected]
     return sign
 
@@ -343,12 +344,14 @@ def _interp_mode(mode):
 
 
 def _coordinates(coordinates, ndim):
-    """scipy's coordinate array, ``(ndim, ...)``, as finite float64."""
+    """scipy's coordinate array, ``(ndim, ...)``, as float64. Finiteness is
+    the engine's check (on the pool, while it reads the points: a NaN or an
+    infinity stays one through the folds and shifts made here first), so a
+    non-finite coordinate is refused with ``ValueError("coordinate k is not
+    finite")`` without a serial pass over the array here."""
     at = _real_array(coordinates, "coordinates").astype(np.float64, copy=False)
     if at.ndim < 1 or at.shape[0] != ndim:
         raise ValueError(f"coordinates must have shape ({ndim}, ...), got {at.shape}")
-    if not np.isfinite(at).all():
-        raise ValueError("coordinates must be finite")
     return at
 
 
@@ -399,8 +402,9 @@ def _wrap_axis(x, n):
         return np.zeros_like(x)
     sz = float(n - 1)
     low, high = x < 0, x > n - 1
-    x[low] += sz * (np.trunc(-x[low] / sz) + 1)
-    x[high] -= sz * np.trunc(x[high] / sz)
+    with np.errstate(invalid="ignore"):  # ±inf becomes NaN: the engine refuses it
+        x[low] += sz * (np.trunc(-x[low] / sz) + 1)
+        x[high] -= sz * np.trunc(x[high] / sz)
     return x
 
 

@@ -1,5 +1,7 @@
 """Bad input raises the right Python exception with the Rust message."""
 
+import warnings
+
 import numpy as np
 import pytest
 
@@ -101,3 +103,21 @@ def test_non_finite_user_values_are_failures_not_errors():
     c[2] = np.nan
     r = splinelab.check("prefilter", samples=s, coeffs=c, max_ulps=4)
     assert r["verdict"] == "fail" and r["failed"] >= 1
+
+
+
+@pytest.mark.parametrize("mode", ["constant", "nearest", "reflect", "mirror", "wrap", "grid-wrap",
+                                  "grid-constant", "grid-mirror"])
+@pytest.mark.parametrize("bad", [np.nan, np.inf, -np.inf])
+def test_non_finite_coordinates_are_refused_in_every_mode_without_warnings(mode, bad):
+    # The engine checks the points (on the pool); the folds and shifts made
+    # in Python before it must carry the NaN or infinity there, quietly.
+    a = np.arange(42.0).reshape(6, 7)
+    c = np.array([[1.0, 2.5, 3.0], [0.5, 4.0, bad]])
+    calls = [dict(input=a), dict(input=a, derivative=(1, 0)), dict(input=a, output=np.uint8),
+             dict(input=a, order=0), dict(input=a + 1j * a), dict(input=a + 1j * a, derivative=(0, 1))]
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        for kw in calls:
+            with pytest.raises(ValueError, match="coordinate [0-9]+ is not finite"):
+                splinelab.map_coordinates(coordinates=c, mode=mode, **kw)
