@@ -11,7 +11,22 @@
 //! the CPU's features at run time on stable Rust (no nightly, no
 //! `-C target-cpu=native` for users), caches the choice in one atomic, and
 //! leaves the code one generic scalar function (f32, f64 and MPFR alike)
-//! that it compiles once per target — no intrinsics, no `unsafe` of ours.
+//! that it compiles once per target — no `unsafe` of ours.
+//!
+//! The exception is the transposes between "`G` windows side by side" and
+//! "one window contiguous" ([`load_strip`], [`store_strip`]): LLVM compiled
+//! their element loops into AVX-512 gathers and scalar moves (`perf
+//! annotate`), and as fixed `[[T; K]; K]` tiles still into scalar moves, so
+//! f64 (4 × 4) and f32 (8 × 8) tiles go through AVX intrinsics
+//! (unpack/shuffle/permute), safe inside the AVX2 clones (module `x86`);
+//! other scalars keep the generic loops. Measured (`engine_peer tol1d 3
+//! 10000000 20`, one thread, A/B alternated, min of 5): 20.8 → 15.8 ms.
+//! Tried and dropped: 8 × 8 f64 tiles in AVX-512 registers (13.3 → 13.5
+//! ms), software prefetch of the next strip (16.1 → 16.7 ms),
+//! non-temporal stores (need `unsafe`; 13.2 → 16.9 ms anyway), the
+//! finiteness/max scan folded into the tile load of the block route (13.7
+//! → 17.9 ms: the windows' strided first read from memory is slower than
+//! a sequential scan and a re-read from L2).
 //!
 //! **Accuracy**: the same operations in the same order as the scalar loop;
 //! Rust never contracts `a + z·b` into a fused multiply-add on its own, so
