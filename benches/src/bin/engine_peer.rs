@@ -7,7 +7,8 @@
 //! `blocks1d` (1-D, blocks overlapping by the width of 1e-15, a quarter of
 //! the signal per thread and at least 2^15 samples per block), `tol1d` (1-D,
 //! the `tol=1e-12` route: `BlockPrefilter::apply_line_into`), `filter2d`
-//! (N × N), `filter3d` (N × N × N), `eval2d` (10⁶ points on an N × N
+//! (N × N), `filter3d` (N × N × N), `lines2d` (N × N, the contiguous axis
+//! only: `spline_filter1d` along axis 1), `eval2d` (10⁶ points on an N × N
 //! cubic interpolant, mirror). Threads: `RAYON_NUM_THREADS`.
 
 use splinelab::ndarray::{Array2, ArrayD, IxDyn};
@@ -98,6 +99,14 @@ fn main() {
             time(reps, || {
                 c.assign(&a);
                 spline_filter(black_box(&mut c), &filter).unwrap();
+            })
+        }
+        "lines2d" => {
+            let a = Array2::from_shape_fn((n, n), |(i, j)| value(i * n + j));
+            let mut c = a.clone();
+            time(reps, || {
+                c.assign(&a);
+                spline_filter1d(black_box(&mut c), 1, &filter).unwrap();
             })
         }
         "eval2d" => {
