@@ -91,19 +91,23 @@ impl<T: Real + Copy + Send + Sync> Interpolant<T> {
             rule,
             shape: &self.shape,
         };
-        self.eval_source(&src, out)
+        if self.has_run_kernel(rule) {
+            self.eval_affine_runs(&src, out)
+        } else {
+            self.eval_source(&src, out)
+        }
     }
 }
 
 /// The points of [`Interpolant::resample_affine`], generated batch by batch.
-struct AffinePoints<'a> {
-    matrix: &'a [f64],
-    offset: &'a [f64],
-    out_shape: &'a [usize],
-    shift: f64,
-    rule: PointRule,
+pub(super) struct AffinePoints<'a> {
+    pub(super) matrix: &'a [f64],
+    pub(super) offset: &'a [f64],
+    pub(super) out_shape: &'a [usize],
+    pub(super) shift: f64,
+    pub(super) rule: PointRule,
     /// The input's shape.
-    shape: &'a [usize],
+    pub(super) shape: &'a [usize],
 }
 
 impl PointSource for AffinePoints<'_> {
@@ -156,10 +160,10 @@ impl PointSource for AffinePoints<'_> {
 }
 
 /// Axes of the output and input an [`AffinePoints`] batch keeps on the stack.
-const STACK_AXES: usize = 8;
+pub(super) const STACK_AXES: usize = 8;
 
 /// The first `len` elements of `stack`, or of `heap` (resized) when longer.
-fn on_stack_or_heap<'a, V: Copy + Default>(
+pub(super) fn on_stack_or_heap<'a, V: Copy + Default>(
     stack: &'a mut [V; STACK_AXES],
     heap: &'a mut Vec<V>,
     len: usize,
@@ -205,7 +209,7 @@ impl AffinePoints<'_> {
 
     /// `offset_h + o_0 M_{h0} + … + o_{k−2} M_{h,k−2}` for every input axis
     /// `h`, added in scipy's order (all but the last output axis).
-    fn row_sums(&self, o: &[usize], row: &mut [f64]) {
+    pub(super) fn row_sums(&self, o: &[usize], row: &mut [f64]) {
         let k = o.len();
         for (h, t) in row.iter_mut().enumerate() {
             *t = self.offset[h];
@@ -252,7 +256,7 @@ fn wrap_period_n_minus_1(x: f64, len: usize) -> f64 {
 }
 
 /// The multi-index of flat C-order position `flat` in `shape`, into `index`.
-fn unflatten_into(mut flat: usize, shape: &[usize], index: &mut [usize]) {
+pub(super) fn unflatten_into(mut flat: usize, shape: &[usize], index: &mut [usize]) {
     for (i, &n) in index.iter_mut().zip(shape).rev() {
         *i = flat % n.max(1);
         flat /= n.max(1);
