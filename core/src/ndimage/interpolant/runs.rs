@@ -28,6 +28,7 @@ use super::kernel::{cells_and_weights, sum_fixed};
 use super::{Interpolant, PointRule};
 use crate::ndimage::NdimageError;
 use crate::scalar::Real;
+use multiversion::multiversion;
 use rayon::prelude::*;
 
 /// One run of outputs along the last output axis: the sums of the other
@@ -216,17 +217,29 @@ impl<T: Real + Send + Sync> Interpolant<T> {
         let mut ws: [[[T; BATCH]; M]; D] =
             std::array::from_fn(|_| std::array::from_fn(|_| std::array::from_fn(|_| T::zero())));
         let mut fallback = None;
+        // The last start of a window on each axis and the strides, in f64
+        // for the lanes (flat offsets are integers far below 2^53).
+        let top: [f64; D] = std::array::from_fn(|a| (self.shape[a] + 2 * self.pad - M) as f64);
+        let strides: [f64; D] = std::array::from_fn(|a| self.strides[a] as f64);
+        let mut bases = [0; BATCH];
         for (b, batch) in out.chunks_mut(BATCH).enumerate() {
-            let from = at + b * BATCH;
+            let from = (run.first + at + b * BATCH) as f64;
             for (h, x) in xs.iter_mut().enumerate() {
-                // The unused lanes of a last short batch repeat its first
-                // point (finite, inside), so the weights stay finite.
-                for (j, xj) in x.iter_mut().enumerate() {
-                    *xj = run.coordinate(h, from + if j < batch.len() { j } else { 0 });
-                }
+                points_in_lanes(run.row[h], run.step[h], run.shift, from, x);
             }
             for a in 0..D {
                 cells_and_weights::<T, M>(&xs[a], &mut firsts[a], &mut ws[a]);
+            }
+            // Every window of a full batch inside the padded coefficients
+            // (always, for points inside the grid): the offsets in lanes;
+            // else (a short last batch, whose unused lanes run past the
+            // run) point by point.
+            let pad = self.pad as f64;
+            if batch.len() == BATCH && bases_in_lanes(&firsts, pad, &top, &strides, &mut bases) {
+                for (j, o) in batch.iter_mut().enumerate() {
+                    *o = sum_fixed::<T, D, M>(c, bases[j], &ws, j, &self.strides);
+                }
+                continue;
             }
             for (j, o) in batch.iter_mut().enumerate() {
                 *o = match self.base_fixed::<D, M>(&xs, &mut firsts, &mut ws, j) {
@@ -239,6 +252,40 @@ impl<T: Real + Send + Sync> Interpolant<T> {
             }
         }
     }
+}
+
+/// The points `x_j = (row + (first + j) · step) + shift` of a batch on one
+/// axis ([`Run::coordinate`]'s operations; `first + j` is exact), in lanes.
+#[multiversion(targets("x86_64+avx512f+avx512vl+avx2+fma", "x86_64+avx2+fma"))]
+fn points_in_lanes(row: f64, step: f64, shift: f64, first: f64, x: &mut [f64; BATCH]) {
+    for (j, xj) in x.iter_mut().enumerate() {
+        *xj = (row + (first + j as f64) * step) + shift;
+    }
+}
+
+/// The flat offsets `Σ_a (firsts[a][j] + pad) · strides[a]` of a batch's
+/// windows into `bases`, in lanes, and whether every window starts inside
+/// `[0, top_a]` on every axis (else `bases` is not to be used). Exact: the
+/// cells are integers in `f64`, and the offsets integers below `2^53`.
+#[multiversion(targets("x86_64+avx512f+avx512vl+avx2+fma", "x86_64+avx2+fma"))]
+fn bases_in_lanes<const D: usize>(
+    firsts: &[[f64; BATCH]; D],
+    pad: f64,
+    top: &[f64; D],
+    strides: &[f64; D],
+    bases: &mut [usize; BATCH],
+) -> bool {
+    let mut inside = true;
+    for (j, base) in bases.iter_mut().enumerate() {
+        let mut flat = 0.0;
+        for a in 0..D {
+            let i0 = firsts[a][j] + pad;
+            inside &= (i0 >= 0.0) & (i0 <= top[a]);
+            flat += i0 * strides[a];
+        }
+        *base = flat as usize;
+    }
+    inside
 }
 
 #[cfg(test)]
