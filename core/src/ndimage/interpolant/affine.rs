@@ -122,33 +122,20 @@ impl PointSource for AffinePoints<'_> {
         xs: &mut [f64],
         take_cval: &mut [bool],
     ) -> Result<(), NdimageError> {
-        let (n, k) = (self.shape.len(), self.out_shape.len());
-        let (mut index_stack, mut row_stack) = ([0; STACK_AXES], [0.0; STACK_AXES]);
-        let (mut index_heap, mut row_heap) = (Vec::new(), Vec::new());
-        let index = on_stack_or_heap(&mut index_stack, &mut index_heap, k);
-        let row = on_stack_or_heap(&mut row_stack, &mut row_heap, n);
+        let n = self.shape.len();
         // The last output axis' column of the matrix and the input's upper
         // ends, as f64 once per batch (no integer conversion per point).
         let (mut step_stack, mut high_stack) = ([0.0; STACK_AXES], [0.0; STACK_AXES]);
         let (mut step_heap, mut high_heap) = (Vec::new(), Vec::new());
         let step = on_stack_or_heap(&mut step_stack, &mut step_heap, n);
         let high = on_stack_or_heap(&mut high_stack, &mut high_heap, n);
-        for h in 0..n {
-            step[h] = self.matrix[h * k + k - 1];
-            high[h] = (self.shape[h] - 1) as f64;
-        }
-        let run_len = self.out_shape[k - 1];
-        let mut done = 0;
-        while done < take_cval.len() {
-            unflatten_into(start + done, self.out_shape, index);
-            self.row_sums(index, row);
-            let first = index[k - 1];
-            let run = (run_len - first).min(take_cval.len() - done);
+        self.steps_and_tops(step, high);
+        self.for_each_run(start, take_cval.len(), |done, first, run, row| {
             let at = done * n..(done + run) * n;
             let cv = &mut take_cval[done..done + run];
             self.fill_run(row, step, high, first as f64, &mut xs[at], cv);
-            done += run;
-        }
+            Ok(())
+        })?;
         // One pass for the rare overflow to infinity (finite matrix and
         // offset, huge indices); the position only then.
         if !xs.iter().fold(true, |ok, t| ok & t.is_finite()) {
@@ -160,10 +147,10 @@ impl PointSource for AffinePoints<'_> {
 }
 
 /// Axes of the output and input an [`AffinePoints`] batch keeps on the stack.
-pub(super) const STACK_AXES: usize = 8;
+const STACK_AXES: usize = 8;
 
 /// The first `len` elements of `stack`, or of `heap` (resized) when longer.
-pub(super) fn on_stack_or_heap<'a, V: Copy + Default>(
+fn on_stack_or_heap<'a, V: Copy + Default>(
     stack: &'a mut [V; STACK_AXES],
     heap: &'a mut Vec<V>,
     len: usize,
@@ -177,6 +164,44 @@ pub(super) fn on_stack_or_heap<'a, V: Copy + Default>(
 }
 
 impl AffinePoints<'_> {
+    /// The last output axis' column of the matrix into `step` and the
+    /// input's upper ends `n_h − 1` into `high`, in `f64`.
+    pub(super) fn steps_and_tops(&self, step: &mut [f64], high: &mut [f64]) {
+        let k = self.out_shape.len();
+        for (h, (m, hi)) in step.iter_mut().zip(high.iter_mut()).enumerate() {
+            *m = self.matrix[h * k + k - 1];
+            *hi = (self.shape[h] - 1) as f64;
+        }
+    }
+
+    /// `visit(done, first, len, row)` for each run along the last output
+    /// axis among the outputs `start..start + count`, in order: `done`
+    /// outputs before it, its first index `first` on that axis, its length,
+    /// and its row sums ([`Self::row_sums`]).
+    pub(super) fn for_each_run(
+        &self,
+        start: usize,
+        count: usize,
+        mut visit: impl FnMut(usize, usize, usize, &[f64]) -> Result<(), NdimageError>,
+    ) -> Result<(), NdimageError> {
+        let (n, k) = (self.shape.len(), self.out_shape.len());
+        let (mut index_stack, mut row_stack) = ([0; STACK_AXES], [0.0; STACK_AXES]);
+        let (mut index_heap, mut row_heap) = (Vec::new(), Vec::new());
+        let index = on_stack_or_heap(&mut index_stack, &mut index_heap, k);
+        let row = on_stack_or_heap(&mut row_stack, &mut row_heap, n);
+        let run_len = self.out_shape[k - 1];
+        let mut done = 0;
+        while done < count {
+            unflatten_into(start + done, self.out_shape, index);
+            self.row_sums(index, row);
+            let first = index[k - 1];
+            let len = (run_len - first).min(count - done);
+            visit(done, first, len, row)?;
+            done += len;
+        }
+        Ok(())
+    }
+
     /// The points of one run along the last output axis, from its index
     /// `first` (an integer below `2^53`, so `+ 1` stays exact), of row
     /// sums `row`: `x_h = (row_h + o · step_h) + shift`, then the rule
@@ -209,7 +234,7 @@ impl AffinePoints<'_> {
 
     /// `offset_h + o_0 M_{h0} + … + o_{k−2} M_{h,k−2}` for every input axis
     /// `h`, added in scipy's order (all but the last output axis).
-    pub(super) fn row_sums(&self, o: &[usize], row: &mut [f64]) {
+    fn row_sums(&self, o: &[usize], row: &mut [f64]) {
         let k = o.len();
         for (h, t) in row.iter_mut().enumerate() {
             *t = self.offset[h];
@@ -256,7 +281,7 @@ fn wrap_period_n_minus_1(x: f64, len: usize) -> f64 {
 }
 
 /// The multi-index of flat C-order position `flat` in `shape`, into `index`.
-pub(super) fn unflatten_into(mut flat: usize, shape: &[usize], index: &mut [usize]) {
+fn unflatten_into(mut flat: usize, shape: &[usize], index: &mut [usize]) {
     for (i, &n) in index.iter_mut().zip(shape).rev() {
         *i = flat % n.max(1);
         flat /= n.max(1);

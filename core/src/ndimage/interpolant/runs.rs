@@ -22,7 +22,7 @@
 //! kernels' functions, so the results equal those of the batch path bit
 //! for bit (`tests::runs_equal_the_batch_path_bit_for_bit`).
 
-use super::affine::{AffinePoints, STACK_AXES, on_stack_or_heap, unflatten_into};
+use super::affine::AffinePoints;
 use super::batch::{BATCH, CHUNK};
 use super::kernel::{cells_and_weights, sum_fixed};
 use super::{Interpolant, PointRule};
@@ -122,37 +122,25 @@ impl<T: Real + Send + Sync> Interpolant<T> {
         start: usize,
         out: &mut [T],
     ) -> Result<(), NdimageError> {
-        let (n, k) = (self.ndim(), src.out_shape.len());
-        let (mut index_stack, mut index_heap) = ([0; STACK_AXES], Vec::new());
-        let index = on_stack_or_heap(&mut index_stack, &mut index_heap, k);
+        let n = self.ndim();
         // Input axes are at most 3 here (the kernels' range).
-        let (mut row, mut step, mut high) = ([0.0; 3], [0.0; 3], [0.0; 3]);
-        for h in 0..n {
-            step[h] = src.matrix[h * k + k - 1];
-            high[h] = (self.shape[h] - 1) as f64;
-        }
-        let run_len = src.out_shape[k - 1];
-        let mut done = 0;
-        while done < out.len() {
-            unflatten_into(start + done, src.out_shape, index);
-            src.row_sums(index, &mut row[..n]);
+        let (mut step, mut high) = ([0.0; 3], [0.0; 3]);
+        src.steps_and_tops(&mut step[..n], &mut high[..n]);
+        src.for_each_run(start, out.len(), |done, first, len, row| {
             let run = Run {
-                row: &row[..n],
+                row,
                 step: &step[..n],
                 shift: src.shift,
-                first: index[k - 1],
+                first,
             };
-            let len = (run_len - run.first).min(out.len() - done);
             let (lo, hi) = run.inside_span(&high[..n], len);
             let piece = &mut out[done..done + len];
             let (before, rest) = piece.split_at_mut(lo);
             let (inside, after) = rest.split_at_mut(hi - lo);
             self.outside_piece(src, &run, start + done, 0, before)?;
             self.inside_piece(&run, lo, inside);
-            self.outside_piece(src, &run, start + done, hi, after)?;
-            done += len;
-        }
-        Ok(())
+            self.outside_piece(src, &run, start + done, hi, after)
+        })
     }
 
     /// Outputs `at..at + out.len()` of a run (flat index of its first
