@@ -6,7 +6,11 @@
 //! [`Interpolant::eval_many`] evaluates (batched, prefetched, the fixed-size
 //! kernels of `kernel.rs`): no `ndim × count` array of coordinates in
 //! memory; under [`PointRule::CvalOutside`] the points outside the grid
-//! take `cval` without evaluation.
+//! take `cval` without evaluation. Where a fixed-size kernel serves (1 to 3
+//! dimensions, degrees 1 to 5, `f64`/`f32`), the outputs go by runs along
+//! the last output axis (`runs.rs`): the interval of each run whose points
+//! lie inside the grid is found once and evaluated without per-point
+//! checks, the same values bit for bit.
 //!
 //! **Points** as scipy forms them, to the bit: `x_h = offset_h + o_0 M_{h0}
 //! + o_1 M_{h1} + …` added in that order from `offset_h`, then `+ shift`
@@ -42,9 +46,11 @@ impl<T: Real + Copy + Send + Sync> Interpolant<T> {
     ///
     ///
     /// **Method**: the points of each block of output indices are formed by the affine map and
-    /// evaluated as [`Interpolant::eval_many`] does (no coordinate array). **Accuracy**: the
+    /// evaluated as [`Interpolant::eval_many`] does (no coordinate array), by runs along the
+    /// last output axis where a fixed-size kernel serves (`runs.rs`). **Accuracy**: the
     /// same values as pointwise [`Interpolant::eval`], bit for bit
-    /// (`affine.rs::tests::affine_points_equal_pointwise_evaluation_bit_for_bit`). **Source**:
+    /// (`affine.rs::tests::affine_points_equal_pointwise_evaluation_bit_for_bit`,
+    /// `runs.rs::tests::runs_equal_the_batch_path_bit_for_bit`). **Source**:
     /// scipy's `affine_transform` (`ni_interpolation.c`, `NI_GeometricTransform`).
     ///
     /// ```
