@@ -32,6 +32,7 @@ mod affine;
 mod batch;
 mod kernel;
 mod padding;
+mod runs;
 mod separable;
 mod weights;
 pub use affine::PointRule;

@@ -6,7 +6,11 @@
 //! [`Interpolant::eval_many`] evaluates (batched, prefetched, the fixed-size
 //! kernels of `kernel.rs`): no `ndim × count` array of coordinates in
 //! memory; under [`PointRule::CvalOutside`] the points outside the grid
-//! take `cval` without evaluation.
+//! take `cval` without evaluation. Where a fixed-size kernel serves (1 to 3
+//! dimensions, degrees 1 to 5, `f64`/`f32`), the outputs go by runs along
+//! the last output axis (`runs.rs`): the interval of each run whose points
+//! lie inside the grid is found once and evaluated without per-point
+//! checks, the same values bit for bit.
 //!
 //! **Points** as scipy forms them, to the bit: `x_h = offset_h + o_0 M_{h0}
 //! + o_1 M_{h1} + …` added in that order from `offset_h`, then `+ shift`
@@ -42,9 +46,11 @@ impl<T: Real + Copy + Send + Sync> Interpolant<T> {
     ///
     ///
     /// **Method**: the points of each block of output indices are formed by the affine map and
-    /// evaluated as [`Interpolant::eval_many`] does (no coordinate array). **Accuracy**: the
+    /// evaluated as [`Interpolant::eval_many`] does (no coordinate array), by runs along the
+    /// last output axis where a fixed-size kernel serves (`runs.rs`). **Accuracy**: the
     /// same values as pointwise [`Interpolant::eval`], bit for bit
-    /// (`affine.rs::tests::affine_points_equal_pointwise_evaluation_bit_for_bit`). **Source**:
+    /// (`affine.rs::tests::affine_points_equal_pointwise_evaluation_bit_for_bit`,
+    /// `runs.rs::tests::runs_equal_the_batch_path_bit_for_bit`). **Source**:
     /// scipy's `affine_transform` (`ni_interpolation.c`, `NI_GeometricTransform`).
     ///
     /// ```
@@ -91,19 +97,23 @@ impl<T: Real + Copy + Send + Sync> Interpolant<T> {
             rule,
             shape: &self.shape,
         };
-        self.eval_source(&src, out)
+        if self.has_run_kernel(rule) {
+            self.eval_affine_runs(&src, out)
+        } else {
+            self.eval_source(&src, out)
+        }
     }
 }
 
 /// The points of [`Interpolant::resample_affine`], generated batch by batch.
-struct AffinePoints<'a> {
-    matrix: &'a [f64],
-    offset: &'a [f64],
-    out_shape: &'a [usize],
-    shift: f64,
-    rule: PointRule,
+pub(super) struct AffinePoints<'a> {
+    pub(super) matrix: &'a [f64],
+    pub(super) offset: &'a [f64],
+    pub(super) out_shape: &'a [usize],
+    pub(super) shift: f64,
+    pub(super) rule: PointRule,
     /// The input's shape.
-    shape: &'a [usize],
+    pub(super) shape: &'a [usize],
 }
 
 impl PointSource for AffinePoints<'_> {
@@ -118,33 +128,20 @@ impl PointSource for AffinePoints<'_> {
         xs: &mut [f64],
         take_cval: &mut [bool],
     ) -> Result<(), NdimageError> {
-        let (n, k) = (self.shape.len(), self.out_shape.len());
-        let (mut index_stack, mut row_stack) = ([0; STACK_AXES], [0.0; STACK_AXES]);
-        let (mut index_heap, mut row_heap) = (Vec::new(), Vec::new());
-        let index = on_stack_or_heap(&mut index_stack, &mut index_heap, k);
-        let row = on_stack_or_heap(&mut row_stack, &mut row_heap, n);
+        let n = self.shape.len();
         // The last output axis' column of the matrix and the input's upper
         // ends, as f64 once per batch (no integer conversion per point).
         let (mut step_stack, mut high_stack) = ([0.0; STACK_AXES], [0.0; STACK_AXES]);
         let (mut step_heap, mut high_heap) = (Vec::new(), Vec::new());
         let step = on_stack_or_heap(&mut step_stack, &mut step_heap, n);
         let high = on_stack_or_heap(&mut high_stack, &mut high_heap, n);
-        for h in 0..n {
-            step[h] = self.matrix[h * k + k - 1];
-            high[h] = (self.shape[h] - 1) as f64;
-        }
-        let run_len = self.out_shape[k - 1];
-        let mut done = 0;
-        while done < take_cval.len() {
-            unflatten_into(start + done, self.out_shape, index);
-            self.row_sums(index, row);
-            let first = index[k - 1];
-            let run = (run_len - first).min(take_cval.len() - done);
+        self.steps_and_tops(step, high);
+        self.for_each_run(start, take_cval.len(), |done, first, run, row| {
             let at = done * n..(done + run) * n;
             let cv = &mut take_cval[done..done + run];
             self.fill_run(row, step, high, first as f64, &mut xs[at], cv);
-            done += run;
-        }
+            Ok(())
+        })?;
         // One pass for the rare overflow to infinity (finite matrix and
         // offset, huge indices); the position only then.
         if !xs.iter().fold(true, |ok, t| ok & t.is_finite()) {
@@ -173,6 +170,44 @@ fn on_stack_or_heap<'a, V: Copy + Default>(
 }
 
 impl AffinePoints<'_> {
+    /// The last output axis' column of the matrix into `step` and the
+    /// input's upper ends `n_h − 1` into `high`, in `f64`.
+    pub(super) fn steps_and_tops(&self, step: &mut [f64], high: &mut [f64]) {
+        let k = self.out_shape.len();
+        for (h, (m, hi)) in step.iter_mut().zip(high.iter_mut()).enumerate() {
+            *m = self.matrix[h * k + k - 1];
+            *hi = (self.shape[h] - 1) as f64;
+        }
+    }
+
+    /// `visit(done, first, len, row)` for each run along the last output
+    /// axis among the outputs `start..start + count`, in order: `done`
+    /// outputs before it, its first index `first` on that axis, its length,
+    /// and its row sums ([`Self::row_sums`]).
+    pub(super) fn for_each_run(
+        &self,
+        start: usize,
+        count: usize,
+        mut visit: impl FnMut(usize, usize, usize, &[f64]) -> Result<(), NdimageError>,
+    ) -> Result<(), NdimageError> {
+        let (n, k) = (self.shape.len(), self.out_shape.len());
+        let (mut index_stack, mut row_stack) = ([0; STACK_AXES], [0.0; STACK_AXES]);
+        let (mut index_heap, mut row_heap) = (Vec::new(), Vec::new());
+        let index = on_stack_or_heap(&mut index_stack, &mut index_heap, k);
+        let row = on_stack_or_heap(&mut row_stack, &mut row_heap, n);
+        let run_len = self.out_shape[k - 1];
+        let mut done = 0;
+        while done < count {
+            unflatten_into(start + done, self.out_shape, index);
+            self.row_sums(index, row);
+            let first = index[k - 1];
+            let len = (run_len - first).min(count - done);
+            visit(done, first, len, row)?;
+            done += len;
+        }
+        Ok(())
+    }
+
     /// The points of one run along the last output axis, from its index
     /// `first` (an integer below `2^53`, so `+ 1` stays exact), of row
     /// sums `row`: `x_h = (row_h + o · step_h) + shift`, then the rule

@@ -58,11 +58,18 @@ impl PointSource for Rows<'_> {
         take_cval: &mut [bool],
     ) -> Result<(), NdimageError> {
         let n = take_cval.len();
-        let rows = self.points.slice(s![start..start + n, ..]);
-        for (x, p) in xs.iter_mut().zip(rows.iter()) {
-            *x = *p;
-        }
         let ndim = self.shape.len();
+        // Column by column: map_coordinates' points are the transpose of a
+        // C-order `(ndim, count)` array, whose columns are contiguous (a
+        // row-major walk of the view would step across the columns).
+        for a in 0..ndim {
+            let col = self.points.slice(s![start..start + n, a]);
+            let put = |(j, &v): (usize, &f64)| xs[j * ndim + a] = v;
+            match col.as_slice() {
+                Some(v) => v.iter().enumerate().for_each(put),
+                None => col.iter().enumerate().for_each(put),
+            }
+        }
         for (x, cv) in xs.chunks_exact_mut(ndim).zip(take_cval.iter_mut()) {
             *cv = self.rule.apply(x, self.shape);
         }
@@ -319,7 +326,14 @@ fn first_non_finite(points: ArrayView2<'_, f64>) -> Option<usize> {
         .into_par_iter()
         .find_map_first(|c| {
             let rows = points.slice(s![c * CHUNK..((c + 1) * CHUNK).min(count), ..]);
-            let ok = rows.iter().fold(true, |ok, x| ok & x.is_finite());
+            // By columns (contiguous for map_coordinates' points); the
+            // position, row-major, only for a chunk with a non-finite one.
+            let ok = rows.columns().into_iter().fold(true, |ok, col| {
+                ok & match col.as_slice() {
+                    Some(v) => v.iter().fold(true, |ok, x| ok & x.is_finite()),
+                    None => col.fold(true, |ok, x| ok & x.is_finite()),
+                }
+            });
             (!ok).then(|| {
                 let at = rows.iter().position(|x| !x.is_finite()).unwrap_or(0);
                 c * CHUNK * ndim + at

@@ -65,7 +65,7 @@ fn cell_lanes<const M: usize>(x: f64) -> (f64, f64) {
 /// contraction into fused multiply-adds), so every version gives the same
 /// bits. Coordinates of `2^51` or more are redone by the caller.
 #[multiversion(targets("x86_64+avx512f+avx512vl+avx2+fma", "x86_64+avx2+fma"))]
-fn cells_and_weights<T: Real, const M: usize>(
+pub(super) fn cells_and_weights<T: Real, const M: usize>(
     x: &[f64; BATCH],
     first: &mut [f64; BATCH],
     w: &mut [[T; BATCH]; M],
@@ -175,7 +175,11 @@ impl<T: Real + Send + Sync> Interpolant<T> {
     }
 
     /// The general single-point evaluation, its work space made on first use.
-    fn eval_slow(&self, x: &[f64], space: &mut Option<(Vec<T>, Vec<usize>, Vec<bool>)>) -> T {
+    pub(super) fn eval_slow(
+        &self,
+        x: &[f64],
+        space: &mut Option<(Vec<T>, Vec<usize>, Vec<bool>)>,
+    ) -> T {
         let (w, off, inside) = space.get_or_insert_with(|| self.scratch());
         let zero = [0; 3];
         let mut sc = Scratch { w, off, inside };
@@ -200,7 +204,7 @@ impl<T: Real + Send + Sync> Interpolant<T> {
     /// [`cells_and_weights`]' rounding, gets its cell and weights here from
     /// [`centred_cell`].
     #[inline(always)]
-    fn base_fixed<const D: usize, const M: usize>(
+    pub(super) fn base_fixed<const D: usize, const M: usize>(
         &self,
         folded: &[[f64; BATCH]; D],
         firsts: &mut [[f64; BATCH]; D],
@@ -259,7 +263,7 @@ fn dot<T: Real, const M: usize>(w: &[[T; BATCH]; M], j: usize, row: &[T]) -> T {
 /// in the order of [`Interpolant::tensor_sum`]: rows of the last axis
 /// dotted, then weighted by the middle axis, then by the first.
 #[inline(always)]
-fn sum_fixed<T: Real, const D: usize, const M: usize>(
+pub(super) fn sum_fixed<T: Real, const D: usize, const M: usize>(
     c: &[T],
     base: usize,
     w: &[[[T; BATCH]; M]; D],
