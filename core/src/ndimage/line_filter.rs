@@ -659,13 +659,7 @@ mod tests {
     /// longer than the horizons), rows of 1, 3 and 8 lines.
     #[test]
     fn rows_in_place_equal_apply_lines_bit_for_bit() {
-        let modes = [
-            Mode::Mirror,
-            Mode::Reflect,
-            Mode::GridWrap,
-            Mode::Nearest,
-            Mode::GridConstant,
-        ];
+        let modes = Mode::ALL;
         for degree in [2u32, 3, 5, 7] {
             let family = SplineFamily::Order(degree + 1);
             for mode in modes {

@@ -339,13 +339,7 @@ mod tests {
     /// bit for bit under every rule.
     #[test]
     fn runs_equal_the_batch_path_bit_for_bit() {
-        let modes = [
-            Mode::Mirror,
-            Mode::Reflect,
-            Mode::GridWrap,
-            Mode::Nearest,
-            Mode::GridConstant,
-        ];
+        let modes = Mode::ALL;
         let rules = [
             PointRule::Fold,
             PointRule::CvalOutside,
