@@ -1,5 +1,6 @@
 //! The N-D engine: 1-D exact prefilter (sequential, and in certified
-//! blocks on 1 and 2 threads), 2-D `spline_filter`, and batch evaluation of
+//! blocks on 1 and 2 threads), one line of 10^7 samples under `tol` (f64
+//! and f32, 1 and 2 threads, beside a copy), 2-D `spline_filter`, and batch evaluation of
 //! 10^6 points on a 1024² cubic interpolant, f64, mirror ends. Ratios to scipy.ndimage on the same data
 //! come from `benches/peers/scipy_ratio.py`.
 
@@ -62,6 +63,12 @@ fn engine(c: &mut Criterion) {
             })
         });
     }
+    // One line of 10^7 samples under tol (spline_filter1d(x, d, tol=...)'s
+    // route: BlockPrefilter::apply_line_into, the window kernels of
+    // ndimage::window_recursion) on 1 and 2 threads, f64 and f32, beside a
+    // plain copy of the same bytes (the memory wall).
+    tol_line::<f64>(&mut g, 1e-12);
+    tol_line::<f32>(&mut g, 1e-6);
     // Batch evaluation as in engine_peer's eval2d (the scipy_ratio.py case):
     // 10^6 scattered points on a 1024² cubic, one thread.
     let a = Array2::from_shape_fn((1024, 1024), |(i, j)| value(i * 1024 + j));
@@ -79,6 +86,38 @@ fn engine(c: &mut Criterion) {
         one.install(|| b.iter(|| interp.eval_many(pts.view(), black_box(&mut out)).unwrap()))
     });
     g.finish();
+}
+
+/// `tol1d_{f64,f32}_d{3,5}_t{1,2}` (apply_line_into into a reused buffer)
+/// and `copy_{f64,f32}` of the same 10^7 samples.
+fn tol_line<T: Real + Send + Sync>(
+    g: &mut criterion::BenchmarkGroup<'_, criterion::measurement::WallTime>,
+    tol: f64,
+) {
+    let n = 10_000_000;
+    let s: Vec<T> = (0..n).map(|i| T::from_f64_exact(value(i))).collect();
+    let mut out = vec![T::zero(); n];
+    let name = T::type_name();
+    g.throughput(Throughput::Elements(n as u64));
+    g.bench_function(BenchmarkId::new(format!("copy_{name}"), n), |b| {
+        b.iter(|| out.clone_from_slice(black_box(&s)))
+    });
+    for degree in [3u32, 5] {
+        let route = Route::Truncated { tol };
+        let f = LineFilter::<T>::new(&SplineFamily::Order(degree + 1), Mode::Mirror, 0.0, route)
+            .unwrap();
+        let blocks = BlockPrefilter::from_line_filter(&f).unwrap();
+        for threads in [1usize, 2] {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap();
+            let id = BenchmarkId::new(format!("tol1d_{name}_d{degree}_t{threads}"), n);
+            g.bench_function(id, |b| {
+                pool.install(|| b.iter(|| blocks.apply_line_into(black_box(&s), &mut out).unwrap()))
+            });
+        }
+    }
 }
 
 criterion_group!(benches, engine);

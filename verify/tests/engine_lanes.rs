@@ -1,7 +1,10 @@
-//! The prefilter's vector kernels (`ndimage::lanes`, compiled per CPU and
-//! chosen at run time) against independent references, in f64 and f32:
-//! the certified blocks of one long line against the exact coefficients in
-//! 128-bit MPFR (within the tail bound plus the scalar's rounding), the
+//! The prefilter's vector kernels (`ndimage::lanes` and
+//! `ndimage::window_recursion`, compiled per CPU and chosen at run time)
+//! against independent references, in f64 and f32: the certified blocks of
+//! one long line against the exact coefficients in 128-bit MPFR (within the
+//! tail bound plus the scalar's rounding) — every mode, degrees 2 to 7 and
+//! 25, lines and blocks just around the window and vector sizes, lines
+//! shorter than a block, and the same bits on any number of threads; the
 //! side-by-side lines of a strided and of the contiguous axis against MPFR
 //! line by line and against the one-line scalar recursion
 //! (`LineFilter::apply`, a different order of operations).
@@ -89,6 +92,102 @@ fn f64_blocks_match_mpfr_within_the_bound() {
 #[test]
 fn f32_blocks_match_mpfr_within_the_bound() {
     blocks_within_bound::<f32>(1e-6);
+}
+
+/// Lengths around the sizes the block route cuts at, for `T`: a vector of
+/// lanes (8 `f64`, 16 `f32`), a window (8 KiB of samples), a task of four
+/// windows; and lines shorter than all of them.
+fn awkward_lengths<T>() -> Vec<usize> {
+    let window = (8 << 10) / std::mem::size_of::<T>();
+    let mut n = vec![1, 2, 7, 8, 9, 15, 16, 17, 33, 100];
+    for edge in [window, 2 * window, 4 * window] {
+        n.extend([edge - 1, edge, edge + 1]);
+    }
+    n.push(4 * window + 37);
+    n
+}
+
+/// [`BlockPrefilter::apply`] of every awkward length (blocks of 1 sample,
+/// of a few vectors, of a window ± 1, of the whole line and more) against
+/// the exact coefficients in 128-bit MPFR, within `bound · max|s| + 64 u A`
+/// (`max|s| ≤ max(1, |cval|) = 1`); every mode, degrees 2..7 and 25 (the
+/// cascade of twelve poles fused two to a pass), tolerance loose enough
+/// that the overlap is the filter's, not the line's.
+fn blocks_of_every_shape_match_mpfr<T: Real + Send + Sync>(tol: f64) {
+    let u = 2f64.powi(-(T::BITS as i32));
+    let window = (8 << 10) / std::mem::size_of::<T>();
+    for d in [2u32, 3, 4, 5, 6, 7, 25] {
+        let family = SplineFamily::Order(d + 1);
+        for mode in Mode::ALL {
+            let wide = LineFilter::<W>::new(&family, mode, 0.5, Route::Exact).expect("MPFR filter");
+            let amp = wide.recursive().amplification().to_f64();
+            let f = LineFilter::<T>::new(&family, mode, 0.5, Route::Truncated { tol }).unwrap();
+            let blocks = BlockPrefilter::from_line_filter(&f).unwrap();
+            let allowed = f.bound() + 64.0 * u * amp;
+            for (k, n) in awkward_lengths::<T>().into_iter().enumerate() {
+                if d == 25 && k % 3 != 0 {
+                    continue;
+                }
+                let s: Vec<T> = to(&signal(n, 100 + k as u64));
+                let mut c: Vec<W> = s.iter().map(|x| W::from_f64_exact(x.to_f64())).collect();
+                wide.apply(&mut c, &mut Vec::new());
+                let want: Vec<f64> = c.iter().map(|x| x.to_f64()).collect();
+                for block in [1, 40, window - 1, window + 1, n, 3 * n + 5] {
+                    let got = blocks.apply(&s, block).unwrap();
+                    let diff = max_diff(&got, &want);
+                    assert!(
+                        diff <= allowed,
+                        "{} d={d} {mode} n={n} block={block}: {diff:e} > {allowed:e}",
+                        T::BITS
+                    );
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn f64_blocks_of_every_shape_match_mpfr() {
+    blocks_of_every_shape_match_mpfr::<f64>(1e-12);
+}
+
+#[test]
+fn f32_blocks_of_every_shape_match_mpfr() {
+    blocks_of_every_shape_match_mpfr::<f32>(1e-6);
+}
+
+/// One long line gives the same bits on one, two and three threads (the
+/// windows depend on the length only), f64 and f32, cubic and degree 7.
+fn blocks_are_the_same_bits_on_any_pool<T: Real + Send + Sync>(tol: f64) {
+    let s: Vec<T> = to(&signal(300_001, 9));
+    for d in [3u32, 7] {
+        let family = SplineFamily::Order(d + 1);
+        let f =
+            LineFilter::<T>::new(&family, Mode::Reflect, 0.0, Route::Truncated { tol }).unwrap();
+        let blocks = BlockPrefilter::from_line_filter(&f).unwrap();
+        let run = |threads: usize| {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap();
+            let mut out = vec![T::zero(); s.len()];
+            pool.install(|| blocks.apply_line_into(&s, &mut out))
+                .unwrap();
+            out
+        };
+        let one = run(1);
+        assert!(one == run(2) && one == run(3), "{} d={d}", T::BITS);
+    }
+}
+
+#[test]
+fn f64_blocks_are_the_same_bits_on_any_pool() {
+    blocks_are_the_same_bits_on_any_pool::<f64>(1e-12);
+}
+
+#[test]
+fn f32_blocks_are_the_same_bits_on_any_pool() {
+    blocks_are_the_same_bits_on_any_pool::<f32>(1e-6);
 }
 
 /// Every axis of a 2-D array (axis 0: strided lines side by side; axis 1:

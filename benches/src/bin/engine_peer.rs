@@ -6,7 +6,8 @@
 //! Usage: `engine_peer KIND DEGREE N REPS` with KIND one of `filter1d`,
 //! `blocks1d` (1-D, blocks overlapping by the width of 1e-15, a quarter of
 //! the signal per thread and at least 2^15 samples per block), `tol1d` (1-D,
-//! the `tol=1e-12` route: `BlockPrefilter::apply_line_into`), `filter2d`
+//! the `tol=1e-12` route: `BlockPrefilter::apply_line_into`), `tol1d32`
+//! (the same in f32 at `tol=1e-6`), `filter2d`
 //! (N × N), `filter3d` (N × N × N), `lines2d` (N × N, the contiguous axis
 //! only: `spline_filter1d` along axis 1), `eval2d` (10⁶ points on an N × N
 //! cubic interpolant, mirror). Threads: `RAYON_NUM_THREADS`.
@@ -39,11 +40,24 @@ fn time(reps: usize, mut f: impl FnMut()) -> f64 {
     )
 }
 
+/// `BlockPrefilter::apply_line_into` of `n` samples into a reused buffer.
+fn tol_line<T: Real + Send + Sync>(family: &SplineFamily, n: usize, reps: usize, tol: f64) -> f64 {
+    let s: Vec<T> = (0..n).map(|i| T::from_f64_exact(value(i))).collect();
+    let route = Route::Truncated { tol };
+    let f = LineFilter::<T>::new(family, Mode::Mirror, 0.0, route).expect("filter");
+    let b = BlockPrefilter::from_line_filter(&f).expect("blocks");
+    let mut out = vec![T::zero(); n];
+    time(reps, || {
+        b.apply_line_into(black_box(&s), &mut out).unwrap();
+        black_box(&out);
+    })
+}
+
 fn main() {
     let args: Vec<String> = std::env::args().collect();
     if args.len() != 5 {
         eprintln!(
-            "usage: engine_peer filter1d|blocks1d|tol1d|filter2d|filter3d|eval2d DEGREE N REPS"
+            "usage: engine_peer filter1d|blocks1d|tol1d|tol1d32|filter2d|filter3d|lines2d|eval2d DEGREE N REPS"
         );
         std::process::exit(2);
     }
@@ -75,18 +89,9 @@ fn main() {
                 black_box(&out);
             })
         }
-        "tol1d" => {
-            // The `tol=1e-12` route of one line (what Python's spline_filter1d runs).
-            let s: Vec<f64> = (0..n).map(value).collect();
-            let tol = Route::Truncated { tol: 1e-12 };
-            let f = LineFilter::<f64>::new(&family, Mode::Mirror, 0.0, tol).expect("filter");
-            let b = BlockPrefilter::from_line_filter(&f).expect("blocks");
-            let mut out = vec![0.0; n];
-            time(reps, || {
-                b.apply_line_into(black_box(&s), &mut out).unwrap();
-                black_box(&out);
-            })
-        }
+        // The `tol=` route of one line (what Python's spline_filter1d runs).
+        "tol1d" => tol_line::<f64>(&family, n, reps, 1e-12),
+        "tol1d32" => tol_line::<f32>(&family, n, reps, 1e-6),
         "filter2d" | "filter3d" => {
             let dims = if kind == "filter2d" {
                 vec![n, n]

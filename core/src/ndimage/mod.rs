@@ -44,5 +44,6 @@ mod lanes;
 pub mod line_filter;
 pub mod mode;
 pub mod nd_prefilter;
+mod window_recursion;
 
 pub use error::NdimageError;
