@@ -163,14 +163,24 @@ impl<T: Real> WindowRecursion<T> {
         debug_assert!(rest.is_empty() && tail.is_multiple_of(V) && lo.is_multiple_of(V));
         buf.resize((src.len() + tail / V) * V, T::zero());
         let (buf, _) = buf.as_chunks_mut::<V>();
-        let (first, rest) = self.powers.split_first().expect("a spline has a pole");
+        let (Some((first, later)), Some((last, earlier))) =
+            (self.powers.split_first(), self.powers.split_last())
+        else {
+            // No pole (degrees 0 and 1): the coefficients are the samples
+            // times the gain.
+            let flat = src.as_flattened();
+            for (o, x) in out.iter_mut().zip(&flat[lo..]) {
+                *o = self.scale.clone() * x;
+            }
+            let finite = flat.iter().all(|x| x.is_finite());
+            return (flat.iter().fold(0.0, magnitude), finite);
+        };
         let max = causal(first, Some(src), buf, ahead);
         let finite = buf.last().is_none_or(|c| c.iter().all(|x| x.is_finite()));
-        for z in rest {
+        for z in later {
             causal(z, None, buf, None);
         }
-        let (last, rest) = self.powers.split_last().expect("a spline has a pole");
-        for z in rest {
+        for z in earlier {
             anticausal(z, buf, lo / V, None);
         }
         anticausal(last, buf, lo / V, Some((out, &self.scale)));
