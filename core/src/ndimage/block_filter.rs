@@ -13,7 +13,7 @@
 //! `|D_block − D_exact| ≤ bound · max|s| + rounding`, `bound < tol`.
 //!
 //! The windows' recursions run along consecutive samples in vector lanes
-//! ([`window_recursion`](super::window_recursion): the `V`-tap filter by
+//! (`ndimage::window_recursion`, a private module: the `V`-tap filter by
 //! doubling and the recursion of stride `V`, no transposes), every causal
 //! pass first and every anti-causal pass after; a window of
 //! [`WINDOW_BYTES`] (1024 `f64`) plus its overlaps stays in L1 across the

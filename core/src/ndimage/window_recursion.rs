@@ -16,7 +16,7 @@
 //! chunk is one multiply-add (`ξ^V y_{k−V}`: four cycles per chunk). The
 //! anti-causal recursion `Y_k = x_k + ξ Y_{k+1}` is the mirror image, run
 //! from the window's end. The powers `ξ^{2^l}` are formed by squaring in
-//! the scalar (`ξ^V` to `(2 log₂V − 1) u` relative).
+//! the scalar (`ξ^V` to `(V − 1) u` relative).
 //!
 //! A window is `[samples][T zeros]` (`T` at least the longest pole
 //! horizon): every causal pass runs first (the first reads the samples,
