@@ -811,72 +811,22 @@ mod x86 {
         [lanes8_ps(&q, n), lanes8_ps(&q, n + 8)]
     }
 
-    kernels!(
-        avx512_f64,
-        "avx512f,avx512dq,fma",
-        f64,
-        8,
-        __m512d,
-        _mm512_set1_pd,
-        _mm512_setzero_pd,
-        _mm512_fmadd_pd,
-        _mm512_mul_pd,
-        _mm512_range_pd,
-        after_pd8,
-        (0, 7, 1),
-        (1, 6, 2),
-        (2, 4, 4)
-    );
-    kernels!(
-        avx512_f32,
-        "avx512f,avx512dq,fma",
-        f32,
-        16,
-        __m512,
-        _mm512_set1_ps,
-        _mm512_setzero_ps,
-        _mm512_fmadd_ps,
-        _mm512_mul_ps,
-        _mm512_range_ps,
-        after_ps16,
-        (0, 15, 1),
-        (1, 14, 2),
-        (2, 12, 4),
-        (3, 8, 8)
-    );
-    kernels!(
-        avx2_f64,
-        "avx2,fma",
-        f64,
-        8,
-        f64x4x2,
-        set1_pd2,
-        zero_pd2,
-        fmadd_pd2,
-        mul_pd2,
-        absmax_pd2,
-        after_pd2,
-        (0, 7, 1),
-        (1, 6, 2),
-        (2, 4, 4)
-    );
-    kernels!(
-        avx2_f32,
-        "avx2,fma",
-        f32,
-        16,
-        f32x8x2,
-        set1_ps2,
-        zero_ps2,
-        fmadd_ps2,
-        mul_ps2,
-        absmax_ps2,
-        after_ps2,
-        (0, 15, 1),
-        (1, 14, 2),
-        (2, 12, 4),
-        (3, 8, 8)
-    );
+    // One line per kernel module: name, features, scalar, lanes, register,
+    // the operations, then the doubling levels (shift 2^l: the valign counts
+    // bringing in the previous and the next chunk).
+    #[rustfmt::skip]
+    kernels!(avx512_f64, "avx512f,avx512dq,fma", f64, 8, __m512d, _mm512_set1_pd, _mm512_setzero_pd,
+        _mm512_fmadd_pd, _mm512_mul_pd, _mm512_range_pd, after_pd8, (0, 7, 1), (1, 6, 2), (2, 4, 4));
+    #[rustfmt::skip]
+    kernels!(avx512_f32, "avx512f,avx512dq,fma", f32, 16, __m512, _mm512_set1_ps, _mm512_setzero_ps,
+        _mm512_fmadd_ps, _mm512_mul_ps, _mm512_range_ps, after_ps16,
+        (0, 15, 1), (1, 14, 2), (2, 12, 4), (3, 8, 8));
+    #[rustfmt::skip]
+    kernels!(avx2_f64, "avx2,fma", f64, 8, f64x4x2, set1_pd2, zero_pd2, fmadd_pd2, mul_pd2,
+        absmax_pd2, after_pd2, (0, 7, 1), (1, 6, 2), (2, 4, 4));
+    #[rustfmt::skip]
+    kernels!(avx2_f32, "avx2,fma", f32, 16, f32x8x2, set1_ps2, zero_ps2, fmadd_ps2, mul_ps2,
+        absmax_ps2, after_ps2, (0, 15, 1), (1, 14, 2), (2, 12, 4), (3, 8, 8));
 }
 
 #[cfg(test)]
