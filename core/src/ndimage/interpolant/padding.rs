@@ -56,7 +56,7 @@ where
     }
     let (n_last, row_len) = (shape[nd - 1], padded[nd - 1]);
     let total: usize = padded.iter().product();
-    let mut out = vec![T::zero(); total];
+    let mut out = zeros_on_huge_pages(total);
     out.par_chunks_mut(row_len)
         .enumerate()
         .for_each(|(r, row)| {
@@ -81,6 +81,43 @@ where
     ArrayD::from_shape_vec(IxDyn(&padded), out).expect("padded shape")
 }
 
+/// `n` zeros whose memory the kernel may back with transparent huge pages
+/// (Linux `madvise(MADV_HUGEPAGE)` before the first touch; elsewhere, and
+/// for arrays under 4 MiB, a plain vector). A large vector's pages are
+/// fresh from `mmap` and faulted in on first write: on 4 KiB pages a 2048²
+/// f64 array (8192 faults, each zeroing its page) cost a fifth of a
+/// rotation's time; on 2 MiB pages the same bytes take 17 faults. A hint:
+/// the contents are the same zeros either way.
+pub(super) fn zeros_on_huge_pages<T: Real>(n: usize) -> Vec<T> {
+    let v = vec![T::zero(); n];
+    advise_huge_pages(&v);
+    v
+}
+
+#[cfg(target_os = "linux")]
+fn advise_huge_pages<T>(v: &[T]) {
+    const PAGE: usize = 4096;
+    let bytes = std::mem::size_of_val(v);
+    if bytes < 4 << 20 {
+        return;
+    }
+    let start = v.as_ptr() as usize;
+    // The whole pages inside the vector.
+    let first = start.next_multiple_of(PAGE);
+    let len = (start + bytes - first) / PAGE * PAGE;
+    // SAFETY: `[first, first + len)` lies inside `v`'s allocation, which
+    // this function borrows; MADV_HUGEPAGE changes neither the contents
+    // nor the protection of the range, only the page size the kernel may
+    // use for it. A failure (no THP support) leaves the range as it was.
+    #[allow(unsafe_code)]
+    unsafe {
+        libc::madvise(first as *mut libc::c_void, len, libc::MADV_HUGEPAGE);
+    }
+}
+
+#[cfg(not(target_os = "linux"))]
+fn advise_huge_pages<T>(_: &[T]) {}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -104,5 +141,19 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// The advised vectors hold `n` zeros whatever their size and
+    /// alignment: below the 4 MiB threshold, at it, and above it with a
+    /// length that leaves a partial page at the end.
+    #[test]
+    fn huge_page_zeros_are_zeros() {
+        for n in [0, 1, 1000, (4 << 20) / 8, (5 << 20) / 8 + 3] {
+            let v: Vec<f64> = zeros_on_huge_pages(n);
+            assert_eq!(v.len(), n);
+            assert!(v.iter().all(|&x| x.to_bits() == 0), "{n}");
+        }
+        let v: Vec<f32> = zeros_on_huge_pages((9 << 20) / 4 + 1);
+        assert!(v.iter().all(|&x| x.to_bits() == 0));
     }
 }
