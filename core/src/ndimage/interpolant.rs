@@ -147,7 +147,7 @@ impl<T: Real + Send + Sync> Interpolant<T> {
                     .expect("the data's shape");
                 let axes: Vec<usize> = (0..data.ndim()).collect();
                 spline_filter_from(&data.view().into_dyn(), &mut c, &axes, Some(&filter))?;
-                extend_padded(&c, opts.mode, &T::zero(), pad)
+                extend_padded(&c, opts.mode, &T::zero(), pad).0
             }
             Mode::Nearest | Mode::GridConstant => {
                 let c = padded_coefficients(data, &filter, pad)?.into_dyn();
@@ -214,8 +214,11 @@ impl<T: Real + Send + Sync> Interpolant<T> {
         } else {
             order as usize / 2 + 2
         };
-        check_finite(coeffs)?;
-        let padded = extend_padded(coeffs, mode, &T::from_f64_exact(cval), pad);
+        let (padded, finite) = extend_padded(coeffs, mode, &T::from_f64_exact(cval), pad);
+        if !finite {
+            // Names the first non-finite coefficient.
+            check_finite(coeffs)?;
+        }
         Ok(Interpolant {
             shape: coeffs.shape().to_vec(),
             strides: padded.strides().iter().map(|&s| s as usize).collect(),

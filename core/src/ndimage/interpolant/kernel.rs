@@ -55,6 +55,14 @@ fn cell_lanes<const M: usize>(x: f64) -> (f64, f64) {
     }
 }
 
+/// The most rows a batch may prefetch a whole batch ahead of its sums
+/// ([`Interpolant::eval_fixed`]): 512 rows of at most 48 bytes stay within
+/// the 48 KiB L1 of Zen 4 / 5 until they are read. Above it (3-D cubics:
+/// 1024 rows) a batch is summed right after it is located: one batch ahead,
+/// map_coordinates 128³ cubic took 65.5 ms against 60.5 (one thread,
+/// min of 15 alternated), 2-D cubics and quintics gain.
+const AHEAD_ROWS: usize = 512;
+
 /// Whether every coordinate lies in `[0, high]` (a branch-free pass, in
 /// lanes; a NaN does not).
 #[inline(always)]
@@ -201,8 +209,10 @@ impl<T: Real + Send + Sync> Interpolant<T> {
     /// [`BATCH`] points, two stages apart: each batch is located
     /// ([`Self::locate_batch`]: its rows prefetched) before the previous one
     /// is summed ([`Located::sum`]), so that a point's rows are on their way
-    /// a whole batch before they are read. The sums are those of the points
-    /// one by one (only their interleaving changes), so the same bits.
+    /// a whole batch before they are read (up to [`AHEAD_ROWS`] rows a
+    /// batch; above, each batch is summed as soon as it is located). The
+    /// sums are those of the points one by one (only their interleaving
+    /// changes), so the same bits.
     fn eval_fixed<S: PointSource, const D: usize, const M: usize>(
         &self,
         src: &S,
@@ -224,6 +234,10 @@ impl<T: Real + Send + Sync> Interpolant<T> {
                 current,
                 &mut fallback,
             )?;
+            if M.pow(D as u32 - 1) * BATCH > AHEAD_ROWS {
+                current.sum(c, batch, &self.strides);
+                continue;
+            }
             if let Some(done) = pending.take() {
                 previous.sum(c, done, &self.strides);
             }
