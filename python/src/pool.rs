@@ -1,6 +1,7 @@
 //! The `threads=` argument: `None` runs on rayon's global pool (one thread
 //! per core), `n` on a pool of `n` threads kept for later calls (building a
-//! pool costs thread start-ups, too much to pay per call).
+//! pool costs thread start-ups, too much to pay per call), its workers on
+//! different CPUs (`spread`).
 
 use crate::error::value_error;
 use pyo3::PyResult;
@@ -32,12 +33,11 @@ fn pool(threads: usize) -> PyResult<Arc<ThreadPool>> {
     if let Some(p) = pools.get(&threads) {
         return Ok(p.clone());
     }
-    let p = Arc::new(
-        ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .build()
-            .map_err(value_error)?,
-    );
+    let mut builder = ThreadPoolBuilder::new().num_threads(threads);
+    if let Some(spread) = spread::Spread::new(threads) {
+        builder = builder.start_handler(move |i| spread.apply(i));
+    }
+    let p = Arc::new(builder.build().map_err(value_error)?);
     if pools.len() >= KEPT_POOLS {
         pools.clear();
     }
@@ -51,4 +51,83 @@ pub fn run_with<R: Send>(threads: Option<usize>, f: impl FnOnce() -> R + Send) -
         None => Ok(f()),
         Some(n) => Ok(pool(n)?.install(f)),
     }
+}
+
+/// Workers of one pool on different CPUs. Why: a call from Python wakes
+/// one worker, which wakes the next; when the cores were busy just before
+/// the call (Python itself computing, e.g. scipy between two of our calls)
+/// Linux places the woken worker on its waker's CPU and takes about 12 ms
+/// to move it (sched_switch/sched_wakeup traces on 2 cores: both workers
+/// taking turns on CPU 0 while CPU 1 idles, two threads no faster than
+/// one; `python/bench/handoff.py` shows it as CPU time equal to wall time). Worker `i` of `n`
+/// may run on the allowed CPUs `i, i + n, i + 2n, …` (the `i`-th of every
+/// `n` in the process's affinity mask): no two workers of a pool share a
+/// CPU, and each keeps as many CPUs to move between as `n` allows. Linux
+/// only, and only for 2 or more workers and no more than the allowed CPUs.
+mod spread {
+    /// Bits of the affinity mask kept (CPUs 0 to 1023).
+    const WORDS: usize = 16;
+
+    #[derive(Clone)]
+    pub(super) struct Spread {
+        cpus: Vec<usize>,
+        n: usize,
+    }
+
+    impl Spread {
+        pub(super) fn new(n: usize) -> Option<Self> {
+            let cpus = allowed()?;
+            (n >= 2 && n <= cpus.len()).then_some(Spread { cpus, n })
+        }
+
+        /// Restricts the calling worker `i` to its share of the CPUs.
+        pub(super) fn apply(&self, i: usize) {
+            let mine: Vec<usize> = self
+                .cpus
+                .iter()
+                .skip(i % self.n)
+                .step_by(self.n)
+                .copied()
+                .collect();
+            restrict(&mine);
+        }
+    }
+
+    #[cfg(target_os = "linux")]
+    fn allowed() -> Option<Vec<usize>> {
+        let mut mask = [0u64; WORDS];
+        // SAFETY: the kernel writes at most `size_of_val(&mask)` bytes into
+        // `mask`, which is that long.
+        #[allow(unsafe_code)]
+        let rc = unsafe {
+            libc::sched_getaffinity(0, std::mem::size_of_val(&mask), mask.as_mut_ptr().cast())
+        };
+        (rc == 0).then(|| {
+            (0..WORDS * 64)
+                .filter(|&c| mask[c / 64] >> (c % 64) & 1 == 1)
+                .collect()
+        })
+    }
+
+    #[cfg(target_os = "linux")]
+    fn restrict(cpus: &[usize]) {
+        let mut mask = [0u64; WORDS];
+        for &c in cpus {
+            mask[c / 64] |= 1 << (c % 64);
+        }
+        // SAFETY: the kernel reads `size_of_val(&mask)` bytes from `mask`;
+        // a refusal leaves the thread's affinity as it was (a hint).
+        #[allow(unsafe_code)]
+        unsafe {
+            libc::sched_setaffinity(0, std::mem::size_of_val(&mask), mask.as_ptr().cast());
+        }
+    }
+
+    #[cfg(not(target_os = "linux"))]
+    fn allowed() -> Option<Vec<usize>> {
+        None
+    }
+
+    #[cfg(not(target_os = "linux"))]
+    fn restrict(_: &[usize]) {}
 }

@@ -8,6 +8,7 @@
 //! strides, 1 to 4 dimensions, degrees 0 to 7, every mode.
 
 use splinelab::ndarray::{Array2, ArrayD, IxDyn};
+use splinelab::ndimage::interpolant::PointRule;
 use splinelab::prelude::*;
 use splinelab_verify::rng::SplitMix64;
 
@@ -175,5 +176,108 @@ fn cubic_batch_is_its_documented_sum_bit_for_bit() {
             sum += w0[l0] * dot;
         }
         assert_eq!(got.to_bits(), sum.to_bits(), "at {p}");
+    }
+}
+
+/// Points inside `[0, ν − 1]` on every axis fill whole batches, which the
+/// fixed-size kernels locate in SIMD lanes (no fold, offsets in lanes, rows
+/// prefetched a batch ahead); every 150th point lies just outside, so that
+/// some batches take the point-by-point path. Both equal `eval` bit for
+/// bit: 1 to 3 dimensions, degrees 1 to 5, every mode, under the point
+/// rules of scipy's `constant` and `wrap` as well, counts that are not
+/// multiples of the batch or chunk sizes, points read by rows and by
+/// columns.
+#[test]
+fn batches_inside_the_grid_equal_single_point_evaluation() {
+    let cases: [(&[usize], usize); 3] = [(&[61], 4500), (&[29, 23], 4211), (&[11, 9, 13], 2113)];
+    for (shape, count) in cases {
+        let a = data(shape, 30 + shape.len() as u64);
+        let mut r = SplitMix64::new(7 + shape.len() as u64);
+        let pts = Array2::from_shape_fn((count, shape.len()), |(k, ax)| {
+            let n = shape[ax] as f64;
+            if k % 150 == 77 {
+                -0.25
+            } else {
+                r.range(0.0, n - 1.0)
+            }
+        });
+        let by_axis = pts.t().as_standard_layout().into_owned();
+        for degree in 1..=5 {
+            for mode in Mode::ALL {
+                let mut opts = Options::new(degree, mode);
+                opts.cval = -0.75;
+                let f = Interpolant::new(&a, opts).unwrap();
+                let (mut rows, mut cols) = (vec![0.0; count], vec![0.0; count]);
+                f.eval_many(pts.view(), &mut rows).unwrap();
+                f.eval_many(by_axis.t(), &mut cols).unwrap();
+                for (k, p) in pts.rows().into_iter().enumerate() {
+                    let want = f.eval(p.as_slice().unwrap()).unwrap();
+                    assert_eq!(
+                        rows[k].to_bits(),
+                        want.to_bits(),
+                        "{shape:?} {mode:?} {degree} at {p}"
+                    );
+                    assert_eq!(
+                        cols[k].to_bits(),
+                        want.to_bits(),
+                        "{shape:?} {mode:?} {degree} at {p}"
+                    );
+                }
+                // scipy's 'constant': cval outside, the same values inside.
+                f.eval_many_with(by_axis.t(), PointRule::CvalOutside, &mut cols)
+                    .unwrap();
+                for (k, p) in pts.rows().into_iter().enumerate() {
+                    let want = if k % 150 == 77 { -0.75 } else { rows[k] };
+                    assert_eq!(
+                        cols[k].to_bits(),
+                        want.to_bits(),
+                        "{shape:?} {mode:?} {degree} at {p}"
+                    );
+                }
+            }
+        }
+    }
+}
+
+/// A non-finite coordinate is refused whichever batch or chunk meets it
+/// first, and the error names the first one in row-major order: NaN and
+/// ±inf, on the fixed-size kernels (degree 3) and the general path
+/// (degree 7), under every point rule (a NaN is not "outside" for scipy's
+/// `constant`: it is refused).
+#[test]
+fn the_first_non_finite_coordinate_is_named_whichever_chunk_meets_it() {
+    let shape = [40, 30];
+    let a = data(&shape, 12);
+    let count = 9000;
+    for degree in [3, 7] {
+        let f = Interpolant::new(&a, Options::new(degree, Mode::Mirror)).unwrap();
+        for bad in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
+            for rule in [
+                PointRule::Fold,
+                PointRule::CvalOutside,
+                PointRule::WrapPeriodNMinus1,
+            ] {
+                for (first, later) in [
+                    ((4100, 1), (8000, 0)),
+                    ((63, 0), (64, 1)),
+                    ((8999, 1), (8999, 1)),
+                ] {
+                    let mut pts = points(count, &shape, 4);
+                    pts[later] = bad;
+                    pts[first] = bad;
+                    let by_axis = pts.t().as_standard_layout().into_owned();
+                    let mut out = vec![0.0; count];
+                    let want = first.0 * 2 + first.1;
+                    for view in [pts.view(), by_axis.t()] {
+                        match f.eval_many_with(view, rule, &mut out) {
+                            Err(NdimageError::NonFiniteCoordinate(k)) => {
+                                assert_eq!(k, want, "degree {degree} {bad} {rule:?}")
+                            }
+                            other => panic!("degree {degree} {bad} {rule:?}: {other:?}"),
+                        }
+                    }
+                }
+            }
+        }
     }
 }

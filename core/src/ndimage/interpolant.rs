@@ -20,7 +20,7 @@
 use super::NdimageError;
 use super::line_filter::{LineFilter, Route};
 use super::mode::Mode;
-use super::nd_prefilter::{check_finite, padded_coefficients, spline_filter};
+use super::nd_prefilter::{check_finite, padded_coefficients, spline_filter_from};
 use crate::scalar::Real;
 use crate::sspline::bspline_uniform::{cell_derivatives_into, centred_cell};
 use crate::sspline::{MAX_ORDER, SplineFamily};
@@ -36,7 +36,7 @@ mod runs;
 mod separable;
 mod weights;
 pub use affine::PointRule;
-use padding::extend_padded;
+use padding::{extend_padded, zeros_on_huge_pages};
 
 /// How to build an [`Interpolant`].
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -141,9 +141,13 @@ impl<T: Real + Send + Sync> Interpolant<T> {
             // extended by the mode (what `LineFilter::apply_padded` does):
             // the whole-array prefilter, then one pass of copies.
             Mode::Mirror | Mode::Reflect | Mode::GridWrap => {
-                let mut c = data.as_standard_layout().into_owned();
-                spline_filter(&mut c, &filter)?;
-                extend_padded(&c, opts.mode, &T::zero(), pad)
+                // Copied and checked on the pool (`spline_filter_from`),
+                // not by a copy on the calling thread.
+                let mut c = ArrayD::from_shape_vec(data.shape(), zeros_on_huge_pages(data.len()))
+                    .expect("the data's shape");
+                let axes: Vec<usize> = (0..data.ndim()).collect();
+                spline_filter_from(&data.view().into_dyn(), &mut c, &axes, Some(&filter))?;
+                extend_padded(&c, opts.mode, &T::zero(), pad).0
             }
             Mode::Nearest | Mode::GridConstant => {
                 let c = padded_coefficients(data, &filter, pad)?.into_dyn();
@@ -210,8 +214,11 @@ impl<T: Real + Send + Sync> Interpolant<T> {
         } else {
             order as usize / 2 + 2
         };
-        check_finite(coeffs)?;
-        let padded = extend_padded(coeffs, mode, &T::from_f64_exact(cval), pad);
+        let (padded, finite) = extend_padded(coeffs, mode, &T::from_f64_exact(cval), pad);
+        if !finite {
+            // Names the first non-finite coefficient.
+            check_finite(coeffs)?;
+        }
         Ok(Interpolant {
             shape: coeffs.shape().to_vec(),
             strides: padded.strides().iter().map(|&s| s as usize).collect(),

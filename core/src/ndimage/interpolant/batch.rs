@@ -8,14 +8,17 @@
 //! point is memory latency, not arithmetic. The points are taken in batches:
 //! first every point of the batch is located (cell, weights, flat offset)
 //! and its rows are prefetched, then the sums run on rows that are already
-//! on their way. Results are bit-identical to the unbatched order (the
-//! prefetch is only a hint).
+//! on their way (the fixed-size kernels of `kernel.rs` sum a batch only
+//! after the next one is located, so every point's rows have a batch's
+//! time to arrive). The points are checked finite batch by batch as they
+//! are read (no separate pass over them). Results are bit-identical to the
+//! unbatched order (the prefetch is only a hint).
 
 use super::{Interpolant, PointRule, Scratch, cell_weights_into};
 use crate::ndimage::NdimageError;
 use crate::scalar::Real;
 use crate::sspline::bspline_uniform::centred_cell;
-use ndarray::{ArrayView2, s};
+use ndarray::{ArrayView2, Axis, s};
 use rayon::prelude::*;
 
 /// Points per parallel task (one work space each).
@@ -38,16 +41,81 @@ pub(super) trait PointSource: Sync {
         xs: &mut [f64],
         take_cval: &mut [bool],
     ) -> Result<(), NdimageError>;
+
+    /// [`Self::fill`] by axis into SIMD lanes: coordinate `a` of point
+    /// `start + j` into `xs[a][j]` (`D ≤ 3` axes, `take_cval.len()` points),
+    /// for the fixed-size kernels. By default [`Self::fill`], transposed.
+    fn fill_lanes<const D: usize>(
+        &self,
+        start: usize,
+        xs: &mut [[f64; BATCH]; D],
+        take_cval: &mut [bool],
+    ) -> Result<(), NdimageError> {
+        let n = take_cval.len();
+        let mut flat = [0.0; BATCH * 3];
+        self.fill(start, &mut flat[..n * D], take_cval)?;
+        for (j, x) in flat[..n * D].chunks_exact(D).enumerate() {
+            for (a, &v) in x.iter().enumerate() {
+                xs[a][j] = v;
+            }
+        }
+        Ok(())
+    }
 }
 
-/// The rows of a `(count, ndim)` array (any strides), checked finite
-/// beforehand, and what happens to a row outside the grid
+/// The rows of a `(count, ndim)` array (any strides), each checked finite
+/// as it is read, and what happens to a row outside the grid
 /// ([`PointRule::CvalOutside`]: `cval`; [`PointRule::Fold`]: nothing;
 /// [`PointRule::WrapPeriodNMinus1`]: folded by scipy's `wrap`).
 struct Rows<'a> {
     points: ArrayView2<'a, f64>,
+    /// Each axis' column as a slice where it is contiguous: map_coordinates'
+    /// points are the transpose of a C-order `(ndim, count)` array, whose
+    /// columns are (a row-major walk of the view would step across them).
+    columns: Vec<Option<&'a [f64]>>,
     rule: PointRule,
     shape: &'a [usize],
+}
+
+impl<'a> Rows<'a> {
+    fn new(points: ArrayView2<'a, f64>, rule: PointRule, shape: &'a [usize]) -> Self {
+        let columns = (0..points.ncols())
+            .map(|a| points.index_axis_move(Axis(1), a).to_slice())
+            .collect();
+        Rows {
+            points,
+            columns,
+            rule,
+            shape,
+        }
+    }
+
+    /// Coordinate `a` of points `start..start + n`, in order, to `put`.
+    #[inline(always)]
+    fn column(&self, a: usize, start: usize, n: usize, put: impl FnMut((usize, &f64))) {
+        match self.columns[a] {
+            Some(col) => col[start..start + n].iter().enumerate().for_each(put),
+            None => self
+                .points
+                .slice(s![start..start + n, a])
+                .iter()
+                .enumerate()
+                .for_each(put),
+        }
+    }
+}
+
+/// Whether every value is finite (a branch-free pass, in lanes).
+#[inline(always)]
+fn all_finite(x: &[f64]) -> bool {
+    x.iter().fold(true, |ok, t| ok & t.is_finite())
+}
+
+/// The error of a non-finite coordinate among points from `start` on (its
+/// flat index is named by [`Interpolant::eval_many_with`], which knows
+/// every point).
+fn non_finite(start: usize, ndim: usize) -> NdimageError {
+    NdimageError::NonFiniteCoordinate(start * ndim)
 }
 
 impl PointSource for Rows<'_> {
@@ -59,19 +127,62 @@ impl PointSource for Rows<'_> {
     ) -> Result<(), NdimageError> {
         let n = take_cval.len();
         let ndim = self.shape.len();
-        // Column by column: map_coordinates' points are the transpose of a
-        // C-order `(ndim, count)` array, whose columns are contiguous (a
-        // row-major walk of the view would step across the columns).
         for a in 0..ndim {
-            let col = self.points.slice(s![start..start + n, a]);
-            let put = |(j, &v): (usize, &f64)| xs[j * ndim + a] = v;
-            match col.as_slice() {
-                Some(v) => v.iter().enumerate().for_each(put),
-                None => col.iter().enumerate().for_each(put),
-            }
+            self.column(a, start, n, |(j, &v)| xs[j * ndim + a] = v);
+        }
+        if !all_finite(xs) {
+            return Err(non_finite(start, ndim));
         }
         for (x, cv) in xs.chunks_exact_mut(ndim).zip(take_cval.iter_mut()) {
             *cv = self.rule.apply(x, self.shape);
+        }
+        Ok(())
+    }
+
+    /// The columns copied into the lanes (the next batch's prefetched),
+    /// checked and ruled in lanes (scipy's `wrap` point by point).
+    fn fill_lanes<const D: usize>(
+        &self,
+        start: usize,
+        xs: &mut [[f64; BATCH]; D],
+        take_cval: &mut [bool],
+    ) -> Result<(), NdimageError> {
+        let n = take_cval.len();
+        for (a, x) in xs.iter_mut().enumerate() {
+            match self.columns[a] {
+                Some(col) => {
+                    x[..n].copy_from_slice(&col[start..start + n]);
+                    // The next batch's coordinates, so that they stream in
+                    // while this batch is summed.
+                    let next = (start + n).min(col.len());
+                    prefetch_lines(col, next, BATCH.min(col.len() - next));
+                }
+                None => self.column(a, start, n, |(j, &v)| x[j] = v),
+            }
+        }
+        if !xs.iter().all(|x| all_finite(&x[..n])) {
+            return Err(non_finite(start, D));
+        }
+        take_cval.fill(false);
+        match self.rule {
+            PointRule::Fold => {}
+            PointRule::CvalOutside => {
+                for (x, &len) in xs.iter().zip(self.shape) {
+                    let high = (len - 1) as f64;
+                    for (cv, &t) in take_cval.iter_mut().zip(&x[..n]) {
+                        *cv |= (t < 0.0) | (t > high);
+                    }
+                }
+            }
+            PointRule::WrapPeriodNMinus1 => {
+                for j in 0..n {
+                    let mut p: [f64; D] = std::array::from_fn(|a| xs[a][j]);
+                    take_cval[j] = self.rule.apply(&mut p, self.shape);
+                    for (x, v) in xs.iter_mut().zip(p) {
+                        x[j] = v;
+                    }
+                }
+            }
         }
         Ok(())
     }
@@ -119,15 +230,15 @@ impl<T: Real + Send + Sync> Interpolant<T> {
                 got: out.len(),
             });
         }
-        if let Some(k) = first_non_finite(points) {
-            return Err(NdimageError::NonFiniteCoordinate(k));
-        }
-        let rows = Rows {
-            points,
-            rule,
-            shape: &self.shape,
-        };
-        self.eval_source(&rows, out)
+        // Each batch checks its points as it reads them; the first
+        // non-finite one is named only when one is met.
+        let rows = Rows::new(points, rule, &self.shape);
+        self.eval_source(&rows, out).map_err(|e| match e {
+            NdimageError::NonFiniteCoordinate(_) => {
+                first_non_finite(points).map_or(e, NdimageError::NonFiniteCoordinate)
+            }
+            e => e,
+        })
     }
 
     /// The points of `src` into `out` (one per element), in parallel over
@@ -317,9 +428,9 @@ impl<T: Real + Send + Sync> Interpolant<T> {
 }
 
 /// The flat (row-major) index of the first non-finite coordinate of
-/// `points`, if any: the rows checked in parallel in chunks of [`CHUNK`]
-/// (a pass over the points that would otherwise be the evaluation's serial
-/// part), the first chunk with one named.
+/// `points`, if any: the rows checked in parallel in chunks of [`CHUNK`],
+/// the first chunk with one named (run once a batch has met one: the
+/// batches check their own points as they read them).
 fn first_non_finite(points: ArrayView2<'_, f64>) -> Option<usize> {
     let (count, ndim) = points.dim();
     (0..count.div_ceil(CHUNK))
@@ -339,6 +450,16 @@ fn first_non_finite(points: ArrayView2<'_, f64>) -> Option<usize> {
                 c * CHUNK * ndim + at
             })
         })
+}
+
+/// Ask the cache for every line of `c[at..at + len]` (a hint, as
+/// [`prefetch`]).
+#[inline(always)]
+fn prefetch_lines<T>(c: &[T], at: usize, len: usize) {
+    let per_line = (64 / std::mem::size_of::<T>()).max(1);
+    for k in (0..len).step_by(per_line) {
+        prefetch(c, at + k, 1);
+    }
 }
 
 /// Ask the cache for `c[at..at + len]` (its first and last byte: a run of at

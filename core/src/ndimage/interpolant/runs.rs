@@ -24,7 +24,7 @@
 
 use super::affine::AffinePoints;
 use super::batch::{BATCH, CHUNK};
-use super::kernel::{cells_and_weights, sum_fixed};
+use super::kernel::{bases_in_lanes, cells_and_weights, sum_fixed};
 use super::{Interpolant, PointRule};
 use crate::ndimage::NdimageError;
 use crate::scalar::Real;
@@ -205,10 +205,7 @@ impl<T: Real + Send + Sync> Interpolant<T> {
         let mut ws: [[[T; BATCH]; M]; D] =
             std::array::from_fn(|_| std::array::from_fn(|_| std::array::from_fn(|_| T::zero())));
         let mut fallback = None;
-        // The last start of a window on each axis and the strides, in f64
-        // for the lanes (flat offsets are integers far below 2^53).
-        let top: [f64; D] = std::array::from_fn(|a| (self.shape[a] + 2 * self.pad - M) as f64);
-        let strides: [f64; D] = std::array::from_fn(|a| self.strides[a] as f64);
+        let (pad, top, strides) = self.lane_bounds::<D, M>();
         let mut bases = [0; BATCH];
         for (b, batch) in out.chunks_mut(BATCH).enumerate() {
             let from = (run.first + at + b * BATCH) as f64;
@@ -222,7 +219,6 @@ impl<T: Real + Send + Sync> Interpolant<T> {
             // (always, for points inside the grid): the offsets in lanes;
             // else (a short last batch, whose unused lanes run past the
             // run) point by point.
-            let pad = self.pad as f64;
             if batch.len() == BATCH && bases_in_lanes(&firsts, pad, &top, &strides, &mut bases) {
                 for (j, o) in batch.iter_mut().enumerate() {
                     *o = sum_fixed::<T, D, M>(c, bases[j], &ws, j, &self.strides);
@@ -249,31 +245,6 @@ fn points_in_lanes(row: f64, step: f64, shift: f64, first: f64, x: &mut [f64; BA
     for (j, xj) in x.iter_mut().enumerate() {
         *xj = (row + (first + j as f64) * step) + shift;
     }
-}
-
-/// The flat offsets `Σ_a (firsts[a][j] + pad) · strides[a]` of a batch's
-/// windows into `bases`, in lanes, and whether every window starts inside
-/// `[0, top_a]` on every axis (else `bases` is not to be used). Exact: the
-/// cells are integers in `f64`, and the offsets integers below `2^53`.
-#[multiversion(targets("x86_64+avx512f+avx512vl+avx2+fma", "x86_64+avx2+fma"))]
-fn bases_in_lanes<const D: usize>(
-    firsts: &[[f64; BATCH]; D],
-    pad: f64,
-    top: &[f64; D],
-    strides: &[f64; D],
-    bases: &mut [usize; BATCH],
-) -> bool {
-    let mut inside = true;
-    for (j, base) in bases.iter_mut().enumerate() {
-        let mut flat = 0.0;
-        for a in 0..D {
-            let i0 = firsts[a][j] + pad;
-            inside &= (i0 >= 0.0) & (i0 <= top[a]);
-            flat += i0 * strides[a];
-        }
-        *base = flat as usize;
-    }
-    inside
 }
 
 #[cfg(test)]
