@@ -503,6 +503,32 @@ impl<T: Real> LineFilter<T> {
             return;
         }
         lanes::scale(c, r.gain());
+        self.poles_rows(c, w, mode);
+    }
+
+    /// The gain by which [`Self::apply_lines_scaled`] wants its rows
+    /// multiplied (the first step of [`Self::apply_lines`], left to the
+    /// caller's load of the rows), for `len` rows; `None` where
+    /// [`Self::apply_lines`] starts otherwise (one row, a mode without
+    /// closed-form starts, the convolution), and the caller loads the rows
+    /// as they are and calls it.
+    pub(crate) fn load_gain(&self, len: usize) -> Option<&T> {
+        let closed_form = matches!(self.mode, Mode::Mirror | Mode::Reflect | Mode::GridWrap);
+        (len >= 2 && closed_form && self.convolution.is_none()).then(|| self.recursive.gain())
+    }
+
+    /// [`Self::apply_lines`] on rows already multiplied by
+    /// [`Self::load_gain`] (`Some`): the same operations, so the same bits
+    /// (the product `gain · s` is the same whichever side loads it).
+    pub(crate) fn apply_lines_scaled(&self, rows: &mut [T], w: usize) {
+        self.poles_rows(rows, w, self.mode);
+    }
+
+    /// Every pole's causal and anti-causal pass down and up the columns of
+    /// `c` (`L × w`, `L ≥ 2`, already scaled by the gain).
+    fn poles_rows(&self, c: &mut [T], w: usize, mode: Mode) {
+        let r = &self.recursive;
+        let len = c.len() / w;
         let mut acc = vec![T::zero(); w];
         for (z, &k) in r.poles().iter().zip(r.horizons()) {
             causal_start_rows(c, w, z, k, mode, &mut acc);
