@@ -361,7 +361,7 @@ where
 
 /// The work buffers of one task: `rows` (a strip's or a group's rows)
 /// and the filter's `scratch`.
-pub(crate) struct Work<T> {
+struct Work<T> {
     rows: Vec<T>,
     scratch: Vec<T>,
 }
