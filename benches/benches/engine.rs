@@ -1,11 +1,13 @@
 //! The N-D engine: 1-D exact prefilter (sequential, and in certified
 //! blocks on 1 and 2 threads), one line of 10^7 samples under `tol` (f64
-//! and f32, 1 and 2 threads, beside a copy), 2-D `spline_filter`, and batch evaluation of
+//! and f32, 1 and 2 threads, beside a copy), 2-D `spline_filter` in place and 2-D / 3-D
+//! `spline_filter_from` (the Python path), and batch evaluation of
 //! 10^6 points on a 1024² cubic interpolant, f64, mirror ends. Ratios to scipy.ndimage on the same data
 //! come from `benches/peers/scipy_ratio.py`.
 
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
-use splinelab::ndarray::Array2;
+use splinelab::ndarray::{Array2, Array3};
+use splinelab::ndimage::nd_prefilter::spline_filter_from;
 use splinelab::prelude::*;
 use std::hint::black_box;
 
@@ -62,6 +64,24 @@ fn engine(c: &mut Criterion) {
                 spline_filter(black_box(&mut c), &f).unwrap();
             })
         });
+        // The Python path: the input read by the first pass into a
+        // preallocated output (2-D: two passes; 3-D: axis 0, then slabs).
+        let mut out = Array2::zeros(a.raw_dim());
+        g.bench_function(
+            BenchmarkId::new(format!("filter2d_from_d{degree}"), 1024),
+            |b| b.iter(|| spline_filter_from(black_box(&a), &mut out, &[0, 1], Some(&f)).unwrap()),
+        );
+        let v = Array3::from_shape_fn((128, 128, 128), |(i, j, k)| value((i * 128 + j) * 128 + k));
+        let mut out = Array3::zeros(v.raw_dim());
+        g.throughput(Throughput::Elements(v.len() as u64));
+        g.bench_function(
+            BenchmarkId::new(format!("filter3d_from_d{degree}"), 128),
+            |b| {
+                b.iter(|| {
+                    spline_filter_from(black_box(&v), &mut out, &[0, 1, 2], Some(&f)).unwrap()
+                })
+            },
+        );
     }
     // One line of 10^7 samples under tol (spline_filter1d(x, d, tol=...)'s
     // route: BlockPrefilter::apply_line_into, the window kernels of

@@ -11,9 +11,11 @@
 //! first coefficient (the recursions spread any NaN/inf there), the
 //! convolution while copying, in L1-sized blocks; a long line under `tol`
 //! runs in certified blocks on the pool (`BlockPrefilter`), reading the
-//! input and writing the output directly. Other shapes are copied and
-//! filtered by the engine (`spline_filter_from`: copy and checks one pass
-//! on the pool).
+//! input and writing the output directly. Other shapes go to the engine
+//! (`spline_filter_from`): a C-ordered input is read by the first axis's
+//! pass, which writes the output and checks the samples as it reads them
+//! (no separate copy); other layouts are copied and checked in one pass on
+//! the pool first.
 
 use crate::cache;
 use crate::error::value_error;
@@ -158,8 +160,9 @@ fn filter_into<T: Real + Copy + Send + Sync + 'static>(
     })
 }
 
-/// The general case: the engine's N-D filter, after its copy of `src`
-/// (copy and checks in one pass on the pool) when given.
+/// The general case: the engine's N-D filter, reading `src` when given
+/// (the copy fused into the first pass; `spline_filter_from`), else
+/// filtering `out` in place.
 fn filter_nd<T: Real + Send + Sync>(
     src: Option<ArrayViewD<'_, T>>,
     out: &mut ArrayViewMutD<'_, T>,

@@ -351,6 +351,14 @@ fn transpose_plain<T: Real, const K: usize>(
     }
 }
 
+/// Asks the cache for every line of `row`, ahead of its use: a hint (no
+/// effect on values), for loops whose rows lie far apart in memory (a
+/// strided axis: each row a short run on its own page, which the
+/// hardware prefetchers do not follow). Callable from the x86-64 clones
+/// of `multiversion` functions (`match_target!`).
+#[cfg(target_arch = "x86_64")]
+pub(crate) use x86::prefetch;
+
 /// The tile transposes in AVX registers. Safe code: the intrinsics are
 /// safe inside a `#[target_feature]` function (Rust 1.87), and the tiles
 /// reach the registers as arrays through `bytemuck` casts (`__m256d` is
@@ -397,6 +405,21 @@ mod x86 {
             return true;
         }
         false
+    }
+
+    /// [`super::prefetch`]: one `prefetcht0` per 64-byte line of `row`
+    /// (addresses formed with wrapping arithmetic, never dereferenced).
+    #[target_feature(enable = "sse")]
+    #[inline]
+    pub(crate) fn prefetch<T>(row: &[T]) {
+        let bytes = std::mem::size_of_val(row);
+        let p = row.as_ptr().cast::<i8>();
+        for k in (0..bytes).step_by(64) {
+            _mm_prefetch::<_MM_HINT_T0>(p.wrapping_add(k));
+        }
+        if bytes > 0 {
+            _mm_prefetch::<_MM_HINT_T0>(p.wrapping_add(bytes - 1));
+        }
     }
 
     /// `x` as a `U` (`T` is `U`: checked by the caller).
