@@ -454,7 +454,6 @@ impl<T: Real> LineFilter<T> {
         }
         let mut acc = vec![T::zero(); w];
         let (z0, k0) = (&r.poles()[0], r.horizons()[0]);
-
         seen.row(src[0].as_ref());
         causal_start_of(src, Some(r.gain()), z0, k0, mode, &mut acc);
         buf[..w].clone_from_slice(&acc);
