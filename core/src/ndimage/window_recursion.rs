@@ -60,14 +60,14 @@
 //! kernels' `fir`; the same bits): `spline_filter1d(x, d, tol=1e-12)` of
 //! 10⁷ `f64` samples, one thread, CPU time, min of 11 alternated against
 //! the build before (`python/bench/prefilter_ab.py`, load 1.5 on the 2-core
-//! Zen 4 machine): quintic 8.11 → 7.65 ms (2.2× a 3.5 ms `np.copyto`),
+//! Zen 5 machine): quintic 8.11 → 7.65 ms (2.2× a 3.5 ms `np.copyto`),
 //! cubic 4.47 → 4.23 ms, `f32` cubic (`tol=1e-6`) 2.37 → 2.16 ms.
 //!
 //! Tried and dropped (same machine, one thread): two windows of a block
 //! filtered at once (each pass down both in step, their chains
 //! interleaved; the same bits): 10⁷ quintic 7.65 → 9.6 ms, cubic 4.4 →
 //! 6.7–7.2 ms (not profiled; presumably the two windows' samples, passes
-//! and coefficients, about 50 KB, leave the 32 KB L1), no gain at 10⁶ (in
+//! and coefficients, about 50 KB, leave the 48 KiB L1), no gain at 10⁶ (in
 //! L1 alone, a microbenchmark, 1.19 → 1.01 ns per chunk and pass); two
 //! poles fused in one pass, in registers (one load and store per chunk for both): quintic 102
 //! µs at 10⁵ samples, 91 µs unfused; a second chain
