@@ -55,9 +55,21 @@
 //! of it (`perf`). Prefetching the next window's samples and coefficients
 //! (one line per chunk) took a stand-alone prototype of 10⁷ cubic samples
 //! from 7.5 to 4.6 ms (against 4.2 ms for `out[i] = 2 s[i]`).
+//! The AVX-512 doubling levels' lane shifts by `valignq`/`valignd` rather
+//! than `vpermt2pd`/`vpermt2ps` (the input viewed as integers, see the
+//! kernels' `fir`; the same bits): `spline_filter1d(x, d, tol=1e-12)` of
+//! 10⁷ `f64` samples, one thread, CPU time, min of 11 alternated against
+//! the build before (`python/bench/prefilter_ab.py`, load 1.5 on the 2-core
+//! Zen 5 machine): quintic 8.11 → 7.65 ms (2.2× a 3.5 ms `np.copyto`),
+//! cubic 4.47 → 4.23 ms, `f32` cubic (`tol=1e-6`) 2.37 → 2.16 ms.
 //!
-//! Tried and dropped (same machine, one thread): two poles fused in one
-//! pass, in registers (one load and store per chunk for both): quintic 102
+//! Tried and dropped (same machine, one thread): two windows of a block
+//! filtered at once (each pass down both in step, their chains
+//! interleaved; the same bits): 10⁷ quintic 7.65 → 9.6 ms, cubic 4.4 →
+//! 6.7–7.2 ms (not profiled; presumably the two windows' samples, passes
+//! and coefficients, about 50 KB, leave the 48 KiB L1), no gain at 10⁶ (in
+//! L1 alone, a microbenchmark, 1.19 → 1.01 ns per chunk and pass); two
+//! poles fused in one pass, in registers (one load and store per chunk for both): quintic 102
 //! µs at 10⁵ samples, 91 µs unfused; a second chain
 //! (`y_k = f_k + ξ^V f_{k−V} + ξ^{2V} y_{k−2V}`, one more multiply-add per
 //! pair of chunks): no faster (the passes are bound by throughput, not by
@@ -509,8 +521,8 @@ mod x86 {
     /// (causal) and the next one (anti-causal).
     macro_rules! kernels {
         ($name:ident, $feat:literal, $t:ty, $v:literal, $m:ty, $set1:ident, $zero:ident,
-         $fmadd:ident, $mul:ident, $range:ident, $after:ident,
-         $(($l:literal, $prev:literal, $next:literal)),+) => {
+         $fmadd:ident, $mul:ident, $range:ident, $after:ident, $view:ident,
+         $(($l:literal, $prev:literal, $next:literal, $int:literal)),+) => {
             #[allow(non_snake_case)]
             pub(super) mod $name {
                 use super::*;
@@ -536,11 +548,13 @@ mod x86 {
                 }
 
                 /// A pole's registers: its powers, the chunks its doubling
-                /// levels carry, and the last `y` of the stride recursion.
+                /// levels carry, the last `y` of the stride recursion, and a
+                /// zero the compiler does not know (see [`fir`]).
                 struct Pole {
                     z: [$m; L],
                     carry: [$m; L - 1],
                     y: $m,
+                    opaque: $m,
                 }
 
                 #[target_feature(enable = $feat)]
@@ -551,6 +565,7 @@ mod x86 {
                         z: [zero; L],
                         carry: [zero; L - 1],
                         y: zero,
+                        opaque: $set1(std::hint::black_box(0.0)),
                     };
                     for (r, x) in p.z.iter_mut().zip(z) {
                         *r = $set1(x);
@@ -558,12 +573,21 @@ mod x86 {
                     p
                 }
 
-                /// [`super::super::fir`] in registers.
+                /// [`super::super::fir`] in registers. A level marked
+                /// `$int` views its input as integers plus the opaque zero
+                /// (the same bits): LLVM then shifts it by `valignq`/`valignd`
+                /// (an immediate) instead of `vpermt2pd`/`vpermt2ps` (an
+                /// index register, which it picks for lanes it last saw as
+                /// floating point); the faster, measured in the [module
+                /// documentation](super::super).
                 #[target_feature(enable = $feat)]
                 #[inline]
                 fn fir<const ANTI: bool>(p: &mut Pole, x: $m) -> $m {
                     let mut cur = x;
                     $(
+                        if $int {
+                            cur = $view(cur, p.opaque);
+                        }
                         let other = std::mem::replace(&mut p.carry[$l], cur);
                         let shifted = if ANTI {
                             after::<$next>(other, cur)
@@ -675,6 +699,27 @@ mod x86 {
         ))
     }
 
+    /// `x + zero` as 64-bit integers: `x` when `zero` is 0, in the
+    /// integer domain ([`avx512_f64`]'s `fir`).
+    #[target_feature(enable = "avx512f")]
+    #[inline]
+    fn int_pd8(x: __m512d, zero: __m512d) -> __m512d {
+        _mm512_castsi512_pd(_mm512_add_epi64(
+            _mm512_castpd_si512(x),
+            _mm512_castpd_si512(zero),
+        ))
+    }
+
+    /// `x + zero` as 32-bit integers ([`int_pd8`] for `f32`).
+    #[target_feature(enable = "avx512f")]
+    #[inline]
+    fn int_ps16(x: __m512, zero: __m512) -> __m512 {
+        _mm512_castsi512_ps(_mm512_add_epi32(
+            _mm512_castps_si512(x),
+            _mm512_castps_si512(zero),
+        ))
+    }
+
     /// The operations of the kernels on a chunk in two AVX2 registers
     /// `$pair` of `$reg` (each half with its instruction): `$set1`, `$zero`,
     /// `$fmadd`, `$mul`, and `$absmax`, `max(m, |x|)` lane by lane (AVX2
@@ -682,7 +727,7 @@ mod x86 {
     /// it otherwise).
     macro_rules! pairs {
         ($pair:ident, $t:ty, $reg:ty, $set1:ident, $zero:ident, $fmadd:ident, $mul:ident,
-         $absmax:ident, $i_set1:ident, $i_zero:ident, $i_fmadd:ident, $i_mul:ident,
+         $absmax:ident, $same:ident, $i_set1:ident, $i_zero:ident, $i_fmadd:ident, $i_mul:ident,
          $i_max:ident, $i_andnot:ident) => {
             #[allow(non_camel_case_types)]
             type $pair = [$reg; 2];
@@ -720,6 +765,12 @@ mod x86 {
                     $i_max(m[1], $i_andnot(sign, x[1])),
                 ]
             }
+
+            /// `x` (the AVX2 kernels shift in the floating-point domain).
+            #[inline(always)]
+            fn $same(x: $pair, _zero: $pair) -> $pair {
+                x
+            }
         };
     }
 
@@ -732,6 +783,7 @@ mod x86 {
         fmadd_pd2,
         mul_pd2,
         absmax_pd2,
+        same_pd2,
         _mm256_set1_pd,
         _mm256_setzero_pd,
         _mm256_fmadd_pd,
@@ -748,6 +800,7 @@ mod x86 {
         fmadd_ps2,
         mul_ps2,
         absmax_ps2,
+        same_ps2,
         _mm256_set1_ps,
         _mm256_setzero_ps,
         _mm256_fmadd_ps,
@@ -816,17 +869,19 @@ mod x86 {
     // bringing in the previous and the next chunk).
     #[rustfmt::skip]
     kernels!(avx512_f64, "avx512f,avx512dq,fma", f64, 8, __m512d, _mm512_set1_pd, _mm512_setzero_pd,
-        _mm512_fmadd_pd, _mm512_mul_pd, _mm512_range_pd, after_pd8, (0, 7, 1), (1, 6, 2), (2, 4, 4));
+        _mm512_fmadd_pd, _mm512_mul_pd, _mm512_range_pd, after_pd8, int_pd8,
+        (0, 7, 1, true), (1, 6, 2, true), (2, 4, 4, false));
     #[rustfmt::skip]
     kernels!(avx512_f32, "avx512f,avx512dq,fma", f32, 16, __m512, _mm512_set1_ps, _mm512_setzero_ps,
-        _mm512_fmadd_ps, _mm512_mul_ps, _mm512_range_ps, after_ps16,
-        (0, 15, 1), (1, 14, 2), (2, 12, 4), (3, 8, 8));
+        _mm512_fmadd_ps, _mm512_mul_ps, _mm512_range_ps, after_ps16, int_ps16,
+        (0, 15, 1, true), (1, 14, 2, true), (2, 12, 4, true), (3, 8, 8, false));
     #[rustfmt::skip]
     kernels!(avx2_f64, "avx2,fma", f64, 8, f64x4x2, set1_pd2, zero_pd2, fmadd_pd2, mul_pd2,
-        absmax_pd2, after_pd2, (0, 7, 1), (1, 6, 2), (2, 4, 4));
+        absmax_pd2, after_pd2, same_pd2, (0, 7, 1, false), (1, 6, 2, false), (2, 4, 4, false));
     #[rustfmt::skip]
     kernels!(avx2_f32, "avx2,fma", f32, 16, f32x8x2, set1_ps2, zero_ps2, fmadd_ps2, mul_ps2,
-        absmax_ps2, after_ps2, (0, 15, 1), (1, 14, 2), (2, 12, 4), (3, 8, 8));
+        absmax_ps2, after_ps2, same_ps2, (0, 15, 1, false), (1, 14, 2, false), (2, 12, 4, false),
+        (3, 8, 8, false));
 }
 
 #[cfg(test)]
