@@ -16,6 +16,7 @@ pub mod exact;
 pub mod flatten_reference;
 pub mod interpolation_residual;
 pub mod metrics;
+pub mod nd_prefilter;
 pub mod qi;
 pub mod rng;
 pub mod sspline;

@@ -88,6 +88,33 @@ pub fn ulps_of_max<'a>(
     worst / scale
 }
 
+/// `max_k |a_k − r_k| / (ε · max_k |r_k|)` with `ε = 2^{1−BITS}` the machine
+/// epsilon of `T`: [`ulps_of_max`] of a result in any format against a
+/// higher-precision reference, each difference formed from the exact values
+/// in MPFR (the reference is never rounded to `T` first, which would add up
+/// to half a unit per element). Panics if the lengths differ (a test bug).
+///
+/// ```
+/// use splinelab::scalar::Mp;
+/// use splinelab_verify::metrics::eps_of_max;
+/// let r = [Mp::<128>::new(1.0), Mp::new(-4.0)];
+/// let a = [1.0f32, -4.0 + 8.0 * f32::EPSILON];
+/// assert_eq!(eps_of_max(&a, &r), 2.0);
+/// ```
+pub fn eps_of_max<T: Real, R: Real>(a: &[T], reference: &[R]) -> f64 {
+    assert_eq!(a.len(), reference.len(), "arrays of different lengths");
+    let scale = reference
+        .iter()
+        .fold(0.0f64, |m, r| m.max(r.to_f64().abs()))
+        * (1.0 - T::BITS as f64).exp2();
+    let worst = a.iter().zip(reference).fold(0.0f64, |m, (x, r)| {
+        let r = r.to_float();
+        let prec = r.prec().max(T::BITS) + 2;
+        m.max(Float::with_val(prec, x.to_float() - &r).abs().to_f64())
+    });
+    worst / scale
+}
+
 // ---- errors of geometric results, in units of `u` ------------------------
 //
 // Computed in MPFR at `2·BITS + 64` bits from the exact values of the
