@@ -127,6 +127,111 @@ fn anticausal_rows_of<T: Real, const G: usize>(c: &mut [T], z: &T) {
     }
 }
 
+/// Two poles' causal passes in one sweep down `rows` (rows of `G` lines):
+/// `y = x + ξ₁ y`, `x = y + ξ₂ prev`, `prev = x` (the N-D prefilter's
+/// cascade of two poles, `line_filter::Cascade`); `y` and `prev` carry
+/// the first and the second pass's last row in and out.
+#[multiversion(targets("x86_64+avx512f+avx512vl+avx2+fma", "x86_64+avx2+fma", "aarch64+neon"))]
+pub(crate) fn causal2_fixed<T: Real, const G: usize>(
+    rows: &mut [[T; G]],
+    y: &mut [T; G],
+    prev: &mut [T; G],
+    z1: &T,
+    z2: &T,
+) {
+    for row in rows.iter_mut() {
+        for ((x, y), p) in row.iter_mut().zip(y.iter_mut()).zip(prev.iter_mut()) {
+            *y = x.clone() + z1.clone() * &*y;
+            *x = y.clone() + z2.clone() * &*p;
+            *p = x.clone();
+        }
+    }
+}
+
+/// Two poles' anti-causal passes in one sweep up `rows` (bottom row
+/// first): `u = ξ₁ (u − x)`, `x = ξ₂ (next − u)`, `next = x`; `u` and
+/// `next` carry the first and the second pass's row in and out.
+#[multiversion(targets("x86_64+avx512f+avx512vl+avx2+fma", "x86_64+avx2+fma", "aarch64+neon"))]
+pub(crate) fn anticausal2_fixed<T: Real, const G: usize>(
+    rows: &mut [[T; G]],
+    u: &mut [T; G],
+    next: &mut [T; G],
+    z1: &T,
+    z2: &T,
+) {
+    for row in rows.iter_mut().rev() {
+        for ((x, u), n) in row.iter_mut().zip(u.iter_mut()).zip(next.iter_mut()) {
+            *u = z1.clone() * (u.clone() - x.clone());
+            *x = z2.clone() * (n.clone() - u.clone());
+            *n = x.clone();
+        }
+    }
+}
+
+/// [`causal2_fixed`] down every column of `c` (`L × w`) from row 1: row 0
+/// holds the second pass's start, `y` (`w` values) the first pass's, and
+/// on return its last row.
+#[multiversion(targets("x86_64+avx512f+avx512vl+avx2+fma", "x86_64+avx2+fma", "aarch64+neon"))]
+pub(crate) fn causal2_strided<T: Real>(c: &mut [T], w: usize, y: &mut [T], z1: &T, z2: &T) {
+    if w == LINES {
+        return cascade_rows_of::<T, LINES>(c, y, z1, z2, true);
+    }
+    if w == 2 * LINES {
+        return cascade_rows_of::<T, { 2 * LINES }>(c, y, z1, z2, true);
+    }
+    for i in 1..c.len() / w {
+        let (head, tail) = c.split_at_mut(i * w);
+        for ((x, p), y) in tail[..w]
+            .iter_mut()
+            .zip(&head[(i - 1) * w..])
+            .zip(y.iter_mut())
+        {
+            *y = x.clone() + z1.clone() * &*y;
+            *x = y.clone() + z2.clone() * p;
+        }
+    }
+}
+
+/// [`anticausal2_fixed`] up every column of `c` (`L × w`) from row
+/// `L − 2`: row `L − 1` holds the second pass's start, `u` the first
+/// pass's.
+#[multiversion(targets("x86_64+avx512f+avx512vl+avx2+fma", "x86_64+avx2+fma", "aarch64+neon"))]
+pub(crate) fn anticausal2_strided<T: Real>(c: &mut [T], w: usize, u: &mut [T], z1: &T, z2: &T) {
+    if w == LINES {
+        return cascade_rows_of::<T, LINES>(c, u, z1, z2, false);
+    }
+    if w == 2 * LINES {
+        return cascade_rows_of::<T, { 2 * LINES }>(c, u, z1, z2, false);
+    }
+    for i in (0..c.len() / w - 1).rev() {
+        let (head, tail) = c.split_at_mut((i + 1) * w);
+        for ((x, nx), u) in head[i * w..].iter_mut().zip(&tail[..w]).zip(u.iter_mut()) {
+            *u = z1.clone() * (u.clone() - x.clone());
+            *x = z2.clone() * (nx.clone() - u.clone());
+        }
+    }
+}
+
+/// [`causal2_strided`] (`down`) or [`anticausal2_strided`] on rows of `G`
+/// values.
+fn cascade_rows_of<T: Real, const G: usize>(
+    c: &mut [T],
+    carry: &mut [T],
+    z1: &T,
+    z2: &T,
+    down: bool,
+) {
+    let carry: &mut [T; G] = carry.try_into().expect("G values");
+    let rows = c.as_chunks_mut::<G>().0;
+    if down {
+        if let Some((first, rest)) = rows.split_first_mut() {
+            causal2_fixed(rest, carry, &mut first.clone(), z1, z2);
+        }
+    } else if let Some((last, rest)) = rows.split_last_mut() {
+        anticausal2_fixed(rest, carry, &mut last.clone(), z1, z2);
+    }
+}
+
 /// `c *= f`, element-wise (the gain).
 #[multiversion(targets("x86_64+avx512f+avx512vl+avx2+fma", "x86_64+avx2+fma", "aarch64+neon"))]
 pub(crate) fn scale<T: Real>(c: &mut [T], f: &T) {

@@ -85,6 +85,7 @@ pub enum Route {
 #[derive(Debug, Clone)]
 pub struct LineFilter<T> {
     recursive: RecursivePrefilter<T>,
+    cascade: Option<Box<Cascade<T>>>,
     convolution: Option<ConvolutionPrefilter<T>>,
     width: Option<usize>,
     bound: f64,
@@ -132,8 +133,13 @@ impl<T: Real> LineFilter<T> {
                 (Some(ConvolutionPrefilter::new(family, n)?), Some(n), bound)
             }
         };
+        let cascade = match (recursive.poles(), &convolution) {
+            ([z1, z2], None) => Some(Box::new(Cascade::new(z1, z2, recursive.horizons()))),
+            _ => None,
+        };
         Ok(LineFilter {
             recursive,
+            cascade,
             convolution,
             width,
             bound,
@@ -320,7 +326,11 @@ impl<T: Real> LineFilter<T> {
     /// operation over `w` lines (vectorised, cache friendly, no per-line
     /// copy). The recursion of [`Self::apply`] one step at a time (the
     /// single line uses a two-step look-ahead instead), so both agree to a
-    /// few ulps of `max|s|`, not bitwise; `4p + 1` flops per sample.
+    /// few ulps of `max|s|`, not bitwise; `4p + 1` flops per sample. Two
+    /// poles run as one pass down the rows and one up ([`Cascade`], lines
+    /// of at least 3 samples under mirror, reflect and grid-wrap, and the
+    /// padded lines of nearest and grid-constant): the same flops in
+    /// another order, within the same bound.
     ///
     ///
     /// **Accuracy**: the doc example and
@@ -367,7 +377,9 @@ impl<T: Real> LineFilter<T> {
     /// gain and causal pass run while the rows are read into `buf`, and the
     /// last anti-causal pass writes the rows directly: the array is read and
     /// written once, and `buf` sees two passes per pole instead of five
-    /// (copy in, gain, causal, anti-causal, copy out). The same operations in
+    /// (copy in, gain, causal, anti-causal, copy out); two poles (degrees
+    /// 4 and 5) run as one pass down and one up ([`Cascade`]), so `buf`
+    /// sees two passes in all. The same operations in
     /// the same order as [`Self::apply_lines`], so the same bits; other
     /// modes and routes copy the rows through `buf` into [`Self::apply_lines`].
     ///
@@ -376,8 +388,8 @@ impl<T: Real> LineFilter<T> {
     /// (`line_filter::tests::rows_in_place_equal_apply_lines_bit_for_bit`). **Source**: Unser,
     /// Aldroubi and Eden (1993), the causal/anti-causal recursion.
     pub(crate) fn apply_rows(&self, rows: &mut [&mut [T]], buf: &mut Vec<T>, scratch: &mut Vec<T>) {
-        let fused = self.load_rows(rows, buf, scratch, &mut ());
-        self.store_rows(rows, buf, fused);
+        let loaded = self.load_rows(rows, buf, scratch, &mut ());
+        self.store_rows(rows, buf, loaded);
     }
 
     /// [`Self::apply_rows`] reading the samples from `src` (rows of the
@@ -394,8 +406,8 @@ impl<T: Real> LineFilter<T> {
         scratch: &mut Vec<T>,
         seen: &mut F,
     ) {
-        let fused = self.load_rows(src, buf, scratch, seen);
-        self.store_rows(rows, buf, fused);
+        let loaded = self.load_rows(src, buf, scratch, seen);
+        self.store_rows(rows, buf, loaded);
     }
 
     /// Whether [`Self::apply_rows`] fuses the first and last passes with
@@ -409,15 +421,16 @@ impl<T: Real> LineFilter<T> {
     /// The reading half of [`Self::apply_rows`]: every pass but the last
     /// anti-causal one, from the rows `src` into `buf` (whose row `n − 1`
     /// receives that pass's start); the rows whole through
-    /// [`Self::apply_lines`] where the passes do not fuse. Returns whether
-    /// they fused ([`Self::store_rows`] needs to know).
+    /// [`Self::apply_lines`] where the passes do not fuse; two poles as one
+    /// pass down ([`Cascade`]). Returns what [`Self::store_rows`] has
+    /// left to do.
     fn load_rows<R: AsRef<[T]>, F: RowCheck>(
         &self,
         src: &[R],
         buf: &mut Vec<T>,
         scratch: &mut Vec<T>,
         seen: &mut F,
-    ) -> bool {
+    ) -> Loaded<T> {
         let w = src.first().map_or(0, |r| r.as_ref().len());
         let n = src.len();
         if w == 0 || !self.fuses_rows(n) {
@@ -427,7 +440,7 @@ impl<T: Real> LineFilter<T> {
                 buf.extend_from_slice(r.as_ref());
             }
             self.apply_lines(buf, w, scratch);
-            return false;
+            return Loaded::Whole;
         }
         let (mode, r) = (self.mode, &self.recursive);
         if buf.len() < n * w {
@@ -436,12 +449,19 @@ impl<T: Real> LineFilter<T> {
             buf.resize(n * w, T::zero());
         }
         let buf = &mut buf[..n * w];
+        if let Some(cascade) = self.cascade_for(n, mode) {
+            return Loaded::Cascade(cascade.load(src, buf, r.gain(), mode, seen));
+        }
         let mut acc = vec![T::zero(); w];
         let (z0, k0) = (&r.poles()[0], r.horizons()[0]);
         seen.row(src[0].as_ref());
         causal_start_of(src, Some(r.gain()), z0, k0, mode, &mut acc);
         buf[..w].clone_from_slice(&acc);
-        load_causal(src, buf, r.gain(), z0, seen);
+        let mut step = Causal {
+            gain: r.gain(),
+            z: z0,
+        };
+        load_down(src, buf, &mut step, seen);
         let last = r.poles().len() - 1;
         for (p, (z, &k)) in r.poles().iter().zip(r.horizons()).enumerate() {
             if p > 0 {
@@ -455,28 +475,37 @@ impl<T: Real> LineFilter<T> {
                 lanes::anticausal_strided(buf, w, z);
             }
         }
-        true
+        Loaded::Last
     }
 
     /// The writing half of [`Self::apply_rows`]: the last anti-causal
-    /// pass from `buf` into `rows` (`fused`), or `buf`'s rows copied.
-    fn store_rows(&self, rows: &mut [&mut [T]], buf: &[T], fused: bool) {
+    /// pass (or both poles' of a [`Cascade`]) from `buf` into `rows`, or
+    /// `buf`'s rows copied.
+    fn store_rows(&self, rows: &mut [&mut [T]], buf: &[T], loaded: Loaded<T>) {
         let w = rows.first().map_or(0, |r| r.len());
         if w == 0 {
             return;
         }
-        if !fused {
-            for (r, src) in rows.iter_mut().zip(buf.chunks(w)) {
-                r.clone_from_slice(src);
+        let buf = &buf[..rows.len() * w];
+        let poles = self.recursive.poles();
+        match (loaded, poles) {
+            (Loaded::Whole, _) => {
+                for (r, src) in rows.iter_mut().zip(buf.chunks(w)) {
+                    r.clone_from_slice(src);
+                }
             }
-            return;
+            (Loaded::Cascade(mut u), [z1, z2]) => {
+                let mut step = Anticausal2 {
+                    z: [z1, z2],
+                    u: &mut u,
+                };
+                store_up(rows, buf, &mut step);
+            }
+            (_, poles) => {
+                let z = poles.last().expect("fused rows have a pole");
+                store_up(rows, buf, &mut Anticausal { z });
+            }
         }
-        let z = self
-            .recursive
-            .poles()
-            .last()
-            .expect("fused rows have a pole");
-        anticausal_store(rows, &buf[..rows.len() * w], z);
     }
 
     /// Fills `ext` with the extended rows `lo .. lo + count` of `rows`.
@@ -529,6 +558,9 @@ impl<T: Real> LineFilter<T> {
     fn poles_rows(&self, c: &mut [T], w: usize, mode: Mode) {
         let r = &self.recursive;
         let len = c.len() / w;
+        if let Some(cascade) = self.cascade_for(len, mode) {
+            return cascade.rows(c, w, mode);
+        }
         let mut acc = vec![T::zero(); w];
         for (z, &k) in r.poles().iter().zip(r.horizons()) {
             causal_start_rows(c, w, z, k, mode, &mut acc);
@@ -537,6 +569,269 @@ impl<T: Real> LineFilter<T> {
             anticausal_start_rows(c, w, z, k, mode, &mut acc);
             c[(len - 1) * w..].clone_from_slice(&acc);
             lanes::anticausal_strided(c, w, z);
+        }
+    }
+}
+
+impl<T: Real> LineFilter<T> {
+    /// The [`Cascade`] of a filter of two poles, for lines of `n ≥ 3`
+    /// samples under a mode with closed-form starts (`None` otherwise:
+    /// the poles' passes in turn).
+    fn cascade_for(&self, n: usize, mode: Mode) -> Option<&Cascade<T>> {
+        let closed_form = matches!(mode, Mode::Mirror | Mode::Reflect | Mode::GridWrap);
+        self.cascade.as_deref().filter(|_| n >= 3 && closed_form)
+    }
+}
+
+/// What [`LineFilter::load_rows`] left in the work buffer for
+/// [`LineFilter::store_rows`].
+enum Loaded<T> {
+    /// The finished coefficients (the rows went through
+    /// [`LineFilter::apply_lines`]).
+    Whole,
+    /// Every pass but the last pole's anti-causal one.
+    Last,
+    /// Both causal passes of a [`Cascade`]; the value is the first pole's
+    /// anti-causal start `u_{n−1}` of each line.
+    Cascade(Vec<T>),
+}
+
+/// The two poles `ξ₁, ξ₂` of a degree-4 or degree-5 spline as one pass
+/// down the lines and one pass up, instead of down, up, down, up: the four
+/// first-order filters are linear and shift-invariant on the extended
+/// (infinite) signal, so they commute, and `A₂A₁C₂C₁ s` is the spline's
+/// coefficients (up to the gain) like `A₂C₂A₁C₁ s`. Down,
+/// `y_k = x_k + ξ₁ y_{k−1}`, `w_k = y_k + ξ₂ w_{k−1}`; up,
+/// `u_k = ξ₁ (u_{k+1} − w_k)`, `c_k = ξ₂ (c_{k+1} − u_k)`. A strided
+/// axis then reads and writes its work buffer twice instead of four
+/// times, and the two chains of each pass are independent work for the
+/// vector units.
+///
+/// **Starts.** `y_0 = Σ_{j<K₁} ξ₁^j x_{−j}` as one pole's;
+/// `w_0 = Σ_{k<K} h_k x_{−k}` with `h_k = Σ_{i+j=k} ξ₁^i ξ₂^j` (the two
+/// causal filters' joint impulse response, `h_k = ξ₂ h_{k−1} + ξ₁^k`),
+/// the samples extended by the mode, `K` the larger horizon and on until
+/// `|h_k|` is below the larger pole's `|ξ|^K`. At the end the coefficients
+/// `c` are symmetric like the samples; with `P = ξ₁ξ₂`, `Q = ξ₁ + ξ₂`,
+/// inverting both anti-causal filters gives
+/// `P w_k = P c_{k+2} − Q c_{k+1} + c_k`, and for `k = n−1, n−2, n−3`
+/// (mirror: `c_{n−1+j} = c_{n−1−j}`) three equations in `c_{n−1}, c_{n−2},
+/// c_{n−3}`; reflect (`c_{n−1+j} = c_{n−j}`) two in `c_{n−1}, c_{n−2}`.
+/// Their solution (Cramer's rule, once per filter) gives `c_{n−1}`, and
+/// `u_{n−1} = c_n − c_{n−1}/ξ₂` (the second anti-causal filter inverted):
+/// each a fixed combination of the last three (two) `w`. The determinants
+/// are `(1 − ξ₁²)(1 − ξ₂²)(1 − P)`-like products of factors in `(0, 2)`
+/// (mirror: `(1 − P)((1 + P)² − Q²)`, reflect: `(1 − P)(1 − ξ₁)(1 − ξ₂)`),
+/// never small. Grid-wrap: the periodic sums `u_{n−1} = −Σ_m ξ₁^{m+1}
+/// w_{n−1+m}` and `c_{n−1} = P Σ_m h_m w_{n−1+m}` (indices mod `n`). The
+/// one-pole closed forms (Unser, Aldroubi and Eden 1993) are the same
+/// derivation with one filter.
+///
+/// **Cost**: `4` flops per sample and pole as before, plus `O(K)` rows of
+/// starts. **Accuracy**: another order of the same operations: a few `u`
+/// of `A · max|s|` per axis like the passes in turn (tested against 128-bit
+/// MPFR in `nd_prefilter`'s and `engine_lanes`' tests; the rows of
+/// [`LineFilter::apply_rows`] and [`LineFilter::apply_lines`] run the
+/// same operations, bit for bit).
+#[derive(Debug, Clone)]
+struct Cascade<T> {
+    z: [T; 2],
+    /// The horizon of `ξ₁`.
+    k1: usize,
+    /// `h_k`, `k < K`.
+    h: Vec<T>,
+    /// Mirror: the weights of `w_{n−1}, w_{n−2}, w_{n−3}` in `u_{n−1}`
+    /// and in `c_{n−1}`.
+    mirror: [[T; 3]; 2],
+    /// Reflect: the same for `w_{n−1}, w_{n−2}`.
+    reflect: [[T; 2]; 2],
+    /// Grid-wrap: the weights of `w_{(n−1+m) mod n}` in `u_{n−1}`
+    /// (`−ξ₁^{m+1}`, `m < K₁`) and in `c_{n−1}` (`P h_m`).
+    wrap: [Vec<T>; 2],
+}
+
+impl<T: Real> Cascade<T> {
+    /// The cascade of the poles `z1` (the smaller) and `z2` with their
+    /// horizons. `O(K)`.
+    fn new(z1: &T, z2: &T, horizons: &[usize]) -> Self {
+        let (k1, kmax) = (horizons[0], horizons.iter().copied().max().unwrap_or(0));
+        let big = z1.to_f64().abs().max(z2.to_f64().abs());
+        let tail = big.powi(kmax as i32);
+        let mut h = vec![T::one()];
+        let mut z1k = T::one();
+        while h.len() < kmax.max(1) || (h[h.len() - 1].to_f64().abs() > tail && h.len() < 4 * kmax)
+        {
+            z1k *= z1.clone();
+            let next = z2.clone() * &h[h.len() - 1] + &z1k;
+            h.push(next);
+        }
+        let (one, zero) = (T::one(), T::zero());
+        let p = z1.clone() * z2;
+        let q = z1.clone() + z2;
+        // `u_{n−1} = c_n − c_{n−1}/ξ₂` from the weights of `c_{n−1}` (a)
+        // and of `c_n` (b): each times `P`, the equations' right side.
+        let weights = |a: &T, b: &T| {
+            let (a, b) = (p.clone() * a, p.clone() * b);
+            (b - a.clone() / z2, a)
+        };
+        let m = [
+            [one.clone(), -q.clone(), p.clone()],
+            [-q.clone(), one.clone() + &p, zero.clone()],
+            [p.clone(), -q.clone(), one.clone()],
+        ];
+        let inv = inverse3(&m);
+        let mirror: [(T, T); 3] = std::array::from_fn(|j| weights(&inv[0][j], &inv[1][j]));
+        // Reflect: c_n = c_{n−1}.
+        let m = [[one.clone() - &q, p.clone()], [p.clone() - &q, one.clone()]];
+        let inv = inverse2(&m);
+        let reflect: [(T, T); 2] = std::array::from_fn(|j| weights(&inv[0][j], &inv[0][j]));
+        let mut zm = -z1.clone();
+        let wrap_u = (0..k1.max(1))
+            .map(|_| {
+                let f = zm.clone();
+                zm *= z1.clone();
+                f
+            })
+            .collect();
+        let wrap_c = h.iter().map(|x| p.clone() * x).collect();
+        Cascade {
+            z: [z1.clone(), z2.clone()],
+            k1,
+            h,
+            mirror: [mirror.clone().map(|(u, _)| u), mirror.map(|(_, c)| c)],
+            reflect: [reflect.clone().map(|(u, _)| u), reflect.map(|(_, c)| c)],
+            wrap: [wrap_u, wrap_c],
+        }
+    }
+
+    /// The starts `y_0` and `w_0` of every column of `rows` (times `gain`
+    /// first, if given) into `y` and `w0`.
+    fn starts<R: AsRef<[T]>>(
+        &self,
+        rows: &[R],
+        gain: Option<&T>,
+        mode: Mode,
+        y: &mut [T],
+        w0: &mut [T],
+    ) {
+        causal_start_of(rows, gain, &self.z[0], self.k1, mode, y);
+        w0.fill(T::zero());
+        for (k, hk) in self.h.iter().enumerate() {
+            let i = mode.fold(-(k as i64), rows.len()).unwrap_or(0);
+            add_scaled(w0, hk, rows[i].as_ref(), gain);
+        }
+    }
+
+    /// The anti-causal starts `u_{n−1}` and `c_{n−1}` of every column of
+    /// the causal values `c` (`n × w`) into `u` and `last`.
+    fn ends(&self, c: &[T], w: usize, mode: Mode, u: &mut [T], last: &mut [T]) {
+        let n = c.len() / w;
+        let row = |i: usize| &c[i * w..(i + 1) * w];
+        u.fill(T::zero());
+        last.fill(T::zero());
+        match mode {
+            Mode::Mirror => {
+                for (j, (fu, fc)) in self.mirror[0].iter().zip(&self.mirror[1]).enumerate() {
+                    add_scaled(u, fu, row(n - 1 - j), None);
+                    add_scaled(last, fc, row(n - 1 - j), None);
+                }
+            }
+            Mode::Reflect => {
+                for (j, (fu, fc)) in self.reflect[0].iter().zip(&self.reflect[1]).enumerate() {
+                    add_scaled(u, fu, row(n - 1 - j), None);
+                    add_scaled(last, fc, row(n - 1 - j), None);
+                }
+            }
+            _ => {
+                for (m, f) in self.wrap[0].iter().enumerate() {
+                    add_scaled(u, f, row((n - 1 + m) % n), None);
+                }
+                for (m, f) in self.wrap[1].iter().enumerate() {
+                    add_scaled(last, f, row((n - 1 + m) % n), None);
+                }
+            }
+        }
+    }
+
+    /// Both poles down and up every column of `c` (`n × w`, `n ≥ 3`,
+    /// already scaled by the gain), in place.
+    #[inline(never)]
+    fn rows(&self, c: &mut [T], w: usize, mode: Mode) {
+        let n = c.len() / w;
+        let (mut y, mut acc) = (vec![T::zero(); w], vec![T::zero(); w]);
+        let rows: Vec<&[T]> = c.chunks(w).collect();
+        self.starts(&rows, None, mode, &mut y, &mut acc);
+        c[..w].clone_from_slice(&acc);
+        lanes::causal2_strided(c, w, &mut y, &self.z[0], &self.z[1]);
+        self.ends(c, w, mode, &mut y, &mut acc);
+        c[(n - 1) * w..].clone_from_slice(&acc);
+        lanes::anticausal2_strided(c, w, &mut y, &self.z[0], &self.z[1]);
+    }
+
+    /// The causal half of [`Self::rows`] reading the samples `src` (times
+    /// `gain`) into `buf`, `seen` taking in each row; returns `u_{n−1}`,
+    /// and `buf`'s last row holds `c_{n−1}` ([`Anticausal2`] does
+    /// the rest). The same operations as [`Self::rows`] on the scaled rows.
+    #[inline(never)]
+    fn load<R: AsRef<[T]>, F: RowCheck>(
+        &self,
+        src: &[R],
+        buf: &mut [T],
+        gain: &T,
+        mode: Mode,
+        seen: &mut F,
+    ) -> Vec<T> {
+        let n = src.len();
+        let w = buf.len() / n;
+        let (mut y, mut acc) = (vec![T::zero(); w], vec![T::zero(); w]);
+        prefetch_starts(src, mode, self.h.len());
+        seen.row(src[0].as_ref());
+        self.starts(src, Some(gain), mode, &mut y, &mut acc);
+        buf[..w].clone_from_slice(&acc);
+        let mut step = Causal2 {
+            gain,
+            z: [&self.z[0], &self.z[1]],
+            y: &mut y,
+        };
+        load_down(src, buf, &mut step, seen);
+        self.ends(buf, w, mode, &mut y, &mut acc);
+        buf[(n - 1) * w..].clone_from_slice(&acc);
+        y
+    }
+}
+
+/// The inverse of a 3 × 3 matrix (Cramer's rule: the adjugate over the
+/// determinant).
+fn inverse3<T: Real>(m: &[[T; 3]; 3]) -> [[T; 3]; 3] {
+    let cof = |i: usize, j: usize| {
+        let (r0, r1) = ((i + 1) % 3, (i + 2) % 3);
+        let (c0, c1) = ((j + 1) % 3, (j + 2) % 3);
+        m[r0][c0].clone() * &m[r1][c1] - m[r0][c1].clone() * &m[r1][c0]
+    };
+    let det = (0..3).fold(T::zero(), |d, j| d + m[0][j].clone() * cof(0, j));
+    std::array::from_fn(|i| std::array::from_fn(|j| cof(j, i) / &det))
+}
+
+/// The inverse of a 2 × 2 matrix.
+fn inverse2<T: Real>(m: &[[T; 2]; 2]) -> [[T; 2]; 2] {
+    let det = m[0][0].clone() * &m[1][1] - m[0][1].clone() * &m[1][0];
+    [
+        [m[1][1].clone() / &det, -m[0][1].clone() / &det],
+        [-m[1][0].clone() / &det, m[0][0].clone() / &det],
+    ]
+}
+
+/// Asks the cache for the rows `s_{−j}`, `j < count`, of `rows` (folded
+/// by `mode`) that a causal start sums: each is a run on its own page,
+/// read before the pass's own prefetching ([`rows_ahead`]) begins, and
+/// one request after another leaves each miss waiting on the last.
+#[multiversion(targets("x86_64+avx512f+avx512vl+avx2+fma", "x86_64+avx2+fma", "aarch64+neon"))]
+fn prefetch_starts<T: Real, R: AsRef<[T]>>(rows: &[R], mode: Mode, count: usize) {
+    for j in 0..count.min(rows.len()) {
+        let row = rows[mode.fold(-(j as i64), rows.len()).unwrap_or(0)].as_ref();
+        match_target! {
+            "x86_64+avx2" => lanes::prefetch(row),
+            _ => { let _ = row; }
         }
     }
 }
@@ -584,16 +879,59 @@ fn causal_start_of<T: Real, R: AsRef<[T]>>(
     }
 }
 
-/// The first pole's gain and causal pass, reading `rows` into `buf` (row
-/// 0 of `buf` already holds the causal start): `buf_i = g·rows_i + ξ buf_{i−1}`,
-/// the operations of [`lanes::scale`] then [`lanes::causal_strided`];
-/// `seen` takes in each row (from row 1) before it is read.
+/// One row of a pass down a strip ([`load_down`]): row `i` of the work
+/// buffer from the samples of row `i` and the buffer's row `i − 1`.
+/// Inlined into the walker's vector clones (as [`RowCheck`]).
+trait DownStep<T> {
+    /// `x` (buffer row `i`) from `s` (sample row `i`) and `prev`.
+    fn row(&mut self, x: &mut [T], s: &[T], prev: &[T]);
+}
+
+/// The first pole's gain and causal pass: `x = g·s + ξ prev`, the
+/// operations of [`lanes::scale`] then [`lanes::causal_strided`].
+struct Causal<'a, T> {
+    gain: &'a T,
+    z: &'a T,
+}
+
+impl<T: Real> DownStep<T> for Causal<'_, T> {
+    #[inline(always)]
+    fn row(&mut self, x: &mut [T], s: &[T], prev: &[T]) {
+        let (g, z) = (self.gain, self.z);
+        for ((x, s), p) in x.iter_mut().zip(s).zip(prev) {
+            *x = g.clone() * s + z.clone() * p;
+        }
+    }
+}
+
+/// [`Cascade`]'s pass down: `y = g·s + ξ₁ y`, `x = y + ξ₂ prev`, the
+/// operations of [`lanes::causal2_strided`] on scaled rows (`y`: the
+/// first pole's row, carried).
+struct Causal2<'a, T> {
+    gain: &'a T,
+    z: [&'a T; 2],
+    y: &'a mut [T],
+}
+
+impl<T: Real> DownStep<T> for Causal2<'_, T> {
+    #[inline(always)]
+    fn row(&mut self, x: &mut [T], s: &[T], prev: &[T]) {
+        let (g, [z1, z2]) = (self.gain, self.z);
+        for (((x, s), p), y) in x.iter_mut().zip(s).zip(prev).zip(self.y.iter_mut()) {
+            *y = g.clone() * s + z1.clone() * &*y;
+            *x = y.clone() + z2.clone() * p;
+        }
+    }
+}
+
+/// A pass down the rows `rows` into `buf` (row 0 of `buf` already holds
+/// the pass's start), `step` forming each row, the rows prefetched
+/// [`rows_ahead`]; `seen` takes in each row (from row 1) before it is read.
 #[multiversion(targets("x86_64+avx512f+avx512vl+avx2+fma", "x86_64+avx2+fma", "aarch64+neon"))]
-fn load_causal<T: Real, R: AsRef<[T]>, F: RowCheck>(
+fn load_down<T: Real, R: AsRef<[T]>, F: RowCheck, S: DownStep<T>>(
     rows: &[R],
     buf: &mut [T],
-    gain: &T,
-    z: &T,
+    step: &mut S,
     seen: &mut F,
 ) {
     let w = buf.len() / rows.len();
@@ -608,19 +946,56 @@ fn load_causal<T: Real, R: AsRef<[T]>, F: RowCheck>(
         let src = src.as_ref();
         seen.row(src);
         let (done, rest) = buf.split_at_mut(i * w);
-        let prev = &done[(i - 1) * w..];
-        for ((x, s), p) in rest[..w].iter_mut().zip(src.iter()).zip(prev) {
-            *x = gain.clone() * s + z.clone() * p;
+        step.row(&mut rest[..w], src, &done[(i - 1) * w..]);
+    }
+}
+
+/// One row of a pass up a strip ([`store_up`]): output row `i` from the
+/// output row `i + 1` and the buffer's row `i`.
+trait UpStep<T> {
+    /// `o` (output row `i`) from `next` (row `i + 1`) and `c` (buffer row `i`).
+    fn row(&mut self, o: &mut [T], next: &[T], c: &[T]);
+}
+
+/// The last anti-causal pass: `o = ξ (next − c)`, the operations of
+/// [`lanes::anticausal_strided`].
+struct Anticausal<'a, T> {
+    z: &'a T,
+}
+
+impl<T: Real> UpStep<T> for Anticausal<'_, T> {
+    #[inline(always)]
+    fn row(&mut self, o: &mut [T], next: &[T], c: &[T]) {
+        for ((o, nx), c) in o.iter_mut().zip(next).zip(c) {
+            *o = self.z.clone() * (nx.clone() - c.clone());
         }
     }
 }
 
-/// The last anti-causal pass, writing `rows` from the causal values in
-/// `buf` (its row `n − 1` holding the pass's start): `rows_{n−1} = start`,
-/// `rows_i = ξ (rows_{i+1} − buf_i)`, the operations of
-/// [`lanes::anticausal_strided`].
+/// [`Cascade`]'s pass up: `u = ξ₁ (u − c)`, `o = ξ₂ (next − u)`, the
+/// operations of [`lanes::anticausal2_strided`] (`u`: the first pole's
+/// row, carried).
+struct Anticausal2<'a, T> {
+    z: [&'a T; 2],
+    u: &'a mut [T],
+}
+
+impl<T: Real> UpStep<T> for Anticausal2<'_, T> {
+    #[inline(always)]
+    fn row(&mut self, o: &mut [T], next: &[T], c: &[T]) {
+        let [z1, z2] = self.z;
+        for (((o, nx), c), u) in o.iter_mut().zip(next).zip(c).zip(self.u.iter_mut()) {
+            *u = z1.clone() * (u.clone() - c.clone());
+            *o = z2.clone() * (nx.clone() - u.clone());
+        }
+    }
+}
+
+/// A pass up writing `rows` from the values in `buf`: row `n − 1` copied
+/// (it holds the pass's start), then `step` on each row from `n − 2`
+/// down to 0, the rows prefetched [`rows_ahead`].
 #[multiversion(targets("x86_64+avx512f+avx512vl+avx2+fma", "x86_64+avx2+fma", "aarch64+neon"))]
-fn anticausal_store<T: Real>(rows: &mut [&mut [T]], buf: &[T], z: &T) {
+fn store_up<T: Real, S: UpStep<T>>(rows: &mut [&mut [T]], buf: &[T], step: &mut S) {
     let n = rows.len();
     let w = buf.len() / n;
     rows[n - 1].clone_from_slice(&buf[(n - 1) * w..]);
@@ -633,14 +1008,11 @@ fn anticausal_store<T: Real>(rows: &mut [&mut [T]], buf: &[T], z: &T) {
             }
         }
         let (lo, hi) = rows.split_at_mut(i + 1);
-        let next: &[T] = hi[0];
-        for ((o, nx), c) in lo[i].iter_mut().zip(next).zip(&buf[i * w..(i + 1) * w]) {
-            *o = z.clone() * (nx.clone() - c.clone());
-        }
+        step.row(&mut lo[i][..], &hi[0][..], &buf[i * w..(i + 1) * w]);
     }
 }
 
-/// Rows ahead that [`load_causal`] and [`anticausal_store`] ask the cache
+/// Rows ahead that [`load_down`] and [`store_up`] ask the cache
 /// for ([`lanes::prefetch`]): about [`PREFETCH_BYTES`] ahead, one row at least.
 fn rows_ahead<T>(w: usize) -> usize {
     (PREFETCH_BYTES / (w * std::mem::size_of::<T>()).max(1)).max(1)
@@ -795,6 +1167,65 @@ fn anticausal_start<T: Real>(c: &[T], z: &T, horizon: usize, mode: Mode) -> T {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The two poles' passes as one pass down and one up ([`Cascade`]:
+    /// its starts derived from the symmetry of the result) against 128-bit
+    /// MPFR running the one-line recursion pole after pole, column by
+    /// column: degrees 4 and 5, every mode, lines of 3 samples (the
+    /// fewest the cascade takes) to 41 and 300 (beyond every horizon),
+    /// in f64 and f32, through [`LineFilter::apply_lines`] and
+    /// [`LineFilter::apply_rows_from`]. Within `64 u A` of `max|s| = 1`
+    /// (`A = 1/|V(−1)|`, the per-axis bound of `nd_prefilter`'s tests).
+    #[test]
+    fn cascade_of_two_poles_matches_mpfr_at_every_length() {
+        cascade_matches_mpfr::<f64>();
+        cascade_matches_mpfr::<f32>();
+    }
+
+    fn cascade_matches_mpfr<T: Real>() {
+        use crate::scalar::Mp;
+        type W = Mp<128>;
+        let u = 2f64.powi(-(T::BITS as i32));
+        let w = 5;
+        for degree in [4u32, 5] {
+            let family = SplineFamily::Order(degree + 1);
+            for mode in Mode::ALL {
+                let f = LineFilter::<T>::new(&family, mode, 0.25, Route::Exact).unwrap();
+                assert!(f.cascade.is_some(), "degree {degree} has two poles");
+                let wide = LineFilter::<W>::new(&family, mode, 0.25, Route::Exact).unwrap();
+                let allowed = 64.0 * u * wide.recursive().amplification().to_f64();
+                for n in (3..=41).chain([300]) {
+                    let data: Vec<T> = (0..n * w)
+                        .map(|i| T::from_f64_exact(((i * 7919) % 211) as f64 / 105.5 - 1.0))
+                        .collect();
+                    let mut lines = data.clone();
+                    f.apply_lines(&mut lines, w, &mut Vec::new());
+                    let mut rows = vec![T::zero(); n * w];
+                    let src: Vec<&[T]> = data.chunks(w).collect();
+                    let mut outs: Vec<&mut [T]> = rows.chunks_mut(w).collect();
+                    f.apply_rows_from(&src, &mut outs, &mut Vec::new(), &mut Vec::new(), &mut ());
+                    for j in 0..w {
+                        let mut line: Vec<W> = (0..n)
+                            .map(|i| W::from_f64_exact(data[i * w + j].to_f64()))
+                            .collect();
+                        wide.apply(&mut line, &mut Vec::new());
+                        for (i, want) in line.iter().enumerate() {
+                            let want = want.to_f64();
+                            for (route, got) in [("lines", &lines), ("rows", &rows)] {
+                                let diff = (got[i * w + j].to_f64() - want).abs();
+                                assert!(
+                                    diff <= allowed,
+                                    "{} bits degree {degree} {mode:?} n {n} {route} [{i}]: \
+                                     {diff:e} > {allowed:e}",
+                                    T::BITS
+                                );
+                            }
+                        }
+                    }
+                }
+            }
+        }
+    }
 
     /// `apply_rows` (rows read and written in place, passes fused) against
     /// `apply_lines` (rows copied, one pass per operation): every mode and
