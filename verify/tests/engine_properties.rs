@@ -173,6 +173,25 @@ fn parallel_blocks_stay_within_the_bound_of_the_sequential_filter() {
     }
 }
 
+/// A quintic line larger than L3 (over 32 MiB: `lanes::STREAM_BYTES`),
+/// whose blocks write their coefficients by streaming stores (two poles
+/// or more), into an output
+/// that starts off a cache line (as numpy's do): within the certified
+/// bound of the sequential exact filter, as the cached stores are.
+#[test]
+fn streamed_blocks_stay_within_the_bound_of_the_sequential_filter() {
+    let s = signal(4_500_000, 13);
+    let (want, amp) = exact(5, Mode::Mirror, &s);
+    let f = BlockPrefilter::<f64>::new(&SplineFamily::Order(6), Mode::Mirror, 0.3, 1e-12).unwrap();
+    for off in [0, 1, 3] {
+        let mut out = vec![f64::NAN; s.len() + off];
+        f.apply_line_into(&s, &mut out[off..]).unwrap();
+        let diff = max_diff(&out[off..], &want);
+        let allowed = f.bound() + 64.0 * f64::EPSILON * amp;
+        assert!(diff <= allowed, "offset {off}: {diff:e} > {allowed:e}");
+    }
+}
+
 #[test]
 fn parallel_blocks_report_the_first_non_finite_sample() {
     let mut s = signal(50_000, 5);

@@ -233,6 +233,20 @@ impl<T: Real + Send + Sync> BlockPrefilter<T> {
         let tail = self.filter.exact_pad().next_multiple_of(v);
         let base = chunk.as_ptr();
         let count = chunk.len().div_ceil(step);
+        // A line larger than L3 (`lanes::STREAM_BYTES`) filtered with two
+        // poles or more: each window's coefficients are formed in
+        // `bufs.staged` (in L1) and written out by streaming stores
+        // (`lanes::stream_row`, the same values), so the output is not read
+        // for ownership; nothing of it prefetched. Measured (10⁷ f64,
+        // `tol=1e-12`, `python/bench/prefilter_ab.py --rounds 21`, one
+        // thread CPU / two threads wall, load 6): quintic 8.04 → 7.50 /
+        // 4.33 → 3.81 ms; cubic (one pole: the staging copy is a third
+        // more work per window) 4.67 → 5.20 / 2.65 → 2.94, so not there.
+        let stream = std::mem::size_of_val(s) >= crate::ndimage::lanes::STREAM_BYTES
+            && self.filter.recursive().poles().len() >= 2;
+        if stream {
+            bufs.staged.resize(step, T::zero());
+        }
         let (mut max, mut finite) = (0.0f64, true);
         for (j, out) in chunk.chunks_mut(step).enumerate() {
             let a = start + j * step;
@@ -248,11 +262,26 @@ impl<T: Real + Send + Sync> BlockPrefilter<T> {
             // The next window of this block, fetched while this one runs.
             let ahead: Ahead<T> = (j + 1 < count).then(|| {
                 let next = src.as_ptr().wrapping_add(step);
-                (next, base.wrapping_add((j + 1) * step))
+                match stream {
+                    true => (next, bufs.staged.as_ptr()),
+                    false => (next, base.wrapping_add((j + 1) * step)),
+                }
             });
-            let (m, ok) = self.kernel.window(src, tail, w, out, &mut bufs.work, ahead);
+            let (m, ok) = if stream {
+                let staged = &mut bufs.staged[..out.len()];
+                let r = self
+                    .kernel
+                    .window(src, tail, w, staged, &mut bufs.work, ahead);
+                crate::ndimage::lanes::stream_row(out, staged);
+                r
+            } else {
+                self.kernel.window(src, tail, w, out, &mut bufs.work, ahead)
+            };
             max = max.max(m);
             finite &= ok;
+        }
+        if stream {
+            crate::ndimage::lanes::stream_fence();
         }
         (max, finite)
     }
@@ -278,11 +307,13 @@ fn kernel<T: Real>(filter: &LineFilter<T>) -> WindowRecursion<T> {
     WindowRecursion::new(r.poles(), r.gain())
 }
 
-/// A task's work space: the window's passes, and the extended samples of a
-/// window at the line's ends.
+/// A task's work space: the window's passes, the extended samples of a
+/// window at the line's ends, and a window's coefficients to stream.
 struct Buffers<T> {
     work: Vec<T>,
     edge: Vec<T>,
+    /// A window's coefficients before they are streamed out.
+    staged: Vec<T>,
 }
 
 impl<T> Default for Buffers<T> {
@@ -290,6 +321,7 @@ impl<T> Default for Buffers<T> {
         Buffers {
             work: Vec::new(),
             edge: Vec::new(),
+            staged: Vec::new(),
         }
     }
 }

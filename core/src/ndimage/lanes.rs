@@ -23,10 +23,17 @@
 //! 10000000 20`, one thread, A/B alternated, min of 5): 20.8 → 15.8 ms.
 //! Tried and dropped: 8 × 8 f64 tiles in AVX-512 registers (13.3 → 13.5
 //! ms), software prefetch of the next strip (16.1 → 16.7 ms),
-//! non-temporal stores (need `unsafe`; 13.2 → 16.9 ms anyway), the
+//! non-temporal stores of the transposed tiles (13.2 → 16.9 ms), the
 //! finiteness/max scan folded into the tile load of the block route (13.7
 //! → 17.9 ms: the windows' strided first read from memory is slower than
 //! a sequential scan and a re-read from L2).
+//!
+//! Streaming stores ([`stream_row`]) are the other exception: whole rows
+//! copied from L1 into an array larger than L3 by `vmovntpd`, which takes a
+//! raw pointer, so the one `unsafe` call sits in a wrapper that checks the
+//! line's bounds and alignment and falls back to ordinary stores
+//! elsewhere (the N-D prefilter's first pass, the block route's quintic
+//! windows).
 //!
 //! **Accuracy**: the same operations in the same order as the scalar loop;
 //! Rust never contracts `a + z·b` into a fused multiply-add on its own, so
@@ -238,6 +245,42 @@ pub(crate) fn scale<T: Real>(c: &mut [T], f: &T) {
     for x in c.iter_mut() {
         *x *= f.clone();
     }
+}
+
+/// Arrays from this size on are written by non-temporal stores where a
+/// pass writes values that it does not read again ([`stream_row`]): the
+/// L3 of the development machine (32 MiB). Below it the destination may
+/// still be in cache when the next pass reads it, and streaming it out to
+/// memory would make that pass read it back from there.
+pub(crate) const STREAM_BYTES: usize = 32 << 20;
+
+/// `dst = src`, the whole 64-byte lines of `dst` written by non-temporal
+/// (streaming) stores where the CPU has them (x86-64 with AVX-512 or AVX,
+/// `f64` and `f32`), its ragged ends and everything else by ordinary
+/// stores. A streaming store writes a whole cache line to memory without
+/// reading it first: an ordinary store into a line that is not in cache
+/// reads the line (read for ownership) before overwriting it, so a pass
+/// from one array into another moves three times the array's bytes, not
+/// two. Copies: the same values whichever store writes them. The stores
+/// are weakly ordered: call [`stream_fence`] before the values are read
+/// on another thread.
+pub(crate) fn stream_row<T: Real>(dst: &mut [T], src: &[T]) {
+    #[cfg(target_arch = "x86_64")]
+    if x86::stream(dst, src) {
+        return;
+    }
+    dst.clone_from_slice(src);
+}
+
+/// Orders the streaming stores of [`stream_row`] before every later store
+/// (a full fence): what a pass that streamed calls when it ends, before its
+/// rows are handed to other threads (`rayon` synchronises ordinary
+/// stores only).
+pub(crate) fn stream_fence() {
+    // A sequentially consistent fence is `mfence` on x86-64, which also
+    // orders the weakly ordered streaming stores (as `sfence` would, but
+    // without an `unsafe` call to a `target_feature` function).
+    std::sync::atomic::fence(std::sync::atomic::Ordering::SeqCst);
 }
 
 /// Rows `lo .. lo + rows.len()` of the windows `srcs` times `gain` into
@@ -512,6 +555,96 @@ mod x86 {
         false
     }
 
+    /// [`super::stream_row`] for `f64` and `f32` (`false`: nothing done,
+    /// other scalars or a CPU without AVX): the head of `dst` up to its
+    /// first 64-byte boundary and the tail after its last whole line by
+    /// ordinary stores, the lines between by [`stream_f64`] / [`stream_f32`].
+    pub(super) fn stream<T: Real>(dst: &mut [T], src: &[T]) -> bool {
+        assert_eq!(dst.len(), src.len(), "stream_row: rows of one length");
+        let avx512 = std::is_x86_feature_detected!("avx512f");
+        if !(avx512 || std::is_x86_feature_detected!("avx")) {
+            return false;
+        }
+        let lanes = 64 / size_of::<T>();
+        let head = dst.as_ptr().align_offset(64).min(dst.len());
+        if !(is::<T, f64>() || is::<T, f32>()) {
+            return false;
+        }
+        let (d_head, d_rest) = dst.split_at_mut(head);
+        let (s_head, s_rest) = src.split_at(head);
+        d_head.clone_from_slice(s_head);
+        let whole = d_rest.len() / lanes * lanes;
+        let (d_mid, d_tail) = d_rest.split_at_mut(whole);
+        let (s_mid, s_tail) = s_rest.split_at(whole);
+        d_tail.clone_from_slice(s_tail);
+        // The lines as `[f64; 8]` (the bytes of 16 `f32` alike).
+        if is::<T, f64>() {
+            let d = d_mid.as_chunks_mut::<8>().0.iter_mut();
+            let s = s_mid.as_chunks::<8>().0.iter();
+            stream_lines(d.zip(s).map(|(d, s)| (cast_mut(d), *cast(s))), avx512);
+        } else {
+            let d = d_mid.as_chunks_mut::<16>().0.iter_mut();
+            let s = s_mid.as_chunks::<16>().0.iter();
+            let lines = d.zip(s).map(|(d, s)| {
+                let (d, s) = (cast_mut::<_, [f32; 16]>(d), cast::<_, [f32; 16]>(s));
+                (bytemuck::cast_mut(d), bytemuck::cast(*s))
+            });
+            stream_lines(lines, avx512);
+        }
+        true
+    }
+
+    /// [`lines_512`] where `avx512`, else [`lines_256`] (AVX).
+    #[inline(always)]
+    fn stream_lines<'a>(lines: impl Iterator<Item = (&'a mut [f64; 8], [f64; 8])>, avx512: bool) {
+        // SAFETY (both calls): the caller detected the target feature.
+        #[allow(unsafe_code)]
+        match avx512 {
+            true => unsafe { lines_512(lines) },
+            false => unsafe { lines_256(lines) },
+        }
+    }
+
+    /// `d = s` by one 512-bit non-temporal store (`vmovntpd`) per
+    /// 64-byte line of `d` (each aligned to 64: checked).
+    #[target_feature(enable = "avx512f")]
+    fn lines_512<'a>(lines: impl Iterator<Item = (&'a mut [f64; 8], [f64; 8])>) {
+        for (d, s) in lines {
+            assert!(
+                d.as_ptr().cast::<u8>().align_offset(64) == 0,
+                "a whole line"
+            );
+            let v: __m512d = bytemuck::cast(s);
+            // SAFETY: `d` is 64 writable bytes aligned to 64 (asserted),
+            // borrowed mutably: exactly what the store writes.
+            #[allow(unsafe_code)]
+            unsafe {
+                _mm512_stream_pd(d.as_mut_ptr(), v)
+            };
+        }
+    }
+
+    /// [`lines_512`] by two 256-bit non-temporal stores per line (AVX).
+    #[target_feature(enable = "avx")]
+    fn lines_256<'a>(lines: impl Iterator<Item = (&'a mut [f64; 8], [f64; 8])>) {
+        for (d, s) in lines {
+            assert!(
+                d.as_ptr().cast::<u8>().align_offset(64) == 0,
+                "a whole line"
+            );
+            let [lo, hi]: [__m256d; 2] = bytemuck::cast(s);
+            let p = d.as_mut_ptr();
+            // SAFETY: `p` and `p + 4` are the two aligned 32-byte halves
+            // of `d` (64 writable bytes aligned to 64, asserted, borrowed
+            // mutably): exactly what the stores write.
+            #[allow(unsafe_code)]
+            unsafe {
+                _mm256_stream_pd(p, lo);
+                _mm256_stream_pd(p.add(4), hi);
+            }
+        }
+    }
+
     /// [`super::prefetch`]: one `prefetcht0` per 64-byte line of `row`
     /// (addresses formed with wrapping arithmetic, never dereferenced).
     #[target_feature(enable = "sse")]
@@ -689,5 +822,45 @@ mod tests {
     fn mpfr_takes_the_plain_loop() {
         assert_eq!(tile_side::<crate::scalar::Mp<128>>(), 0);
         check::<crate::scalar::Mp<128>, 8>(5, 9, 2, 1);
+    }
+
+    /// `stream_row` writes exactly `src` into `dst` and nothing around it:
+    /// every length from 0 to 80 at every offset within two cache lines
+    /// (heads, whole lines and tails of each size), f64 and f32, each
+    /// value's bits (subnormals, NaN-free) against the source. Fails when
+    /// the head, the lines or the tail are off by one.
+    fn streams<T: Real>() {
+        let src = values::<T>(80, 3);
+        let guard = T::from_f64_exact(-7.25);
+        for off in 0..2 * 64 / size_of::<T>() {
+            for len in 0..=80 {
+                let mut dst = vec![guard.clone(); off + len + 20];
+                stream_row(&mut dst[off..off + len], &src[..len]);
+                stream_fence();
+                let bits = |x: &T| x.to_f64().to_bits();
+                assert!(
+                    dst[..off].iter().all(|x| bits(x) == bits(&guard)),
+                    "before, {off} {len}"
+                );
+                assert!(
+                    dst[off..off + len]
+                        .iter()
+                        .zip(&src)
+                        .all(|(a, b)| bits(a) == bits(b)),
+                    "values, {off} {len}"
+                );
+                assert!(
+                    dst[off + len..].iter().all(|x| bits(x) == bits(&guard)),
+                    "after, {off} {len}"
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn streamed_rows_are_the_source_bit_for_bit() {
+        streams::<f64>();
+        streams::<f32>();
+        streams::<crate::scalar::Mp<128>>();
     }
 }

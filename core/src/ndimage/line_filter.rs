@@ -389,7 +389,7 @@ impl<T: Real> LineFilter<T> {
     /// Aldroubi and Eden (1993), the causal/anti-causal recursion.
     pub(crate) fn apply_rows(&self, rows: &mut [&mut [T]], buf: &mut Vec<T>, scratch: &mut Vec<T>) {
         let loaded = self.load_rows(rows, buf, scratch, &mut ());
-        self.store_rows(rows, buf, loaded);
+        self.store_rows(rows, buf, loaded, false);
     }
 
     /// [`Self::apply_rows`] reading the samples from `src` (rows of the
@@ -397,7 +397,10 @@ impl<T: Real> LineFilter<T> {
     /// copy fused into the filter. `seen` takes in every source row just
     /// before the filter reads it (then from L1: the caller's finiteness
     /// and magnitude check, [`RowCheck`]). The same bits as copying
-    /// `src` into `rows` and calling [`Self::apply_rows`].
+    /// `src` into `rows` and calling [`Self::apply_rows`]. `stream`: the
+    /// last pass writes `rows` by streaming stores (`lanes::stream_row`,
+    /// the same values; for rows that the caller will not read again while
+    /// they could still be in cache).
     pub(crate) fn apply_rows_from<R: AsRef<[T]>, F: RowCheck>(
         &self,
         src: &[R],
@@ -405,9 +408,10 @@ impl<T: Real> LineFilter<T> {
         buf: &mut Vec<T>,
         scratch: &mut Vec<T>,
         seen: &mut F,
+        stream: bool,
     ) {
         let loaded = self.load_rows(src, buf, scratch, seen);
-        self.store_rows(rows, buf, loaded);
+        self.store_rows(rows, buf, loaded, stream);
     }
 
     /// Whether [`Self::apply_rows`] fuses the first and last passes with
@@ -481,7 +485,7 @@ impl<T: Real> LineFilter<T> {
     /// The writing half of [`Self::apply_rows`]: the last anti-causal
     /// pass (or both poles' of a [`Cascade`]) from `buf` into `rows`, or
     /// `buf`'s rows copied.
-    fn store_rows(&self, rows: &mut [&mut [T]], buf: &[T], loaded: Loaded<T>) {
+    fn store_rows(&self, rows: &mut [&mut [T]], buf: &[T], loaded: Loaded<T>, stream: bool) {
         let w = rows.first().map_or(0, |r| r.len());
         if w == 0 {
             return;
@@ -499,11 +503,11 @@ impl<T: Real> LineFilter<T> {
                     z: [z1, z2],
                     u: &mut u,
                 };
-                store_up(rows, buf, &mut step);
+                store_up(rows, buf, &mut step, stream);
             }
             (_, poles) => {
                 let z = poles.last().expect("fused rows have a pole");
-                store_up(rows, buf, &mut Anticausal { z });
+                store_up(rows, buf, &mut Anticausal { z }, stream);
             }
         }
     }
@@ -993,11 +997,15 @@ impl<T: Real> UpStep<T> for Anticausal2<'_, T> {
 
 /// A pass up writing `rows` from the values in `buf`: row `n − 1` copied
 /// (it holds the pass's start), then `step` on each row from `n − 2`
-/// down to 0, the rows prefetched [`rows_ahead`].
+/// down to 0, the rows prefetched [`rows_ahead`]; by streaming stores
+/// where `stream` ([`store_up_streamed`]).
 #[multiversion(targets("x86_64+avx512f+avx512vl+avx2+fma", "x86_64+avx2+fma", "aarch64+neon"))]
-fn store_up<T: Real, S: UpStep<T>>(rows: &mut [&mut [T]], buf: &[T], step: &mut S) {
+fn store_up<T: Real, S: UpStep<T>>(rows: &mut [&mut [T]], buf: &[T], step: &mut S, stream: bool) {
     let n = rows.len();
     let w = buf.len() / n;
+    if stream {
+        return store_up_streamed(rows, buf, step);
+    }
     rows[n - 1].clone_from_slice(&buf[(n - 1) * w..]);
     let ahead = rows_ahead::<T>(w);
     for i in (0..n - 1).rev() {
@@ -1010,6 +1018,26 @@ fn store_up<T: Real, S: UpStep<T>>(rows: &mut [&mut [T]], buf: &[T], step: &mut 
         let (lo, hi) = rows.split_at_mut(i + 1);
         step.row(&mut lo[i][..], &hi[0][..], &buf[i * w..(i + 1) * w]);
     }
+}
+
+/// [`store_up`] by streaming stores: each row formed in `cur` from the
+/// row after it, kept in `next` (both in L1: the rows written are not read
+/// back), then written whole lines at a time without reading them first
+/// ([`lanes::stream_row`]); nothing prefetched (the rows' old contents are
+/// not wanted). The same operations on the same values, so the same bits.
+#[multiversion(targets("x86_64+avx512f+avx512vl+avx2+fma", "x86_64+avx2+fma", "aarch64+neon"))]
+fn store_up_streamed<T: Real, S: UpStep<T>>(rows: &mut [&mut [T]], buf: &[T], step: &mut S) {
+    let n = rows.len();
+    let w = buf.len() / n;
+    let mut next = buf[(n - 1) * w..].to_vec();
+    let mut cur = next.clone();
+    lanes::stream_row(rows[n - 1], &next);
+    for i in (0..n - 1).rev() {
+        step.row(&mut cur, &next, &buf[i * w..(i + 1) * w]);
+        lanes::stream_row(rows[i], &cur);
+        std::mem::swap(&mut cur, &mut next);
+    }
+    lanes::stream_fence();
 }
 
 /// Rows ahead that [`load_down`] and [`store_up`] ask the cache
@@ -1203,7 +1231,14 @@ mod tests {
                     let mut rows = vec![T::zero(); n * w];
                     let src: Vec<&[T]> = data.chunks(w).collect();
                     let mut outs: Vec<&mut [T]> = rows.chunks_mut(w).collect();
-                    f.apply_rows_from(&src, &mut outs, &mut Vec::new(), &mut Vec::new(), &mut ());
+                    f.apply_rows_from(
+                        &src,
+                        &mut outs,
+                        &mut Vec::new(),
+                        &mut Vec::new(),
+                        &mut (),
+                        n % 2 == 1,
+                    );
                     for j in 0..w {
                         let mut line: Vec<W> = (0..n)
                             .map(|i| W::from_f64_exact(data[i * w + j].to_f64()))
@@ -1259,6 +1294,53 @@ mod tests {
                             "degree {degree} {mode:?} {route:?} n {n} w {w}"
                         );
                     }
+                }
+            }
+        }
+    }
+
+    /// The rows written by streaming stores (`apply_rows_from` with
+    /// `stream`) equal [`LineFilter::apply_lines`] bit for bit: f64 and
+    /// f32, degrees 3 and 5 (one pole; two: the cascade) and 2, every mode,
+    /// rows of 1 to 70 values (heads, whole 64-byte lines and tails) at
+    /// offsets that leave them unaligned, 2 to 40 rows.
+    #[test]
+    fn streamed_rows_equal_apply_lines_bit_for_bit() {
+        streamed_rows::<f64>();
+        streamed_rows::<f32>();
+    }
+
+    fn streamed_rows<T: Real>() {
+        for degree in [2u32, 3, 5] {
+            let family = SplineFamily::Order(degree + 1);
+            for mode in Mode::ALL {
+                let f = LineFilter::<T>::new(&family, mode, 0.5, Route::Exact).unwrap();
+                for (n, w, off) in [(2, 1, 0), (3, 17, 1), (7, 8, 3), (40, 24, 2), (40, 70, 5)] {
+                    let data: Vec<T> = (0..n * w)
+                        .map(|i| T::from_f64_exact(((i * 7919) % 211) as f64 / 97.0 - 1.0))
+                        .collect();
+                    let mut want = data.clone();
+                    f.apply_lines(&mut want, w, &mut Vec::new());
+                    let mut out = vec![T::zero(); off + n * w];
+                    let mut rows: Vec<&mut [T]> = out[off..].chunks_mut(w).collect();
+                    let src: Vec<&[T]> = data.chunks(w).collect();
+                    f.apply_rows_from(
+                        &src,
+                        &mut rows,
+                        &mut Vec::new(),
+                        &mut Vec::new(),
+                        &mut (),
+                        true,
+                    );
+                    let bits = |x: &T| x.to_f64().to_bits();
+                    assert!(
+                        out[off..]
+                            .iter()
+                            .zip(&want)
+                            .all(|(a, b)| bits(a) == bits(b)),
+                        "{} bits degree {degree} {mode:?} n {n} w {w}",
+                        T::BITS
+                    );
                 }
             }
         }
