@@ -730,20 +730,20 @@ impl<T: Real> Cascade<T> {
         let row = |i: usize| &c[i * w..(i + 1) * w];
         u.fill(T::zero());
         last.fill(T::zero());
-        match mode {
-            Mode::Mirror => {
-                for (j, (fu, fc)) in self.mirror[0].iter().zip(&self.mirror[1]).enumerate() {
-                    add_scaled(u, fu, row(n - 1 - j), None);
-                    add_scaled(last, fc, row(n - 1 - j), None);
+        // Mirror and reflect: fixed weights of the last three (two) rows.
+        let weights: Option<(&[T], &[T])> = match mode {
+            Mode::Mirror => Some((&self.mirror[0], &self.mirror[1])),
+            Mode::Reflect => Some((&self.reflect[0], &self.reflect[1])),
+            _ => None,
+        };
+        match weights {
+            Some((for_u, for_last)) => {
+                for (j, (fu, fc)) in for_u.iter().zip(for_last).enumerate() {
+                    add_scaled(u, fu, row(n - 1 - j));
+                    add_scaled(last, fc, row(n - 1 - j));
                 }
             }
-            Mode::Reflect => {
-                for (j, (fu, fc)) in self.reflect[0].iter().zip(&self.reflect[1]).enumerate() {
-                    add_scaled(u, fu, row(n - 1 - j), None);
-                    add_scaled(last, fc, row(n - 1 - j), None);
-                }
-            }
-            _ => {
+            None => {
                 for m in (0..self.reach).rev() {
                     horner2_row(u, last, &self.z, row((n - 1 + m) % n), None);
                 }
@@ -839,21 +839,11 @@ fn prefetch_starts<T: Real, R: AsRef<[T]>>(rows: &[R], mode: Mode, count: usize)
     }
 }
 
-/// `acc += f · row` for a row of `w` values, or `acc += f · (g · row)`
-/// with a gain `g` (the row scaled first, as [`lanes::scale`] does).
+/// `acc += f · row` for a row of `w` values.
 #[multiversion(targets("x86_64+avx512f+avx512vl+avx2+fma", "x86_64+avx2+fma", "aarch64+neon"))]
-fn add_scaled<T: Real>(acc: &mut [T], f: &T, row: &[T], gain: Option<&T>) {
-    match gain {
-        Some(g) => {
-            for (a, x) in acc.iter_mut().zip(row) {
-                *a += f.clone() * (g.clone() * x);
-            }
-        }
-        None => {
-            for (a, x) in acc.iter_mut().zip(row) {
-                *a += f.clone() * x;
-            }
-        }
+fn add_scaled<T: Real>(acc: &mut [T], f: &T, row: &[T]) {
+    for (a, x) in acc.iter_mut().zip(row) {
+        *a += f.clone() * x;
     }
 }
 
