@@ -3,6 +3,8 @@
 //! the centripetal spline has no loop on the classic counter-example where
 //! the uniform one does; zero chords are typed errors.
 
+use crate::common;
+use common::strategies::grid_points;
 use nalgebra::Vector2;
 use proptest::prelude::*;
 use splinelab::curves::CurveError;
@@ -12,8 +14,6 @@ use splinelab_verify::curves::{
     bounds, catmull_rom_errors, loop_example, min_relative_speed, polyline_self_intersects,
     sample_catmull_rom,
 };
-mod common;
-use common::strategies::grid_points;
 
 fn check<T: Real>(pts: &[[i32; 2]], spacing: Spacing, closed: bool) -> Result<(), TestCaseError> {
     let p: Vec<Vector2<T>> = pts

@@ -3,6 +3,8 @@
 //! de Casteljau and the hodograph, the bicubic Bézier patch (seed 001's
 //! `Patch`) against the NURBS surface, and the serde round trip.
 
+use crate::common;
+use common::strategies::grid_points;
 use nalgebra::{Vector2, Vector3};
 use proptest::prelude::*;
 use splinelab::bspline::de_boor::{BSpline, BSplineError};
@@ -10,8 +12,6 @@ use splinelab::bspline::knots::{KnotError, KnotVector};
 use splinelab::scalar::prelude::*;
 use splinelab::surface_deformation::patch::Patch;
 use splinelab_verify::curves::{bounds, bspline_vs_bezier, de_boor_vs_basis, patch_vs_nurbs};
-mod common;
-use common::strategies::grid_points;
 
 fn build<T: Real>(order: usize, knots: &[i32], pts: &[[i32; 2]]) -> Option<BSpline<T, 2>> {
     let mut k: Vec<i32> = knots.to_vec();

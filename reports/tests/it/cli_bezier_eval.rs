@@ -1,10 +1,10 @@
 //! `splinelab bezier-eval` end to end: `--reference` against a closed form,
 //! and one JSON schema in every precision.
 
+use crate::common;
+use common::json_ok;
 use rug::{Float, Rational};
 use serde_json::Value;
-mod common;
-use common::json_ok;
 
 /// `(1 − 2t)^n = ((1 − t) − t)^n` has the Bernstein coefficients `(−1)^i`.
 /// Written to a fresh file per call (tests run in parallel).

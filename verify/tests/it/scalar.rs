@@ -68,7 +68,7 @@ fn exact(x: f64) -> Rational {
     Rational::from_f64(x).unwrap()
 }
 
-mod common;
+use crate::common;
 use common::strategies::finite_f64;
 
 proptest! {

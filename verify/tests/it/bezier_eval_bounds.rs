@@ -2,6 +2,8 @@
 //! on random cases, decided exactly in rationals against de Casteljau run in
 //! exact arithmetic on the same f64 inputs.
 
+use crate::common;
+use common::strategies::{near_multiple_roots, parameter, ulp_close_values};
 use proptest::prelude::*;
 use rug::Rational;
 use rug::ops::Pow;
@@ -15,8 +17,6 @@ use splinelab_verify::bezier_eval::{
     ExactPoly, Family, Method, Prepared, check_bounds, find_zero_result, gamma, jiang_example,
     measure, unit_roundoff,
 };
-mod common;
-use common::strategies::{near_multiple_roots, parameter, ulp_close_values};
 
 /// Coefficients: uniform, near-multiple roots, or values a few ulps apart
 /// (a nearly constant polynomial: every de Casteljau difference cancels).

@@ -1,10 +1,10 @@
 //! `splinelab cond` end to end: the JSON contract against a closed form, and
 //! bad input rejected with a message and a non-zero exit, never a panic.
 
+use crate::common;
+use common::{json_ok, splinelab};
 use rug::Float;
 use serde_json::Value;
-mod common;
-use common::{json_ok, splinelab};
 
 #[test]
 fn degree_2_equispaced_matches_the_closed_form_to_all_printed_digits() {

@@ -3,6 +3,8 @@
 //! in f64 and MPFR; de Casteljau subdivision invariance; segment counts of
 //! adaptive vs uniform sampling on closed forms.
 
+use crate::common;
+use common::strategies::{grid_points, near_coincident_points};
 use nalgebra::Vector2;
 use proptest::prelude::*;
 use splinelab::bernstein::bezier::Bezier;
@@ -12,8 +14,6 @@ use splinelab::scalar::prelude::*;
 use splinelab_verify::curves::{flatten_excess, flatten_test_curves, frac};
 use splinelab_verify::flatten_reference::{deviation_in_mpfr, greedy_reference_segments};
 use splinelab_verify::metrics::{dist_ref, in_u};
-mod common;
-use common::strategies::{grid_points, near_coincident_points};
 
 fn curve<T: Real>(pts: &[[i32; 2]]) -> Bezier<T, 2> {
     Bezier::new(
