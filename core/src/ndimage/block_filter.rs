@@ -37,7 +37,7 @@
 use super::NdimageError;
 use super::line_filter::{LineFilter, Route};
 use super::mode::Mode;
-use super::nd_prefilter::Stash;
+use super::stash::Stash;
 use super::window_recursion::{Ahead, WindowRecursion, lanes};
 use crate::scalar::Real;
 use crate::sspline::SplineFamily;

@@ -32,11 +32,12 @@ mod affine;
 mod batch;
 mod kernel;
 mod padding;
+mod point_rule;
 mod runs;
 mod separable;
 mod weights;
-pub use affine::PointRule;
 use padding::{extend_padded, zeros_on_huge_pages};
+pub use point_rule::PointRule;
 
 /// How to build an [`Interpolant`].
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -44,6 +44,7 @@ mod lanes;
 pub mod line_filter;
 pub mod mode;
 pub mod nd_prefilter;
+mod stash;
 mod window_recursion;
 
 pub use error::NdimageError;

@@ -59,10 +59,10 @@ use super::block_filter::BlockPrefilter;
 use super::lanes;
 use super::line_filter::{LineFilter, RowCheck};
 use super::mode::Mode;
+use super::stash::Stash;
 use crate::scalar::Real;
 use ndarray::{Array, ArrayBase, ArrayView3, ArrayViewMut3, Axis, Data, DataMut, Dimension, Zip};
 use rayon::prelude::*;
-use std::sync::Mutex;
 
 /// Refuses samples that `filter` could overflow along `axes` axes
 /// ([`LineFilter::check_magnitude`]). One pass on the pool, after [`check_finite`].
@@ -591,29 +591,6 @@ fn last_group<T: Real, const G: usize>(
     let mut outs: Vec<&mut [T]> = lines.chunks_mut(n).collect();
     lanes::store_strip(&mut outs, buf, 0);
     scan
-}
-
-/// Work buffers shared by the tasks of one pass, each task taking one
-/// and putting it back: a fresh multi-megabyte `Vec` per task is a fresh
-/// mapping whose pages the kernel zeroes (perf: `clear_page` was 38% of
-/// spline_filter 4096² on one thread).
-pub(crate) struct Stash<B>(Mutex<Vec<B>>);
-
-impl<B> Default for Stash<B> {
-    fn default() -> Self {
-        Stash(Mutex::new(Vec::new()))
-    }
-}
-
-impl<B: Default> Stash<B> {
-    /// `f` on a buffer (new, or left by an earlier task).
-    pub(crate) fn with<R>(&self, f: impl FnOnce(&mut B) -> R) -> R {
-        let lock = || self.0.lock().unwrap_or_else(|p| p.into_inner());
-        let mut buf = lock().pop().unwrap_or_default();
-        let r = f(&mut buf);
-        lock().push(buf);
-        r
-    }
 }
 
 /// Bytes per row of a strip at least: each row of a strip is a separate

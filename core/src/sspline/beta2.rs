@@ -1,7 +1,7 @@
 //! The cubic Beta2-spline with tension `β2 ≥ 0` (Barsky–DeRose 1985, with
 //! `β1 = 1`) and the closed forms of its S-spline (seed 000 §4, appendix d).
 
-use super::BasisWindow;
+use super::basis_window::BasisWindow;
 use crate::scalar::Real;
 use rug::Rational;
 

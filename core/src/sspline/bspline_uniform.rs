@@ -1,7 +1,7 @@
 //! The uniform B-spline `N_{0,m}` on the knots `0, 1, …, m` and its centred
 //! form `β_m(x) = N_{0,m}(x + m/2)` (seed 000 eq 7, 31).
 
-use super::BasisWindow;
+use super::basis_window::BasisWindow;
 use crate::scalar::Real;
 use rug::ops::Pow;
 use rug::{Integer, Rational};

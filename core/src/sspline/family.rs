@@ -1,5 +1,6 @@
 //! The family of centred basis functions an S-spline is built on.
 
+use super::basis_window::BasisWindow;
 use super::{MAX_ORDER, SsplineError, beta2, bspline_uniform};
 use crate::scalar::Real;
 use rug::ops::Pow;
@@ -25,16 +26,6 @@ pub enum SplineFamily {
     Order(u32),
     /// Cubic Beta2-spline with tension `β2 ≥ 0`.
     Beta2(Rational),
-}
-
-/// The non-zero values of the translates of a centred basis at one point:
-/// `values[l] = β(x − (first + l))`.
-#[derive(Debug, Clone, PartialEq)]
-pub struct BasisWindow<T> {
-    /// Index `i` of the first translate `β(x − i)` in the window.
-    pub first: i64,
-    /// The basis values, one per translate.
-    pub values: Vec<T>,
 }
 
 impl SplineFamily {

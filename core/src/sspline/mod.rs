@@ -10,6 +10,8 @@
 //!
 //! - [`family`]: the family of basis functions (B-spline order `m`, or the
 //!   cubic Beta2-spline with tension `β2`) and its validation;
+//! - [`basis_window`]: the values of a basis's translates at one point, as
+//!   the families evaluate them;
 //! - [`bspline_uniform`]: the uniform B-spline `N_{0,m}` (eq 31) and its
 //!   centred form;
 //! - [`beta2`]: the Beta2-spline segments (eq 36) and the closed forms
@@ -31,6 +33,7 @@
 //! blocks, interpolant) is [`crate::ndimage`]; it depends on this module,
 //! never the reverse.
 
+pub mod basis_window;
 pub mod beta2;
 pub mod bspline_uniform;
 pub mod coefficients;
@@ -42,8 +45,9 @@ pub mod prefilter;
 pub mod truncation;
 pub mod width;
 
+pub use basis_window::BasisWindow;
 pub use coefficients::{CoefficientMethod, coefficients};
-pub use family::{BasisWindow, SplineFamily};
+pub use family::SplineFamily;
 pub use truncation::{TruncatedBasis, TruncationAnalysis, TruncationErrors};
 pub use width::{
     Criterion, WidthChoice, WidthChooser, check_tol, f64_saturation_width, truncation_width,

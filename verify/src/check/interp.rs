@@ -20,7 +20,7 @@
 //! (`np.pad` mode `edge` for `nearest`, the constant `cval` for
 //! `grid-constant`), filters the padded array with `spline_filter`'s rule for
 //! the mode (reflect's for `nearest`, mirror's for `grid-constant`:
-//! [`scipy_filter_rule`](super::prefilter::scipy_filter_rule)) and evaluates
+//! [`scipy_filter_rule`](super::interpolation_conditions::scipy_filter_rule)) and evaluates
 //! at `x + P`, taking the edge coefficient (`nearest`) or `cval`
 //! (`grid-constant`) for the taps beyond the padded grid. The reference does
 //! exactly that, from the user's exact samples, with `x + P` exact (scipy
@@ -45,7 +45,8 @@
 
 use super::agreement::{Reference, certify};
 use super::format::UserFormat;
-use super::prefilter::{Mode, family_of_degree, horizon, interpolation_coefficients};
+use super::interpolation_conditions::{Mode, family_of_degree, interpolation_coefficients};
+use super::prefilter::horizon;
 use super::stable_bound::{eval_constant, solve_bound, unit_roundoff};
 use super::summary::{
     BoundBasis, CheckSummary, Context, ElementError, Region, element_error, from_elements,
@@ -176,7 +177,7 @@ pub struct InterpInput {
     pub user: Vec<f64>,
     /// The user's format.
     pub format: UserFormat,
-    /// Spline degree `d` (scipy's `order`), in [`DEGREES`](super::prefilter::DEGREES).
+    /// Spline degree `d` (scipy's `order`), in [`DEGREES`](super::interpolation_conditions::DEGREES).
     pub degree: usize,
     /// The end mode: any of scipy's `map_coordinates` modes (see the
     /// module documentation for `nearest`, `grid-constant`, `constant` and

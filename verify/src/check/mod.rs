@@ -9,7 +9,9 @@
 //! their summary ([`summary`]), and the `p / p + 64` agreement driver that
 //! certifies an MPFR reference ([`agreement`]), and the error a
 //! backward-stable computation would make ([`stable_bound`]), from which the
-//! default verdict comes. Exact kinds (Bézier, B-spline
+//! default verdict comes; the interpolation conditions of the modes and
+//! their solution in any precision ([`interpolation_conditions`]), which the
+//! `prefilter` and `interp` references and the stable bound share. Exact kinds (Bézier, B-spline
 //! values, knot insertion) use rational arithmetic and need no ladder.
 
 pub mod agreement;
@@ -20,6 +22,7 @@ pub mod coeffs;
 pub mod cond;
 pub mod format;
 pub mod interp;
+pub mod interpolation_conditions;
 pub mod knot_insertion;
 pub mod outcome;
 pub mod prefilter;
@@ -29,8 +32,8 @@ pub mod summary;
 
 pub use agreement::{Certified, LADDER};
 pub use format::UserFormat;
+pub use interpolation_conditions::{EXACT_MODES, Mode, ParseMode};
 pub use outcome::Outcome;
-pub use prefilter::{EXACT_MODES, Mode, ParseMode};
 pub use stable_bound::BOUND_FACTOR;
 pub use summary::{
     BoundBasis, CheckSummary, ElementError, Region, RegionSummary, Worst, WorstExcess,

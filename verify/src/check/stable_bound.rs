@@ -66,7 +66,7 @@
 
 use super::CheckError;
 use super::format::UserFormat;
-use super::prefilter::{Mode, interpolation_coefficients, scipy_filter_rule};
+use super::interpolation_conditions::{Mode, interpolation_coefficients, scipy_filter_rule};
 use splinelab::sspline::SplineFamily;
 use splinelab::sspline::euler_frobenius::poles;
 use splinelab::sspline::node_values::node_values_exact;
@@ -258,7 +258,7 @@ pub fn solve_bound(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::check::prefilter::{EXACT_MODES, extend, family_of_degree};
+    use crate::check::interpolation_conditions::{EXACT_MODES, extend, family_of_degree};
     use nalgebra::DMatrix;
 
     /// The folded interpolation matrix, dense, in f64.

@@ -20,23 +20,10 @@
 //! the evaluation (`(degree + 1)^ndim` multiply-adds). **Error**: that of
 //! [`Interpolant::eval`].
 
-use super::Interpolant;
 use super::batch::PointSource;
+use super::{Interpolant, PointRule};
 use crate::ndimage::NdimageError;
 use crate::scalar::Real;
-
-/// What happens to a point before the interpolant folds it by its mode.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum PointRule {
-    /// Nothing: the interpolant's own mode.
-    Fold,
-    /// scipy's `constant`: `cval` wherever a coordinate is outside `[0, n − 1]`.
-    CvalOutside,
-    /// scipy's `wrap`: a coordinate outside `[0, n − 1]` moves by whole
-    /// periods `n − 1` into it (`map_coordinate` in scipy's
-    /// `ni_interpolation.c`, its operations: a truncating division).
-    WrapPeriodNMinus1,
-}
 
 impl<T: Real + Copy + Send + Sync> Interpolant<T> {
     /// The values at the points `matrix · o + offset` (+ `shift`) of every
@@ -251,41 +238,6 @@ impl AffinePoints<'_> {
     }
 }
 
-impl PointRule {
-    /// The rule applied to point `x` of a grid of `shape`: whether it takes
-    /// `cval` (moving it by whole periods for the `wrap` rule).
-    pub(super) fn apply(self, x: &mut [f64], shape: &[usize]) -> bool {
-        match self {
-            PointRule::Fold => false,
-            PointRule::CvalOutside => x
-                .iter()
-                .zip(shape)
-                .any(|(&t, &len)| t < 0.0 || t > (len - 1) as f64),
-            PointRule::WrapPeriodNMinus1 => {
-                for (t, &len) in x.iter_mut().zip(shape) {
-                    *t = wrap_period_n_minus_1(*t, len);
-                }
-                false
-            }
-        }
-    }
-}
-
-/// scipy's `wrap` folding of one coordinate (see [`PointRule`]).
-fn wrap_period_n_minus_1(x: f64, len: usize) -> f64 {
-    if len <= 1 {
-        return 0.0;
-    }
-    let sz = (len - 1) as f64;
-    if x < 0.0 {
-        x + sz * ((-x / sz).trunc() + 1.0)
-    } else if x > sz {
-        x - sz * (x / sz).trunc()
-    } else {
-        x
-    }
-}
-
 /// The multi-index of flat C-order position `flat` in `shape`, into `index`.
 fn unflatten_into(mut flat: usize, shape: &[usize], index: &mut [usize]) {
     for (i, &n) in index.iter_mut().zip(shape).rev() {
@@ -296,6 +248,7 @@ fn unflatten_into(mut flat: usize, shape: &[usize], index: &mut [usize]) {
 
 #[cfg(test)]
 mod tests {
+    use super::super::point_rule::wrap_period_n_minus_1;
     use super::*;
     use crate::prelude::*;
 
