@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # The test command: set up the machine, then run every test (unit, property,
 # integration and doc tests), then the Python package's (scripts/python.sh
-# builds it into .venv; pytest runs python/tests and the docstring examples).
+# builds it into .venv; pytest runs python/tests and the docstring examples),
+# then scripts/downstream.sh (reproject's, nibabel's, sunpy's and scipy's own
+# interpolation tests with splinelab swapped in for scipy.ndimage's functions).
 # Tests run in the release profile, which the report shares, so the two
 # commands compile the workspace once.
 set -euo pipefail
@@ -12,3 +14,5 @@ read -r -a features <<<"$(bash scripts/gmp_features.sh)"
 cargo test --release --workspace "${features[@]+"${features[@]}"}" "$@"
 bash scripts/python.sh
 .venv/bin/python -m pytest -q -p no:cacheprovider --doctest-modules python/splinelab python/tests
+# Downstream libraries' own tests (and scipy's) with splinelab swapped in.
+bash scripts/downstream.sh

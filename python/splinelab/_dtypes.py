@@ -157,13 +157,26 @@ def store_truncated(t, dtype):
         return np.asarray(t).astype(np.dtype(dtype))
 
 
+class OutputShapeError(ValueError, RuntimeError):
+    """An ``output`` array whose shape is not the result's: a ValueError
+    (this package's error for bad values) that is also the RuntimeError
+    scipy raises there ("output shape not correct"), so code written for
+    scipy.ndimage catches it as before."""
+
+
+def check_output_shape(target, shape):
+    """Refuse an ``output`` array (``target``, None: none given) of another
+    shape than ``shape`` with :class:`OutputShapeError`."""
+    if target is not None and tuple(target.shape) != tuple(shape):
+        raise OutputShapeError(f"output has shape {tuple(target.shape)}, expected {tuple(shape)}")
+
+
 def deliver(result, target, shape):
     """``result`` written into ``target`` (any dtype, byte order or
     strides) when given, else returned."""
     if target is None:
         return result
-    if target.shape != tuple(shape):
-        raise ValueError(f"output has shape {target.shape}, expected {tuple(shape)}")
+    check_output_shape(target, shape)
     if not target.flags.writeable:
         raise ValueError("output is read-only")
     np.copyto(target, result, casting="unsafe")

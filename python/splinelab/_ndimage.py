@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 import numbers
 
 import numpy as np
@@ -55,8 +56,7 @@ def _filter(input, axes, order, output, mode, tol, threads, exact_edges=False, c
     a = _dt.input_array(input)
     cplx = a.dtype.kind == "c"
     dtype, target = _dt.output_dtype(output, a.dtype, _dt.default_output(a.dtype, cplx), cplx)
-    if target is not None and target.shape != a.shape:
-        raise ValueError(f"output has shape {target.shape}, expected {a.shape}")
+    _dt.check_output_shape(target, a.shape)
     d = _degree(order)
     rule = _filter_mode(mode, bool(exact_edges))
     tol, threads = _opt_float(tol, "tol"), _threads(threads)
@@ -232,7 +232,9 @@ def map_coordinates(
     in float64 and rounded as scipy rounds them (half away from zero,
     saturated: :mod:`splinelab._dtypes`); float32 and complex64 results are
     computed in float32; complex input is interpolated part by part
-    (``cval`` may be complex).
+    (``cval`` may be complex). An input with an empty axis gives ``cval``
+    at every point in 'constant' / 'grid-constant' (all points lie
+    outside), as scipy; other modes refuse it (scipy reads outside the array).
     Cost: the prefilter (O(poles) per sample and axis) once, then
     ``(order + 1)**ndim`` multiply-adds per point.
 
@@ -377,8 +379,7 @@ def _interpolate(input, output, shape, cval, evaluate, *others):
     cplx = a.dtype.kind == "c"
     dtype, target = _dt.output_dtype(output, a.dtype, _dt.default_output(a.dtype, cplx), cplx)
     _dt.refuse_aliasing(target, a, *[np.asarray(o) for o in others])
-    if target is not None and target.shape != tuple(shape):
-        raise ValueError(f"output has shape {target.shape}, expected {tuple(shape)}")
+    _dt.check_output_shape(target, shape)
     cv = _cval(cval, cplx)
     work = _dt.compute_dtype(_dt.real_dtype(dtype))
     if cplx:
@@ -429,6 +430,10 @@ class _Points:
         """The points folded by scipy's 'wrap' rule (:func:`_wrap_axis`)."""
         return type(self)([_wrap_axis(x, n) for x, n in zip(self.flat, shape)])
 
+    def count(self):
+        """The number of points."""
+        return np.shape(self.flat)[1]
+
     def outside(self, shape):
         """Whether each point lies outside ``[0, n - 1]`` on some axis."""
         limit = np.array(shape, dtype=np.float64)[:, None] - 1.0
@@ -472,6 +477,9 @@ class _Grid(_Points):
                     grid[(slice(None),) * axis + (outside,)] = fill
         return values
 
+    def count(self):
+        return math.prod(len(x) for x in self.flat)
+
     def evaluate(self, a, d, mode, cv, tol, prefilter, threads, deriv):
         run = _ext.resample_f64 if a.dtype == np.float64 else _ext.resample_f32
         axes = [np.ascontiguousarray(x, dtype=np.float64) for x in self.flat]
@@ -486,6 +494,9 @@ class _Affine(_Points):
     def __init__(self, matrix, offset, out_shape, shift=0.0, wrap=False):
         self.matrix, self.offset, self.out_shape = matrix, offset, tuple(out_shape)
         self.shift, self.wrap = shift, wrap
+
+    def count(self):
+        return math.prod(self.out_shape)
 
     def shifted(self, pad):
         return _Affine(self.matrix, self.offset, self.out_shape, self.shift + pad, self.wrap)
@@ -507,6 +518,11 @@ def _map_real(a, flat, d, mode, cv, prefilter, tol, threads, exact_edges, deriv=
     k)``, or a :class:`_Points`): the values (or the partial derivative
     ``deriv``), flat, in ``a``'s dtype."""
     points = flat if isinstance(flat, _Points) else _Points(flat)
+    if a.size == 0 and mode in ("constant", "grid-constant"):
+        # An empty axis puts every point outside the grid: cval, as scipy
+        # (its other modes read outside the array there; the engine refuses
+        # an empty signal).
+        return np.full(points.count(), 0.0 if deriv else cv, a.dtype)
     if prefilter and 1 < d <= 5 and mode in _EXACT_EDGES and not exact_edges:
         # scipy's route (_prepad_for_spline_filter): pad 12, filter with
         # its rule, evaluate the coefficients at x + 12 (rounded as scipy).

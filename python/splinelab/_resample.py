@@ -34,6 +34,8 @@ def _per_axis(value, ndim, what):
             raise ValueError(f"{what} must have one value per axis ({ndim}), got {len(values)}")
     else:
         values = [value] * ndim
+    # A 0-d array counts as its number, as in scipy (np.iterable is False).
+    values = [v[()] if isinstance(v, np.ndarray) and v.ndim == 0 else v for v in values]
     for v in values:
         if isinstance(v, (bool, np.bool_)) or not isinstance(v, numbers.Real):
             raise TypeError(f"{what} must be real numbers, got {type(v).__name__}")
@@ -208,7 +210,9 @@ def affine_transform(input, matrix, offset=0.0, output_shape=None, output=None, 
     ``matrix``: (ndim,) a diagonal (evaluated separably, as scipy's
     zoom/shift: ``(o + offset / m) * m``), (ndim, out_ndim), or homogeneous
     (ndim, ndim + 1) / (ndim + 1, ndim + 1) with the offset in its last
-    column. ``output_shape`` defaults to ``output``'s shape or the input's.
+    column. ``output_shape`` defaults to ``output``'s shape or the input's;
+    an ``output`` array of another shape is refused with a ValueError that
+    is also scipy's RuntimeError.
     Other arguments as :func:`zoom`. Cost: the prefilter, then
     ``(order + 1)**ndim`` multiply-adds per output sample.
 
@@ -304,8 +308,7 @@ def rotate(input, angle, axes=(1, 0), reshape=True, output=None, order=3, mode="
     # Plane by plane, as scipy (each plane prefiltered on its own), each
     # written into its slice of the result.
     if isinstance(output, np.ndarray):
-        if output.shape != out_shape:
-            raise ValueError(f"output has shape {output.shape}, expected {out_shape}")
+        _dt.check_output_shape(output, out_shape)
         full = output
     else:
         cplx = a.dtype.kind == "c"

@@ -167,3 +167,81 @@ def test_high_degrees_against_check_mpfr_reference(d):
     c = splinelab.spline_filter(x, order=d, mode="mirror")
     in_u_max_c = r["max_ulps_scaled"] * np.abs(z).max() / np.abs(c).max()
     assert in_u_max_c <= 4, (in_u_max_c, r["worst"])
+
+
+def test_zoom_factor_as_0d_array_is_its_number():
+    # scipy's _normalize_sequence: np.iterable(np.array(2)) is False, so a
+    # 0-d array is one factor for every axis (scipy's test_zoom_0d_array).
+    x = rng(10).uniform(-1, 1, (10, 7))
+    for z in (np.array(2), np.array(1.5), np.float64(0.75)):
+        ours, ref = splinelab.zoom(x, z), ndimage.zoom(x, z)
+        assert ours.shape == ref.shape
+        assert ulps_of_max(ours, ref) <= 16, z
+    assert ulps_of_max(splinelab.shift(x, np.array(1.25)), ndimage.shift(x, np.array(1.25))) <= 16
+    with pytest.raises(TypeError, match="zoom must be real"):
+        splinelab.zoom(x, np.array(True))
+
+
+@pytest.mark.parametrize(
+    "call",
+    [
+        lambda f, out: f.affine_transform(np.arange(8.0), [[1]], output=out, output_shape=(12,)),
+        lambda f, out: f.zoom(np.arange(8.0), 3, output=out),
+        lambda f, out: f.shift(np.arange(8.0), 1.5, output=out),
+        lambda f, out: f.map_coordinates(np.arange(8.0), [[1.5, 2.5]], output=out),
+        lambda f, out: f.spline_filter(np.arange(8.0), output=out),
+        lambda f, out: f.rotate(np.ones((3, 4, 5)), 30, output=out),
+    ],
+)
+def test_output_of_another_shape_is_scipys_runtime_error(call):
+    # scipy raises RuntimeError("output shape not correct"); ours is a
+    # ValueError that is also a RuntimeError, so code written for scipy
+    # catches it (scipy's test_affine_transform_output_shape).
+    out = np.ones(16)
+    with pytest.raises(RuntimeError, match="output shape not correct"):
+        call(ndimage, out)
+    with pytest.raises(RuntimeError, match=r"output has shape \(16,\), expected") as info:
+        call(splinelab, out)
+    assert isinstance(info.value, ValueError)
+    np.testing.assert_array_equal(out, 1.0)
+
+
+def test_affine_output_array_sets_the_shape():
+    # Without output_shape, the output array's shape is the output's, as
+    # scipy (the first half of scipy's test_affine_transform_output_shape).
+    x = rng(12).uniform(-1, 1, 8)
+    ours, ref = np.ones(16), np.ones(16)
+    splinelab.affine_transform(x, [[1]], output=ours)
+    ndimage.affine_transform(x, [[1]], output=ref)
+    assert ulps_of_max(ours, ref) <= 16
+    np.testing.assert_allclose(ours[:8], x, rtol=0, atol=4 * EPS64)
+
+
+@pytest.mark.parametrize("mode", ["constant", "grid-constant"])
+def test_empty_input_gives_cval_as_scipy(mode):
+    # An empty axis puts every point outside the grid: scipy gives cval in
+    # its constant modes (reproject interpolates empty chunks this way);
+    # ours too, in the output's dtype, for every function.
+    pts = np.array([[0.0, -1.0, 2.5], [1.0, 1.0, 7.0]])
+    for dtype, cval in [(np.float64, 7.6), (np.float32, 7.6), (np.int32, 7.0), (np.complex128, 7.6 - 2j)]:
+        for d in (0, 1, 3, 5):
+            a = np.zeros((0, 5), dtype)
+            ours = splinelab.map_coordinates(a, pts, order=d, mode=mode, cval=cval)
+            ref = ndimage.map_coordinates(a, pts, order=d, mode=mode, cval=cval)
+            assert ours.dtype == ref.dtype
+            # scipy's grid-constant pads with cval and filters: cval within
+            # a few ulps; ours is cval itself.
+            np.testing.assert_allclose(ours, ref, rtol=8 * EPS64)
+            np.testing.assert_array_equal(ours, np.full(3, cval, dtype))
+    a = np.zeros((0, 5))
+    for name, args in [("rotate", (30,)), ("affine_transform", ([[1, 0.2], [0, 1]], 0.0, (2, 3))),
+                       ("affine_transform", ([1.0, 0.5], 0.0, (2, 3))), ("zoom", (2,)),
+                       ("geometric_transform", (lambda o: (o[0] - 1.0, o[1]), (2, 3)))]:
+        ours = getattr(splinelab, name)(a, *args, mode=mode, cval=7.5)
+        ref = getattr(ndimage, name)(a, *args, mode=mode, cval=7.5)
+        assert ours.shape == ref.shape, name
+        np.testing.assert_allclose(ours, ref, rtol=8 * EPS64, err_msg=name)
+    assert np.all(splinelab.map_coordinates(a, pts, order=3, mode=mode, derivative=(1, 0)) == 0)
+    # Other modes read outside the array in scipy (undefined values): refused.
+    with pytest.raises(ValueError):
+        splinelab.map_coordinates(a, pts, order=3, mode="mirror")
