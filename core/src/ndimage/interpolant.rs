@@ -223,7 +223,8 @@ impl<T: Real + Send + Sync> Interpolant<T> {
     /// under [`NanPolicy::Raise`] (naming the first), and otherwise carried
     /// to every output whose window holds one (scipy's `0 · NaN`), the
     /// pattern of both `Propagate` and `Local` (given coefficients have no
-    /// prefilter to reach through).
+    /// prefilter to reach through; `Local` makes them NaN, `Propagate`
+    /// leaves ±∞ as it is).
     ///
     /// ```
     /// use splinelab::prelude::*;
@@ -258,10 +259,16 @@ impl<T: Real + Send + Sync> Interpolant<T> {
         } else {
             order as usize / 2 + 2
         };
-        let (padded, finite) = extend_padded(coeffs, mode, &T::from_f64_exact(cval), pad);
-        if !finite && opts.nan_policy == NanPolicy::Raise {
+        let (mut padded, finite) = extend_padded(coeffs, mode, &T::from_f64_exact(cval), pad);
+        match opts.nan_policy {
             // Names the first non-finite coefficient.
-            check_finite(coeffs)?;
+            NanPolicy::Raise if !finite => check_finite(coeffs)?,
+            // Missing is NaN under `Local` (±∞ would give ±∞ at full weight).
+            NanPolicy::Local if !finite => {
+                let nan = T::from_f64_exact(f64::NAN);
+                padded.par_mapv_inplace(|x| if x.is_finite() { x } else { nan.clone() });
+            }
+            _ => {}
         }
         Ok(Interpolant {
             shape: coeffs.shape().to_vec(),
