@@ -64,6 +64,7 @@ fn values(count: usize, seed: u64) -> Vec<f64> {
         .collect()
 }
 
+#[derive(Debug)]
 struct Case {
     degree: u32,
     shape: Vec<usize>,
