@@ -14,12 +14,9 @@ One line per case: base / propagate (ratio base/ours: > 1 is faster) and
 base at tol / local.
 """
 
-import argparse
-import importlib
-import sys
-
 import numpy as np
 from evaluation_ab import cpu_time
+from nd_prefilter_ab import ab_setup
 
 TOL = 1e-12
 
@@ -46,17 +43,7 @@ def cases(threads):
 
 
 def main():
-    p = argparse.ArgumentParser()
-    p.add_argument("--base", required=True, help="folder holding the other build (package --name)")
-    p.add_argument("--name", default="splinelab_base")
-    p.add_argument("--threads", type=int, default=1)
-    p.add_argument("--rounds", type=int, default=7)
-    p.add_argument("cases", nargs="*")
-    args = p.parse_args()
-    sys.path.insert(0, args.base)
-    import splinelab
-
-    base = importlib.import_module(args.name)
+    args, splinelab, base = ab_setup()
     table = cases(args.threads)
     for name in args.cases or list(table):
         call = table[name]
