@@ -119,21 +119,28 @@ def test_propagate_filters_pattern_is_scipys(order):
 
 @pytest.mark.parametrize("order", range(6))
 def test_non_finite_coordinates_and_cval_nan_are_scipys(order):
+    rng = np.random.default_rng(8)
+    for shape in SHAPES:
+        a = samples(shape, np.float64)
+        c = rng.uniform(-1.5, min(shape) + 0.5, (len(shape), 24))
+        c[:, :2] = np.round(c[:, :2])
+        for k in range(2, 24):  # one or two non-finite coordinates per point, every kind
+            c[k % len(shape), k] = BAD[k % 3]
+            if k % 4 == 0:
+                c[(k + 1) % len(shape), k] = BAD[(k // 4) % 3]
+        for mode, cval in itertools.product(MODES, [0.25, np.nan]):
+            w = f"{shape} {mode} order {order} cval {cval}"
+            v = order < 2 or mode not in REFLECT_RULE
+            ours = splinelab.map_coordinates(a, c, order=order, mode=mode, cval=cval)
+            same_pattern_and_values(ours, ndimage.map_coordinates(a, c, order=order, mode=mode, cval=cval),
+                                    np.float64, w, v)
+            # cval=nan on a grid (zoom by a non-integer factor reads outside under grid-constant).
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore", UserWarning)  # both recommend grid-constant / grid-wrap
+                same_pattern_and_values(splinelab.zoom(a, 1.3, order=order, mode=mode, cval=cval, grid_mode=True),
+                                        ndimage.zoom(a, 1.3, order=order, mode=mode, cval=cval, grid_mode=True),
+                                        np.float64, "zoom " + w, v)
     a = samples((6, 7), np.float64)
-    c = np.array([[1.0, 2.5, np.nan, np.inf, -np.inf, 1.2, np.nan, np.inf, 3.0, -0.7, 5.6],
-                  [0.5, 4.0, 1.0, 2.0, 3.0, np.nan, np.inf, np.inf, -np.inf, 6.5, 2.0]])
-    for mode, cval in itertools.product(MODES, [0.25, np.nan]):
-        w = f"{mode} order {order} cval {cval}"
-        v = order < 2 or mode not in REFLECT_RULE
-        ours = splinelab.map_coordinates(a, c, order=order, mode=mode, cval=cval)
-        same_pattern_and_values(ours, ndimage.map_coordinates(a, c, order=order, mode=mode, cval=cval),
-                                np.float64, w, v)
-        # cval=nan on a grid (zoom by a non-integer factor reads outside under grid-constant).
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore", UserWarning)  # both recommend grid-constant / grid-wrap
-            same_pattern_and_values(splinelab.zoom(a, 1.3, order=order, mode=mode, cval=cval, grid_mode=True),
-                                    ndimage.zoom(a, 1.3, order=order, mode=mode, cval=cval, grid_mode=True),
-                                    np.float64, "zoom " + w, v)
     # shift by NaN: every coordinate NaN on that axis.
     same_pattern_and_values(splinelab.shift(a, [np.nan, 0.5], order=order, mode="nearest"),
                             ndimage.shift(a, [np.nan, 0.5], order=order, mode="nearest"), np.float64, "shift nan")
@@ -327,3 +334,19 @@ def test_local_one_masked_pixel_keeps_the_image():
     rows = np.flatnonzero(np.isnan(z).any(axis=1)) * 39 / 79  # input coordinates of the NaN rows
     assert np.isnan(z).any() and np.abs(rows - 20).max() <= r
     assert np.isfinite(z).mean() > 0.5
+
+
+@pytest.mark.parametrize("policy", ["propagate", "local"])
+def test_gradient_reads_the_windows_the_values_read(policy):
+    """spline_gradient has no scipy peer: its derivative weights read the
+    same windows as the values, so its non-finite pattern is theirs."""
+    a = samples((12, 11), np.float64)
+    a[5, 0], a[0, 7] = np.nan, np.inf
+    at = np.random.default_rng(3).uniform(-1, 12, (2, 60))
+    at[:, :8] = np.round(at[:, :8])
+    for order in range(1, 6):
+        kw = dict(order=order, mode="mirror", nan_policy=policy, tol=1e-4)
+        values = splinelab.map_coordinates(a, at, **kw)
+        grad = splinelab.spline_gradient(a, at, **kw)
+        for row in grad:
+            np.testing.assert_array_equal(np.isfinite(row), np.isfinite(values), err_msg=f"{policy} {order}")

@@ -332,7 +332,8 @@ fn check_axis<D: Dimension>(dim: &D, axis: usize) -> Result<(), NdimageError> {
 }
 
 /// Replaces `a` by its coefficients along `axis` (scipy's `spline_filter1d`
-/// with `order` = degree and `mode`). Lines in parallel.
+/// with `order` = degree and `mode`). Lines in parallel. Non-finite samples
+/// by the filter's [`NanPolicy`] ([`filter_missing`]).
 ///
 ///
 /// **Accuracy**: the [`LineFilter`] route's per line; scipy 1.17.1's output within 16 ulps
@@ -790,7 +791,8 @@ fn filter_strip<T: Real>(
 }
 
 /// Replaces `a` by its coefficients along every axis (scipy's
-/// `spline_filter`): the tensor-product interpolation coefficients. A
+/// `spline_filter`): the tensor-product interpolation coefficients; non-finite
+/// samples by the filter's [`NanPolicy`] ([`filter_missing`]). A
 /// standard-layout array of three or more dimensions is filtered along
 /// axis 0, then slab by slab along the others (module documentation).
 ///
@@ -818,7 +820,9 @@ where
 /// layout the first pass reads `src` and writes `out` (the copy fused into
 /// it), checking the samples as it reads them (finite, and below the
 /// overflow limit [`LineFilter::check_magnitude`]); on failure `out`
-/// holds unspecified values and the error says why. Otherwise (other
+/// holds unspecified values and the error says why. A non-finite sample
+/// found there is handled by the filter's [`NanPolicy`] ([`filter_missing`],
+/// which reads `src` again: only then). Otherwise (other
 /// layouts, one line, no axes) `src` is copied and checked in one pass on
 /// the pool first (the first touch of `out`'s pages included), then
 /// filtered in place. `filter` `None`: the copy only (degrees 0 and 1).
