@@ -23,7 +23,7 @@ if [ ! -x .venv/bin/python ]; then
 fi
 
 # scipy is pinned to the version that made the committed fixtures.
-reqs=(maturin numpy "scipy==1.17.1" "dask[array]" distributed dask-image pytest)
+reqs=(maturin numpy "scipy==1.17.1" "dask[array]" distributed dask-image pytest hypothesis)
 stamp=.venv/.splinelab-requirements
 if [ "$(cat "$stamp" 2>/dev/null)" != "${reqs[*]}" ]; then
   echo "splinelab python: installing ${reqs[*]}" >&2

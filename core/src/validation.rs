@@ -60,6 +60,52 @@ pub enum InputError {
     },
 }
 
+/// Which non-finite value a sample holds, for messages that name it
+/// ("sample 34 is not finite (nan)"): comparable (unlike NaN itself).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum NonFiniteValue {
+    /// Not a number.
+    Nan,
+    /// `+∞`.
+    Inf,
+    /// `−∞`.
+    NegInf,
+}
+
+impl NonFiniteValue {
+    /// The kind of `x`, `None` where `x` is finite.
+    ///
+    /// ```
+    /// use splinelab::validation::NonFiniteValue;
+    /// assert_eq!(NonFiniteValue::of(&f64::NEG_INFINITY), Some(NonFiniteValue::NegInf));
+    /// assert_eq!(NonFiniteValue::of(&1.5f32), None);
+    /// assert_eq!(NonFiniteValue::Nan.to_string(), "nan");
+    /// ```
+    pub fn of<T: Real>(x: &T) -> Option<Self> {
+        if x.is_finite() {
+            return None;
+        }
+        let v = x.to_f64();
+        Some(if v.is_nan() {
+            NonFiniteValue::Nan
+        } else if v > 0.0 {
+            NonFiniteValue::Inf
+        } else {
+            NonFiniteValue::NegInf
+        })
+    }
+}
+
+impl std::fmt::Display for NonFiniteValue {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            NonFiniteValue::Nan => "nan",
+            NonFiniteValue::Inf => "inf",
+            NonFiniteValue::NegInf => "-inf",
+        })
+    }
+}
+
 fn plural(n: usize) -> &'static str {
     if n == 1 { "" } else { "s" }
 }

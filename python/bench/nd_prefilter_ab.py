@@ -40,7 +40,9 @@ def cases(threads):
     return out
 
 
-def main():
+def ab_setup():
+    """The command line shared by the A/B benches (``--base``, ``--name``,
+    ``--threads``, ``--rounds``, cases) and both builds: ``(args, ours, base)``."""
     p = argparse.ArgumentParser()
     p.add_argument("--base", required=True, help="folder holding the other build (package --name)")
     p.add_argument("--name", default="splinelab_base")
@@ -51,8 +53,11 @@ def main():
     sys.path.insert(0, args.base)
     import splinelab
 
-    splinelab_base = importlib.import_module(args.name)
+    return args, splinelab, importlib.import_module(args.name)
 
+
+def main():
+    args, splinelab, splinelab_base = ab_setup()
     table = cases(args.threads)
     for name in args.cases or list(table):
         data, call = table[name]

@@ -13,7 +13,10 @@ Extra keywords:
 - ``tol=``: use the truncated prefilter whose half-width is *certified* for
   ``tol`` (each coefficient within ``tol * max|input|`` of the exact one per
   filtered axis; :func:`truncation_width` gives the width and bound);
-- ``threads=``: threads for the parallel path (``None``: one per core).
+- ``threads=``: threads for the parallel path (``None``: one per core);
+- ``nan_policy=``: what NaN/±inf samples (missing data) do: 'propagate'
+  (default, scipy's pattern), 'raise', or 'local' (NaN only within
+  :func:`nan_reach` samples of a missing one, a certified bound elsewhere).
 
 Modes: scipy's names, computed as scipy 1.17 computes them (the filters
 have scipy's three rules: mirror, half-sample reflect, periodic; see
@@ -41,7 +44,7 @@ from . import _splinelab as _ext
 from ._check import check
 from ._ndimage import map_coordinates, spline_filter, spline_filter1d, spline_gradient
 from ._resample import affine_transform, geometric_transform, rotate, shift, zoom
-from ._sspline import coefficients, filter_bound, truncation_width
+from ._sspline import coefficients, filter_bound, nan_reach, truncation_width
 from ._validate import MAX_DEGREE
 
 __version__ = _ext.__version__
@@ -60,6 +63,7 @@ __all__ = [
     "coefficients",
     "check",
     "filter_bound",
+    "nan_reach",
     "MAX_DEGREE",
 ]
 

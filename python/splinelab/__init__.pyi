@@ -9,6 +9,8 @@ MAX_DEGREE: int
 # scipy's names, computed as scipy 1.17 computes them ('wrap': period n - 1, the mirror filter rule).
 Mode = Literal["mirror", "reflect", "grid-mirror", "grid-wrap", "wrap", "nearest", "grid-constant", "constant"]
 # Any numeric dtype scipy takes (a type, a dtype or its name), or an array of any dtype, byte order and strides.
+# What NaN / ±inf samples do (see splinelab.map_coordinates).
+NanPolicy = Literal["propagate", "raise", "local"]
 Output = type[np.generic] | type[bool] | type[int] | type[float] | type[complex] | np.dtype[Any] | str | npt.NDArray[Any]
 
 def spline_filter1d(
@@ -18,9 +20,10 @@ def spline_filter1d(
     output: Output = ...,
     mode: Mode = "mirror",
     *,
-    tol: float | None = None,
+    tol: float | None = ...,
     threads: int | None = None,
     exact_edges: bool = False,
+    nan_policy: NanPolicy = "propagate",
 ) -> npt.NDArray[Any]: ...
 def spline_filter(
     input: npt.ArrayLike,
@@ -28,9 +31,10 @@ def spline_filter(
     output: Output = ...,
     mode: Mode = "mirror",
     *,
-    tol: float | None = None,
+    tol: float | None = ...,
     threads: int | None = None,
     exact_edges: bool = False,
+    nan_policy: NanPolicy = "propagate",
 ) -> npt.NDArray[Any]: ...
 def map_coordinates(
     input: npt.ArrayLike,
@@ -41,9 +45,10 @@ def map_coordinates(
     cval: float | complex = 0.0,
     prefilter: bool = True,
     *,
-    tol: float | None = None,
+    tol: float | None = ...,
     threads: int | None = None,
     exact_edges: bool = False,
+    nan_policy: NanPolicy = "propagate",
     derivative: Sequence[int] | None = None,
 ) -> npt.NDArray[Any]: ...
 def spline_gradient(
@@ -54,9 +59,10 @@ def spline_gradient(
     cval: float | complex = 0.0,
     prefilter: bool = True,
     *,
-    tol: float | None = None,
+    tol: float | None = ...,
     threads: int | None = None,
     exact_edges: bool = False,
+    nan_policy: NanPolicy = "propagate",
 ) -> npt.NDArray[Any]: ...
 def zoom(
     input: npt.ArrayLike,
@@ -68,9 +74,10 @@ def zoom(
     prefilter: bool = True,
     *,
     grid_mode: bool = False,
-    tol: float | None = None,
+    tol: float | None = ...,
     threads: int | None = None,
     exact_edges: bool = False,
+    nan_policy: NanPolicy = "propagate",
 ) -> npt.NDArray[Any]: ...
 def shift(
     input: npt.ArrayLike,
@@ -81,9 +88,10 @@ def shift(
     cval: float | complex = 0.0,
     prefilter: bool = True,
     *,
-    tol: float | None = None,
+    tol: float | None = ...,
     threads: int | None = None,
     exact_edges: bool = False,
+    nan_policy: NanPolicy = "propagate",
 ) -> npt.NDArray[Any]: ...
 def rotate(
     input: npt.ArrayLike,
@@ -96,9 +104,10 @@ def rotate(
     cval: float | complex = 0.0,
     prefilter: bool = True,
     *,
-    tol: float | None = None,
+    tol: float | None = ...,
     threads: int | None = None,
     exact_edges: bool = False,
+    nan_policy: NanPolicy = "propagate",
 ) -> npt.NDArray[Any]: ...
 def affine_transform(
     input: npt.ArrayLike,
@@ -111,9 +120,10 @@ def affine_transform(
     cval: float | complex = 0.0,
     prefilter: bool = True,
     *,
-    tol: float | None = None,
+    tol: float | None = ...,
     threads: int | None = None,
     exact_edges: bool = False,
+    nan_policy: NanPolicy = "propagate",
 ) -> npt.NDArray[Any]: ...
 def geometric_transform(
     input: npt.ArrayLike,
@@ -128,9 +138,10 @@ def geometric_transform(
     extra_keywords: dict[str, Any] | None = None,
     *,
     vectorized: bool = False,
-    tol: float | None = None,
+    tol: float | None = ...,
     threads: int | None = None,
     exact_edges: bool = False,
+    nan_policy: NanPolicy = "propagate",
 ) -> npt.NDArray[Any]: ...
 def truncation_width(
     degree: int | None = None,
@@ -150,6 +161,7 @@ def coefficients(
     bits: int | None = None,
 ) -> npt.NDArray[np.float64] | list[str]: ...
 def filter_bound(order: int, tol: float | None = None, ndim: int = 1) -> dict[str, Any]: ...
+def nan_reach(order: int, tol: float = 1e-12) -> int: ...
 def check(
     kind: Literal["prefilter", "coeffs", "bspline-eval", "bezier-eval", "knot-insertion"],
     **kwargs: Any,

@@ -9,7 +9,7 @@ import numpy as np
 
 from . import _splinelab as _ext
 from . import _dtypes as _dt
-from ._validate import _degree, _int, _mode, _opt_float, _real_array, _threads
+from ._validate import DEFAULT_TOL, _degree, _int, _mode, _nan_policy, _opt_float, _real_array, _threads, _tol_for
 
 _SCIPY_FILTER_RULE = {
     "mirror": "mirror",
@@ -45,23 +45,28 @@ def _same_layout(a, b):
 _FLOATS = (np.dtype(np.float64), np.dtype(np.float32))
 
 
-def _filter(input, axes, order, output, mode, tol, threads, exact_edges=False, convolution=False):
+def _filter(input, axes, order, output, mode, tol, threads, exact_edges=False, convolution=False,
+            nan_policy="propagate"):
     """scipy's spline_filter(1d) for every dtype it takes: float64/float32
     results straight from the engine; integer and boolean results computed
     in float64 and converted as scipy's filter converts them (truncated),
     after each axis as scipy does (it filters axis by axis into ``output``);
     complex input filtered part by part (same filter). ``output=None``: the
     input's dtype. ``convolution``: with ``tol``, the local truncated
-    convolution (what chunked filtering needs) instead of the fast route."""
+    convolution (what chunked filtering needs) instead of the fast route.
+    ``nan_policy``: what non-finite samples do (:data:`NAN_POLICY_DOC`)."""
     a = _dt.input_array(input)
     cplx = a.dtype.kind == "c"
     dtype, target = _dt.output_dtype(output, a.dtype, _dt.default_output(a.dtype, cplx), cplx)
     _dt.check_output_shape(target, a.shape)
     d = _degree(order)
     rule = _filter_mode(mode, bool(exact_edges))
-    tol, threads = _opt_float(tol, "tol"), _threads(threads)
-    spec = (d, rule, 0.0, tol, threads, bool(convolution))
+    nan_policy = _nan_policy(nan_policy)
+    tol, threads = _tol_for(tol, nan_policy, d), _threads(threads)
+    spec = (d, rule, 0.0, tol, threads, bool(convolution), nan_policy)
     if d < 2:
+        if nan_policy == "raise":
+            _refuse_non_finite(a)
         # scipy: output[...] = input (numpy's conversion), no filter.
         out = target if target is not None else np.empty(a.shape, dtype)
         with np.errstate(invalid="ignore", over="ignore"):
@@ -79,6 +84,19 @@ def _filter(input, axes, order, output, mode, tol, threads, exact_edges=False, c
     for axis in axes:
         a = _dt.store_truncated(_filter_float(a, work, None, ([axis], *spec)), dtype)
     return _dt.deliver(a, target, a.shape)
+
+
+def _refuse_non_finite(a):
+    """nan_policy='raise' where no prefilter runs (degrees 0 and 1): the
+    first non-finite sample named as the engine names it."""
+    if a.dtype.kind not in "fc":
+        return
+    bad = ~np.isfinite(a)
+    if bad.any():
+        k = int(np.flatnonzero(bad.ravel())[0])
+        v = a.ravel()[k]
+        v = v.real if np.isfinite(v.imag) and not np.isfinite(v.real) else (v.imag if np.iscomplexobj(v) else v)
+        raise ValueError(f"sample {k} is not finite ({'nan' if np.isnan(v) else 'inf' if v > 0 else '-inf'})")
 
 
 def _filter_float(a, dtype, target, args):
@@ -111,7 +129,8 @@ def _axis(axis, ndim):
 
 
 def spline_filter1d(
-    input, order=3, axis=-1, output=np.float64, mode="mirror", *, tol=None, threads=None, exact_edges=False
+    input, order=3, axis=-1, output=np.float64, mode="mirror", *, tol=DEFAULT_TOL, threads=None, exact_edges=False,
+    nan_policy="propagate",
 ):
     """Interpolation coefficients along one axis (``scipy.ndimage.spline_filter1d``).
 
@@ -152,7 +171,30 @@ def spline_filter1d(
         the certified width, their recursions side by side in vector lanes
         and on every thread; lines of an N-D array (and short lines) by the
         exact recursion (difference 0). Never slower than ``tol=None``.
+        Default None, except under ``nan_policy='local'``: 1e-12.
     threads : None (one per core) or the number of threads.
+    nan_policy : 'propagate' (default), 'raise' or 'local': what NaN and
+        ±inf samples (missing data) do.
+
+        - 'propagate': scipy's pattern. The recursive filter carries a
+          non-finite sample along its whole line, so every coefficient of
+          every line through it along a filtered axis is non-finite (after
+          every axis of an N-D array: all of them); other lines as usual.
+        - 'raise': ``ValueError("sample k is not finite (nan)")`` naming the
+          first (flat index in C order, and its value).
+        - 'local': missing samples are filled with 0 and a coefficient is
+          NaN only where a missing sample lies within the certified
+          half-width ``n`` of ``tol`` along every filtered axis (folded by
+          the mode; ``nan_reach(order, tol) - (order // 2 + 1)``). Every
+          other coefficient is within ``((A + b)**k - (A - b)**k) *
+          max|finite input|`` over ``k`` filtered axes (``A``, ``b``:
+          :func:`filter_bound`'s amplification and bound) of the exact
+          coefficients of the input with its missing samples filled by ANY
+          values of magnitude at most ``max|finite input|``. Needs a finite
+          ``tol`` (default 1e-12; ``tol=None`` is refused: no finite reach).
+
+    Integer and boolean input has no NaN; complex input: a NaN in either
+    part, that part's pattern.
 
     Returns the coefficients (a new array, or ``output``).
     Formula: exact causal/anti-causal recursions per pole (Unser, Aldroubi
@@ -164,16 +206,18 @@ def spline_filter1d(
     True
     """
     a = np.asarray(input)
-    return _filter(a, [_axis(axis, a.ndim)], order, output, mode, tol, threads, exact_edges)
+    return _filter(a, [_axis(axis, a.ndim)], order, output, mode, tol, threads, exact_edges, nan_policy=nan_policy)
 
 
-def spline_filter(input, order=3, output=np.float64, mode="mirror", *, tol=None, threads=None, exact_edges=False):
+def spline_filter(input, order=3, output=np.float64, mode="mirror", *, tol=DEFAULT_TOL, threads=None, exact_edges=False,
+                  nan_policy="propagate"):
     """Interpolation coefficients along every axis (``scipy.ndimage.spline_filter``).
 
     ``order`` is the spline **degree**, 0..199 (scipy: 2..5). Other
     arguments as :func:`spline_filter1d`. With ``tol`` the error compounds
     over the ``d`` axes to at most ``((A + b)**d - A**d) * max|input|``
     (``A`` the amplification, ``b`` the per-axis bound): :func:`filter_bound`.
+    ``nan_policy`` as :func:`spline_filter1d` (over every axis).
 
     >>> import numpy as np, splinelab
     >>> x = np.full((4, 5), 2.5)  # the B-splines sum to 1: constants are kept
@@ -181,7 +225,7 @@ def spline_filter(input, order=3, output=np.float64, mode="mirror", *, tol=None,
     True
     """
     a = np.asarray(input)
-    return _filter(a, list(range(a.ndim)), order, output, mode, tol, threads, exact_edges)
+    return _filter(a, list(range(a.ndim)), order, output, mode, tol, threads, exact_edges, nan_policy=nan_policy)
 
 
 def map_coordinates(
@@ -193,10 +237,11 @@ def map_coordinates(
     cval=0.0,
     prefilter=True,
     *,
-    tol=None,
+    tol=DEFAULT_TOL,
     threads=None,
     exact_edges=False,
     derivative=None,
+    nan_policy="propagate",
 ):
     """Values of the spline interpolant at coordinates (``scipy.ndimage.map_coordinates``).
 
@@ -262,12 +307,13 @@ def map_coordinates(
     shape = at.shape[1:]
     flat = np.ascontiguousarray(at.reshape(at.shape[0], -1))
     d, mode = _degree(order), _interp_mode(mode)
-    tol, threads = _opt_float(tol, "tol"), _threads(threads)
+    nan_policy = _nan_policy(nan_policy)
+    tol, threads = _tol_for(tol, nan_policy, d if prefilter else 0), _threads(threads)
     deriv = _derivative(derivative, at.shape[0])
     sign = _reflection_sign(flat, np.shape(input), mode, deriv) if deriv else None
 
     def evaluate(a, cv):
-        values = _map_real(a, flat, d, mode, cv, prefilter, tol, threads, exact_edges, deriv)
+        values = _map_real(a, flat, d, mode, cv, prefilter, tol, threads, exact_edges, deriv, nan_policy)
         return values if sign is None else values * sign.astype(values.dtype)
 
     return _interpolate(input, output, shape, cval, evaluate, coordinates)
@@ -303,14 +349,15 @@ def _reflection_sign(flat, shape, mode, deriv):
 
 
 def spline_gradient(
-    input, coordinates, order=3, mode="constant", cval=0.0, prefilter=True, *, tol=None, threads=None,
-    exact_edges=False,
+    input, coordinates, order=3, mode="constant", cval=0.0, prefilter=True, *, tol=DEFAULT_TOL, threads=None,
+    exact_edges=False, nan_policy="propagate",
 ):
     """All first partial derivatives of the interpolant of
     :func:`map_coordinates` at the points: an array of shape ``(ndim,
     *coordinates.shape[1:])``, row ``a`` the derivative along axis ``a``
     (``map_coordinates(..., derivative=e_a)``; float64, or float32 for
     float32 input). Cost: ``ndim`` evaluations (and prefilters).
+    ``nan_policy`` as :func:`map_coordinates`.
 
     >>> import numpy as np, splinelab
     >>> x = np.add.outer(0.5 * np.arange(40.0), 3 * np.arange(40.0))  # i / 2 + 3 j
@@ -328,7 +375,7 @@ def spline_gradient(
         unit[axis] = 1
         rows.append(map_coordinates(a, coordinates, output=out, order=order, mode=mode, cval=cval,
                                     prefilter=prefilter, tol=tol, threads=threads, exact_edges=exact_edges,
-                                    derivative=unit))
+                                    derivative=unit, nan_policy=nan_policy))
     return np.stack(rows)
 
 
@@ -440,22 +487,34 @@ class _Points:
         flat = np.asarray(self.flat)
         return ((flat < 0) | (flat > limit)).any(axis=0)
 
-    def run(self, a, d, mode, cv, tol, prefilter, threads, deriv, cval_outside=False):
+    def run(self, a, d, mode, cv, tol, prefilter, threads, deriv, cval_outside=False, nan_policy="propagate"):
         """The values (flat), ``cval`` (its derivative 0) at points outside
         the grid with ``cval_outside`` (scipy's 'constant')."""
         if cval_outside and not deriv and type(self) is _Points:
             # cval outside decided by the engine per point, in parallel.
-            return self.evaluate(a, d, mode, cv, tol, prefilter, threads, None, cval_outside=True)
-        values = self.evaluate(a, d, mode, cv, tol, prefilter, threads, deriv)
+            return self.evaluate(a, d, mode, cv, tol, prefilter, threads, None, cval_outside=True,
+                                 nan_policy=nan_policy)
+        values = self.evaluate(a, d, mode, cv, tol, prefilter, threads, deriv, nan_policy=nan_policy)
         if cval_outside:
             fill = 0.0 if deriv and any(deriv) else cv
             values = np.where(self.outside(a.shape), np.asarray(fill, values.dtype), values)
         return values
 
-    def evaluate(self, a, d, mode, cv, tol, prefilter, threads, deriv, cval_outside=False):
+    def evaluate(self, a, d, mode, cv, tol, prefilter, threads, deriv, cval_outside=False, nan_policy="propagate"):
         run = _ext.map_coordinates_f64 if a.dtype == np.float64 else _ext.map_coordinates_f32
         return run(a, np.ascontiguousarray(np.asarray(self.flat, dtype=np.float64)), d, mode, cv, tol, prefilter,
-                   threads, deriv, cval_outside)
+                   threads, deriv, cval_outside, nan_policy)
+
+    def finite(self):
+        """The points with every non-finite coordinate replaced by 0, and
+        per axis the masks (NaN, +inf, -inf) of the originals."""
+        rows = [np.asarray(x, dtype=np.float64) for x in self.flat]
+        masks = [(np.isnan(x), x == np.inf, x == -np.inf) for x in rows]
+        return type(self)([np.where(np.isfinite(x), x, 0.0) for x in rows]), masks
+
+    def combine(self, per_axis):
+        """Per point, whether any axis' flag (one bool vector per axis) holds."""
+        return np.logical_or.reduce([np.asarray(f) for f in per_axis])
 
 
 class _Grid(_Points):
@@ -463,11 +522,11 @@ class _Grid(_Points):
     evaluated separably by the engine (``degree + 1`` multiply-adds per
     output sample and axis); values flat in C order."""
 
-    def run(self, a, d, mode, cv, tol, prefilter, threads, deriv, cval_outside=False):
+    def run(self, a, d, mode, cv, tol, prefilter, threads, deriv, cval_outside=False, nan_policy="propagate"):
         """As :meth:`_Points.run`; ``cval`` written in place into the slabs
         of output indices outside ``[0, n - 1]`` on some axis (no mask of
         the whole output, no second output array)."""
-        values = self.evaluate(a, d, mode, cv, tol, prefilter, threads, deriv)
+        values = self.evaluate(a, d, mode, cv, tol, prefilter, threads, deriv, nan_policy=nan_policy)
         if cval_outside:
             fill = 0.0 if deriv and any(deriv) else cv
             grid = values.reshape([len(x) for x in self.flat])
@@ -480,10 +539,19 @@ class _Grid(_Points):
     def count(self):
         return math.prod(len(x) for x in self.flat)
 
-    def evaluate(self, a, d, mode, cv, tol, prefilter, threads, deriv):
+    def evaluate(self, a, d, mode, cv, tol, prefilter, threads, deriv, cval_outside=False, nan_policy="propagate"):
         run = _ext.resample_f64 if a.dtype == np.float64 else _ext.resample_f32
         axes = [np.ascontiguousarray(x, dtype=np.float64) for x in self.flat]
-        return run(a, axes, d, mode, cv, tol, prefilter, list(deriv or [0] * a.ndim), threads).reshape(-1)
+        return run(a, axes, d, mode, cv, tol, prefilter, list(deriv or [0] * a.ndim), threads, nan_policy).reshape(-1)
+
+    def combine(self, per_axis):
+        """Per grid point (C order), whether any axis' flag holds."""
+        flags = np.zeros([len(x) for x in self.flat], dtype=bool)
+        for axis, f in enumerate(per_axis):
+            shape = [1] * len(per_axis)
+            shape[axis] = -1
+            flags = flags | np.asarray(f).reshape(shape)
+        return flags.reshape(-1)
 
 
 class _Affine(_Points):
@@ -504,36 +572,84 @@ class _Affine(_Points):
     def wrapped(self, shape):
         return _Affine(self.matrix, self.offset, self.out_shape, self.shift, True)
 
-    def run(self, a, d, mode, cv, tol, prefilter, threads, deriv, cval_outside=False):
+    def run(self, a, d, mode, cv, tol, prefilter, threads, deriv, cval_outside=False, nan_policy="propagate"):
         if deriv:
             raise ValueError("derivatives are taken by map_coordinates, not by the affine resampling")
         rule = "wrap" if self.wrap else "cval-outside" if cval_outside else "fold"
         run = _ext.affine_f64 if a.dtype == np.float64 else _ext.affine_f32
         return run(a, self.matrix, self.offset, list(self.out_shape), d, mode, cv, tol, prefilter, self.shift, rule,
-                   threads).reshape(-1)
+                   threads, nan_policy).reshape(-1)
 
 
-def _map_real(a, flat, d, mode, cv, prefilter, tol, threads, exact_edges, deriv=None):
+def _map_real(a, flat, d, mode, cv, prefilter, tol, threads, exact_edges, deriv=None, nan_policy="propagate"):
     """map_coordinates of a real float64/float32 array at ``flat`` (``(ndim,
     k)``, or a :class:`_Points`): the values (or the partial derivative
-    ``deriv``), flat, in ``a``'s dtype."""
+    ``deriv``), flat, in ``a``'s dtype. A non-finite coordinate: refused
+    under 'raise', else scipy's value there (:func:`_at_non_finite`)."""
     points = flat if isinstance(flat, _Points) else _Points(flat)
     if a.size == 0 and mode in ("constant", "grid-constant"):
         # An empty axis puts every point outside the grid: cval, as scipy
         # (its other modes read outside the array there; the engine refuses
         # an empty signal).
         return np.full(points.count(), 0.0 if deriv else cv, a.dtype)
+    args = (d, mode, cv, prefilter, tol, threads, exact_edges, deriv, nan_policy)
+    try:
+        return _map_points(a, points, *args)
+    except _ext.NonFiniteCoordinateError:
+        if nan_policy == "raise" or isinstance(points, _Affine):
+            raise
+        return _at_non_finite(a, points, *args)
+
+
+def _map_points(a, points, d, mode, cv, prefilter, tol, threads, exact_edges, deriv, nan_policy):
+    """:func:`_map_real` at finite points."""
     if prefilter and 1 < d <= 5 and mode in _EXACT_EDGES and not exact_edges:
         # scipy's route (_prepad_for_spline_filter): pad 12, filter with
         # its rule, evaluate the coefficients at x + 12 (rounded as scipy).
         pad = 12
+        if nan_policy == "raise":
+            _refuse_non_finite(a)  # named in the input, not in the padded copy
         kind = {"mode": "edge"} if mode == "nearest" else {"mode": "constant", "constant_values": cv}
-        coeffs = _filter(np.pad(a, pad, **kind), list(range(a.ndim)), d, a.dtype, mode, tol, threads)
-        return points.shifted(pad).run(coeffs, d, mode, cv, None, False, threads, deriv)
+        coeffs = _filter(np.pad(a, pad, **kind), list(range(a.ndim)), d, a.dtype, mode, tol, threads,
+                         nan_policy=nan_policy)
+        return points.shifted(pad).run(coeffs, d, mode, cv, None, False, threads, deriv, nan_policy=nan_policy)
     if mode == "wrap":
         # The mirror spline (scipy filters 'wrap' with the mirror rule and
         # reads the window with it) at the point folded with period n - 1.
-        return points.wrapped(a.shape).run(a, d, "mirror", cv, tol, prefilter, threads, deriv)
+        return points.wrapped(a.shape).run(a, d, "mirror", cv, tol, prefilter, threads, deriv, nan_policy=nan_policy)
     engine_mode = "mirror" if mode == "constant" else mode
     # scipy's 'constant': no interpolation beyond the edges.
-    return points.run(a, d, engine_mode, cv, tol, prefilter, threads, deriv, cval_outside=mode == "constant")
+    return points.run(a, d, engine_mode, cv, tol, prefilter, threads, deriv, cval_outside=mode == "constant",
+                      nan_policy=nan_policy)
+
+
+_PERIODIC = ("grid-wrap", "wrap")
+
+
+def _at_non_finite(a, points, d, mode, cv, prefilter, tol, threads, exact_edges, deriv, nan_policy):
+    """Values at points some of whose coordinates are NaN or ±inf, as scipy
+    1.17.1 gives them (its C casts the coordinate to an integer, undefined
+    behaviour; measured on every mode and order): under the periodic modes
+    a NaN or -inf coordinate gives ``cval``, +inf the sample at index 0 on
+    that axis for order 0 and NaN above; 'nearest' gives that sample for
+    order 0 and NaN above; 'grid-constant' ``cval`` for order 0 and NaN
+    above; every other mode ``cval``. The finite points as usual (the
+    non-finite coordinates replaced by 0, which also gives the index-0
+    samples)."""
+    clean, masks = points.finite()
+    values = _map_points(a, clean, d, mode, cv, prefilter, tol, threads, exact_edges, deriv, nan_policy).copy()
+    bad = points.combine([n | p | m for n, p, m in masks])
+    if mode in _PERIODIC:
+        to_cval = points.combine([n | m for n, _, m in masks])
+        nan = bad & ~to_cval & (d >= 1)
+        keep = bad & ~to_cval & (d == 0)
+    elif mode in ("nearest", "grid-constant"):
+        to_cval = bad & (mode == "grid-constant") & (d == 0)
+        nan = bad & (d >= 1)
+        keep = bad & (mode == "nearest") & (d == 0)
+    else:
+        to_cval, nan, keep = bad, np.zeros_like(bad), np.zeros_like(bad)
+    fill = 0.0 if deriv and any(deriv) else cv
+    values[bad & to_cval & ~keep] = fill
+    values[nan] = np.nan
+    return values

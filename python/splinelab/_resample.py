@@ -23,7 +23,7 @@ import numpy as np
 
 from . import _dtypes as _dt
 from ._ndimage import _Affine, _flag, _Grid, _interp_mode, _interpolate, _map_real
-from ._validate import _degree, _int, _opt_float, _threads
+from ._validate import DEFAULT_TOL, _degree, _int, _nan_policy, _threads, _tol_for
 
 
 def _per_axis(value, ndim, what):
@@ -45,12 +45,13 @@ def _per_axis(value, ndim, what):
 class _Spec:
     """The interpolation arguments shared by every function."""
 
-    def __init__(self, order, mode, cval, prefilter, tol, threads, exact_edges):
+    def __init__(self, order, mode, cval, prefilter, tol, threads, exact_edges, nan_policy="propagate"):
         self.d = _degree(order)
         self.mode = _interp_mode(mode)
         self.cval = cval
         self.prefilter = _flag(prefilter, "prefilter")
-        self.tol = _opt_float(tol, "tol")
+        self.nan_policy = _nan_policy(nan_policy)
+        self.tol = _tol_for(tol, self.nan_policy, self.d if self.prefilter else 0)
         self.threads = _threads(threads)
         self.exact_edges = bool(exact_edges)
 
@@ -59,7 +60,7 @@ class _Spec:
 
         def evaluate(a, cv):
             return _map_real(a, flat_of(a), self.d, self.mode, cv, self.prefilter, self.tol, self.threads,
-                             self.exact_edges)
+                             self.exact_edges, nan_policy=self.nan_policy)
 
         return _interpolate(input, output, shape, self.cval, evaluate)
 
@@ -70,7 +71,7 @@ class _Spec:
 
         def evaluate(a, cv):
             return _map_real(a, grid, self.d, self.mode, cv, self.prefilter, self.tol, self.threads,
-                             self.exact_edges)
+                             self.exact_edges, nan_policy=self.nan_policy)
 
         return _interpolate(input, output, shape, self.cval, evaluate)
 
@@ -107,7 +108,7 @@ def _early_copy(input, output, shape):
 
 
 def zoom(input, zoom, output=None, order=3, mode="constant", cval=0.0, prefilter=True, *, grid_mode=False,
-         tol=None, threads=None, exact_edges=False):
+         tol=DEFAULT_TOL, threads=None, exact_edges=False, nan_policy="propagate"):
     """Resample an array by ``zoom`` per axis (``scipy.ndimage.zoom``).
 
     The output shape is ``round(n * zoom)`` per axis (Python's ``round``);
@@ -115,7 +116,11 @@ def zoom(input, zoom, output=None, order=3, mode="constant", cval=0.0, prefilter
     (``grid_mode=True``: ``(k + 0.5) * n / m - 0.5``, the pixel edges
     aligned; an axis of one output sample reads index 0). ``order`` is the
     spline degree, 0..199; modes, ``cval``, ``prefilter``, dtypes and
-    ``output`` as :func:`splinelab.map_coordinates` (scipy's rules). A zoom
+    ``output`` as :func:`splinelab.map_coordinates` (scipy's rules), and
+    so are ``nan_policy`` ('propagate', 'raise', 'local') and ``tol``
+    (under 'local' default 1e-12: a missing sample reaches the outputs
+    within :func:`splinelab.nan_reach` ``(order, tol)`` input samples;
+    elsewhere within the bound stated there). A zoom
     of 1 on every axis with the prefilter returns the input converted, as
     scipy. Cost: the prefilter, then ``order + 1`` multiply-adds per output
     sample and axis (separable tensor-product evaluation).
@@ -131,7 +136,7 @@ def zoom(input, zoom, output=None, order=3, mode="constant", cval=0.0, prefilter
     out_shape = tuple(int(round(n * z)) for n, z in zip(a.shape, zooms))
     if any(m < 0 for m in out_shape):
         raise ValueError(f"zoom gives a negative output shape {out_shape}")
-    spec = _Spec(order, mode, cval, prefilter, tol, threads, exact_edges)
+    spec = _Spec(order, mode, cval, prefilter, tol, threads, exact_edges, nan_policy)
     if all(z == 1 for z in zooms) and spec.prefilter:
         return _early_copy(a, output, out_shape)
     grid_mode = _flag(grid_mode, "grid_mode")
@@ -148,8 +153,8 @@ def zoom(input, zoom, output=None, order=3, mode="constant", cval=0.0, prefilter
     return spec.on_grid(a, output, out_shape, coords)
 
 
-def shift(input, shift, output=None, order=3, mode="constant", cval=0.0, prefilter=True, *, tol=None,
-          threads=None, exact_edges=False):
+def shift(input, shift, output=None, order=3, mode="constant", cval=0.0, prefilter=True, *, tol=DEFAULT_TOL,
+          threads=None, exact_edges=False, nan_policy="propagate"):
     """Shift an array by ``shift`` samples per axis (``scipy.ndimage.shift``):
     output index ``k`` reads the input at ``k - shift``. Arguments as
     :func:`zoom`; cost the prefilter, then ``order + 1`` multiply-adds per
@@ -163,7 +168,7 @@ def shift(input, shift, output=None, order=3, mode="constant", cval=0.0, prefilt
     if a.ndim < 1:
         raise ValueError("input must have at least one dimension")
     shifts = [-s for s in _per_axis(shift, a.ndim, "shift")]
-    spec = _Spec(order, mode, cval, prefilter, tol, threads, exact_edges)
+    spec = _Spec(order, mode, cval, prefilter, tol, threads, exact_edges, nan_policy)
     coords = _zoom_shift_coordinates(a.shape, shifts=shifts)
     return spec.on_grid(a, output, a.shape, coords)
 
@@ -202,7 +207,8 @@ def _output_shape(output_shape, output, default):
 
 
 def affine_transform(input, matrix, offset=0.0, output_shape=None, output=None, order=3, mode="constant",
-                     cval=0.0, prefilter=True, *, tol=None, threads=None, exact_edges=False):
+                     cval=0.0, prefilter=True, *, tol=DEFAULT_TOL, threads=None, exact_edges=False,
+                     nan_policy="propagate"):
     """Apply an affine transformation (``scipy.ndimage.affine_transform``):
     output index ``o`` reads the input at ``matrix @ o + offset`` (the
     "pull" direction, as scipy).
@@ -228,7 +234,7 @@ def affine_transform(input, matrix, offset=0.0, output_shape=None, output=None, 
     if len(out_shape) < 1:
         raise ValueError("output must have at least one dimension")
     m, offsets = _affine_parts(matrix, offset, a.ndim, len(out_shape))
-    spec = _Spec(order, mode, cval, prefilter, tol, threads, exact_edges)
+    spec = _Spec(order, mode, cval, prefilter, tol, threads, exact_edges, nan_policy)
     if m.ndim == 1:
         if len(out_shape) != a.ndim:
             raise ValueError(f"a diagonal matrix needs an output of {a.ndim} dimensions, got {out_shape}")
@@ -284,7 +290,7 @@ def _rotation(angle, axes, shape, reshape):
 
 
 def rotate(input, angle, axes=(1, 0), reshape=True, output=None, order=3, mode="constant", cval=0.0,
-           prefilter=True, *, tol=None, threads=None, exact_edges=False):
+           prefilter=True, *, tol=DEFAULT_TOL, threads=None, exact_edges=False, nan_policy="propagate"):
     """Rotate an array by ``angle`` degrees in the plane of ``axes``
     (``scipy.ndimage.rotate``): about the centre ``(n - 1) / 2`` of the
     plane, the matrix ``[[c, s], [-s, c]]`` from output to input;
@@ -302,7 +308,7 @@ def rotate(input, angle, axes=(1, 0), reshape=True, output=None, order=3, mode="
     ndim = a.ndim
     axes, rot, offset, out_plane, out_shape = _rotation(angle, axes, a.shape, reshape)
     kwargs = dict(order=order, mode=mode, cval=cval, prefilter=prefilter, tol=tol, threads=threads,
-                  exact_edges=exact_edges)
+                  exact_edges=exact_edges, nan_policy=nan_policy)
     if ndim == 2:
         return affine_transform(a, rot, offset, out_shape, output, **kwargs)
     # Plane by plane, as scipy (each plane prefiltered on its own), each
@@ -321,8 +327,8 @@ def rotate(input, angle, axes=(1, 0), reshape=True, output=None, order=3, mode="
 
 
 def geometric_transform(input, mapping, output_shape=None, output=None, order=3, mode="constant", cval=0.0,
-                        prefilter=True, extra_arguments=(), extra_keywords=None, *, vectorized=False, tol=None,
-                        threads=None, exact_edges=False):
+                        prefilter=True, extra_arguments=(), extra_keywords=None, *, vectorized=False,
+                        tol=DEFAULT_TOL, threads=None, exact_edges=False, nan_policy="propagate"):
     """Apply an arbitrary coordinate mapping (``scipy.ndimage.geometric_transform``).
 
     ``mapping(out_index, *extra_arguments, **extra_keywords)`` takes a
@@ -350,7 +356,7 @@ def geometric_transform(input, mapping, output_shape=None, output=None, order=3,
         raise ValueError("output must have at least one dimension")
     kwargs = {} if extra_keywords is None else dict(extra_keywords)
     extra = tuple(extra_arguments)
-    spec = _Spec(order, mode, cval, prefilter, tol, threads, exact_edges)
+    spec = _Spec(order, mode, cval, prefilter, tol, threads, exact_edges, nan_policy)
     if vectorized:
         points = np.asarray(mapping(np.indices(out_shape, dtype=np.float64), *extra, **kwargs), dtype=np.float64)
         if points.shape != (a.ndim, *out_shape):
@@ -363,6 +369,6 @@ def geometric_transform(input, mapping, output_shape=None, output=None, order=3,
             if len(p) != a.ndim:
                 raise ValueError(f"mapping returned {len(p)} coordinates at {index}, expected {a.ndim}")
             points[:, k] = p
-    if not np.isfinite(points).all():
+    if spec.nan_policy == "raise" and not np.isfinite(points).all():
         raise ValueError("mapping returned a non-finite coordinate")
     return spec.at_points(a, output, out_shape, lambda _: points)

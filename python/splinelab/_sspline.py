@@ -93,3 +93,29 @@ def filter_bound(order, tol=None, ndim=1):
     n, b, amp = _ext.filter_bound(_degree(order), _opt_float(tol, "tol"))
     d = _int(ndim, "ndim", 1, MAX_NDIM)
     return {"half_width": n, "bound": b, "amplification": amp, "total": (amp + b) ** d - amp**d}
+
+
+def nan_reach(order, tol=1e-12):
+    """How many samples along each axis a missing (NaN, ±inf) sample reaches
+    under ``nan_policy='local'`` for the spline of degree ``order`` and the
+    prefilter's tolerance ``tol``: ``n + order // 2 + 1``, with ``n`` the
+    half-width certified for ``tol`` (:func:`filter_bound`'s ``half_width``,
+    ``Σ_{|j|>n}|c_j| < tol``; 0 for degrees 0 and 1, which have no
+    prefilter) and ``order // 2 + 1`` the spline's own window (an output at
+    ``x`` reads the ``order + 1`` coefficients within ``(order + 1) / 2``).
+
+    A coefficient is NaN when a missing sample lies within ``n`` of it on
+    every axis (folded by the mode), so an output at ``x`` can be NaN only
+    where ``|x_a - j_a| <= nan_reach`` on every axis ``a`` for a missing
+    sample ``j``; the dask functions overlap their chunks by at least this.
+    Elsewhere the output is within ``((A + b)**d - (A - b)**d) * max|finite
+    input|`` (``A``, ``b``: :func:`filter_bound`'s ``amplification`` and
+    ``bound``; ``d`` axes) of the exact spline of the input with its missing
+    samples filled by any values of magnitude at most ``max|finite input|``.
+    Cost: one certified width search (MPFR, cached by the filters).
+
+    >>> import splinelab
+    >>> splinelab.nan_reach(3, 1e-12), splinelab.nan_reach(1)
+    (24, 1)
+    """
+    return _ext.nan_reach(_degree(order), float(_opt_float(tol, "tol")))

@@ -87,3 +87,48 @@ def _real_array(input, what="input"):
     if a.dtype.kind not in "biuf":
         raise TypeError(f"{what} must be a real (float or integer) array, got dtype {a.dtype}")
     return a
+
+
+NAN_POLICIES = ("propagate", "raise", "local")
+
+# nan_policy="local" uses this tolerance unless ``tol`` is given: the
+# certified half-width of 1e-12 (``nan_reach(order, 1e-12)``).
+LOCAL_TOL = 1e-12
+
+
+def _nan_policy(value):
+    """``nan_policy``: one of 'propagate' (scipy's pattern, the default),
+    'raise' or 'local'."""
+    if not isinstance(value, str):
+        raise TypeError(f"nan_policy must be a string, got {type(value).__name__}")
+    if value not in NAN_POLICIES:
+        raise ValueError(f"unknown nan_policy {value!r}: expected 'propagate', 'raise' or 'local'")
+    return value
+
+
+class _DefaultTol:
+    """``tol``'s default: None (the exact prefilter), or under
+    ``nan_policy='local'`` the documented 1e-12; an explicit ``tol=None``
+    stays None (and is refused by 'local', which needs a finite reach)."""
+
+    def __repr__(self):
+        return "<None; 1e-12 with nan_policy='local'>"
+
+
+DEFAULT_TOL = _DefaultTol()
+
+
+def _tol_for(tol, nan_policy, degree):
+    """The tolerance a call runs with: ``tol`` as given (checked), its
+    default resolved for ``nan_policy``; 'local' without one refused where
+    there is a prefilter (degree >= 2) to reach through."""
+    if tol is DEFAULT_TOL:
+        tol = LOCAL_TOL if nan_policy == "local" else None
+    tol = _opt_float(tol, "tol")
+    if nan_policy == "local" and tol is None and degree >= 2:
+        raise ValueError(
+            "nan_policy='local' needs a finite tol: with tol=None the exact recursive prefilter carries a "
+            "missing sample along its whole line (every axis), so no output has a finite reach; give tol "
+            "(the default under 'local' is 1e-12) or use nan_policy='propagate'"
+        )
+    return tol

@@ -30,6 +30,21 @@ Ends: blocks at an array edge extend their samples by ``mode`` themselves
 (``boundary='none'``); ``grid-wrap`` takes its halo from the other end
 (``boundary='periodic'``).
 
+Missing data (``nan_policy``, as :func:`splinelab.spline_filter`):
+'local' gives the unchunked NaN pattern whatever the chunking (the overlap
+``depth`` covers the certified half-width the pattern is dilated by, and the
+array edges are padded by the mode's extension, so each block sees every
+missing sample within reach of its core) and values within the bound of
+the unchunked ones; its ``tol`` is the one of the overlap (default 1e-12).
+'propagate' (the default) matches scipy applied to the whole array: a
+non-finite sample makes every line through it along a filtered axis
+non-finite, which no block can see alone, so the result is masked by a
+global reduction (``any non-finite`` over the filtered axes, one more read
+of the input in the graph; degrees 0 and 1 need none). 'raise' refuses a
+non-finite sample when the block holding it is computed (the index is the
+one within that block). The resampling functions take their coefficients
+from these filters; a non-finite coordinate is refused on dask.
+
 dask-image's ``spline_filter`` (degrees 2..5) uses the exact filter per
 block with a depth from the largest pole at a fixed 1e-8, ignoring the
 tail's constant (the amplification ``A``), so its seam error is not bounded
@@ -43,6 +58,7 @@ import numpy as np
 
 import splinelab
 from splinelab._ndimage import _axis, _filter, _filter_mode
+from splinelab._validate import _nan_policy
 
 __all__ = ["spline_filter", "spline_filter1d", "depth", "bound", "map_coordinates", "zoom", "shift", "affine_transform", "rotate"]
 
@@ -100,9 +116,10 @@ def bound(order, tol=DEFAULT_TOL, ndim=1, route="truncated"):
 _NUMPY_PAD = {"mirror": "reflect", "reflect": "symmetric"}
 
 
-def _map(darr, axes, order, mode, tol, output, threads, route):
+def _map(darr, axes, order, mode, tol, output, threads, route, nan_policy="propagate"):
     darr = da.asarray(darr)
     dtype = np.dtype(output)
+    nan_policy = _nan_policy(nan_policy)
     d = depth(order, tol, route)
     # An axis in one chunk has no seam: no overlap. An axis not longer than
     # two overlaps goes into one chunk: filtered whole, exactly.
@@ -115,19 +132,29 @@ def _map(darr, axes, order, mode, tol, output, threads, route):
     rule = _filter_mode(mode, False)
     boundary = "periodic" if rule == "grid-wrap" else "none"
     zeros_beyond = route == "truncated" and dtype.kind in "fc"
-    block_tol = tol if route == "truncated" else None
+    # 'local' dilates by the half-width of `tol` in every block (the filters
+    # below run the same recursion under a truncated route).
+    local_tol = tol if nan_policy == "local" else None
+    block_tol = tol if route == "truncated" or local_tol else None
 
     def block(x, block_info=None):
         if not zeros_beyond:
             # The local convolution: a coefficient reads only samples within `n`.
-            return _filter(x, axes, order, dtype, mode, block_tol, threads, convolution=True)
+            return _filter(x, axes, order, dtype, mode, block_tol, threads, convolution=True, nan_policy=nan_policy)
         info = block_info[0]
         x, crop = _pad_array_edges(x, seamed, rule, d, info["chunk-location"], info["num-chunks"])
-        y = _filter(x, seamed, order, dtype, "grid-constant", None, threads, exact_edges=True)[crop]
+        y = _filter(x, seamed, order, dtype, "grid-constant", local_tol, threads, exact_edges=True,
+                    nan_policy=nan_policy)[crop]
         whole = [ax for ax in axes if ax not in seamed]
-        return _filter(y, whole, order, dtype, mode, None, threads) if whole else y
+        return _filter(y, whole, order, dtype, mode, local_tol, threads, nan_policy=nan_policy) if whole else y
 
-    return darr.map_overlap(block, depth=depths, boundary=boundary, dtype=dtype, meta=np.array((), dtype=dtype))
+    out = darr.map_overlap(block, depth=depths, boundary=boundary, dtype=dtype, meta=np.array((), dtype=dtype))
+    if nan_policy != "propagate" or order < 2 or darr.dtype.kind not in "fc":
+        return out
+    # scipy's whole-array pattern: every line through a non-finite sample
+    # along a filtered axis (a reduction no block can make alone).
+    spread = (~da.isfinite(darr)).any(axis=tuple(axes), keepdims=True)
+    return da.where(spread, np.asarray(np.nan, dtype), out)
 
 
 def _pad_array_edges(x, seamed, rule, d, location, chunks):
@@ -145,7 +172,8 @@ def _pad_array_edges(x, seamed, rule, d, location, chunks):
     return np.pad(x, pads, mode=_NUMPY_PAD[rule]), crop
 
 
-def spline_filter(darr, order=3, mode="mirror", tol=DEFAULT_TOL, output=np.float64, threads=1, route="truncated"):
+def spline_filter(darr, order=3, mode="mirror", tol=DEFAULT_TOL, output=np.float64, threads=1, route="truncated",
+                  nan_policy="propagate"):
     """``splinelab.spline_filter`` of a dask array, chunk by chunk.
 
     ``order`` is the spline **degree** 0..199. ``tol`` in (0, 1) is the
@@ -155,6 +183,9 @@ def spline_filter(darr, order=3, mode="mirror", tol=DEFAULT_TOL, output=np.float
     zeros beyond it, bound ``b`` per axis) or 'recursive' (the block's own
     mirror extension, ``2 b`` at half the tolerance; see the module
     documentation); :func:`bound` gives the certified error of either.
+    ``nan_policy``: 'propagate' (default, scipy's whole-array pattern by a
+    global reduction), 'raise' or 'local' (the unchunked pattern whatever
+    the chunking; module documentation).
 
     >>> import dask.array as da, numpy as np, splinelab, splinelab.dask
     >>> x = np.random.default_rng(0).uniform(-1, 1, (64, 64))
@@ -164,11 +195,12 @@ def spline_filter(darr, order=3, mode="mirror", tol=DEFAULT_TOL, output=np.float
     True
     """
     darr = da.asarray(darr)
-    return _map(darr, list(range(darr.ndim)), order, mode, tol, output, threads, route)
+    return _map(darr, list(range(darr.ndim)), order, mode, tol, output, threads, route, nan_policy)
 
 
 def spline_filter1d(
-    darr, order=3, axis=-1, mode="mirror", tol=DEFAULT_TOL, output=np.float64, threads=1, route="truncated"
+    darr, order=3, axis=-1, mode="mirror", tol=DEFAULT_TOL, output=np.float64, threads=1, route="truncated",
+    nan_policy="propagate",
 ):
     """``splinelab.spline_filter1d`` of a dask array along ``axis``, chunk by chunk.
 
@@ -176,7 +208,7 @@ def spline_filter1d(
     :func:`spline_filter`.
     """
     darr = da.asarray(darr)
-    return _map(darr, [_axis(axis, darr.ndim)], order, mode, tol, output, threads, route)
+    return _map(darr, [_axis(axis, darr.ndim)], order, mode, tol, output, threads, route, nan_policy)
 
 
 # ---------------------------------------------------------------------------
@@ -221,7 +253,7 @@ class _Plan:
     """How a mode reads coefficients: the coefficient array (lazy), the
     engine mode for given coefficients, and the points' transformation."""
 
-    def __init__(self, darr, order, mode, cval, tol, route, threads):
+    def __init__(self, darr, order, mode, cval, tol, route, threads, nan_policy="propagate"):
         from splinelab._ndimage import _EXACT_EDGES, _interp_mode
 
         self.d, self.mode, self.cval = order, _interp_mode(mode), float(cval)
@@ -238,7 +270,9 @@ class _Plan:
             if smallest < need:  # the overlap needs chunks of at least the depth
                 darr = darr.rechunk(tuple(min(max(c, need), n) for c, n in zip(darr.chunksize, darr.shape)))
             darr = spline_filter(darr, order=order, mode=self.mode, tol=tol, output=darr.dtype, threads=threads,
-                                 route=route)
+                                 route=route, nan_policy=nan_policy)
+        elif _nan_policy(nan_policy) == "raise":
+            darr = darr.map_blocks(_refused_if_missing, dtype=darr.dtype)
         self.coeffs = darr
         self.engine_mode = {"constant": "mirror", "wrap": "mirror", "grid-mirror": "reflect"}.get(self.mode, self.mode)
 
@@ -253,6 +287,9 @@ class _Plan:
         if self.mode == "constant":
             limit = np.array(self.shape, dtype=np.float64)[:, None] - 1.0
             mask = ((flat < 0) | (flat > limit)).any(axis=0)
+        if not np.isfinite(flat).all():
+            raise ValueError("a coordinate is not finite: non-finite coordinates are not taken on dask "
+                             "(splinelab.map_coordinates gives scipy's values there)")
         rows = []
         reach = self.d // 2 + 1 + 1
         for axis, x in enumerate(flat):
@@ -284,6 +321,14 @@ class _Plan:
                 lo, hi = 0, n
             out.append((max(lo, 0), min(hi, n)))
         return out
+
+
+def _refused_if_missing(x):
+    """nan_policy='raise' where no prefilter runs (degrees 0 and 1)."""
+    from splinelab._ndimage import _refuse_non_finite
+
+    _refuse_non_finite(x)
+    return x
 
 
 def _evaluate_region(region_coeffs, lo, x, mask, plan, dtype):
@@ -318,14 +363,15 @@ def _work_dtype(darr, output):
     return dtype
 
 
-def _on_output_grid(darr, out_shape, chunks, points_of, order, mode, cval, tol, route, output, threads):
+def _on_output_grid(darr, out_shape, chunks, points_of, order, mode, cval, tol, route, output, threads,
+                    nan_policy="propagate"):
     """The output of ``out_shape`` in ``chunks``, chunk ``slices`` at the
     points ``points_of(slices)`` (``(ndim, k)``, scipy's arithmetic)."""
     import itertools
 
     darr = da.asarray(darr)
     dtype = _work_dtype(darr, output)
-    plan = _Plan(darr.astype(dtype), order, mode, cval, tol, route, threads)
+    plan = _Plan(darr.astype(dtype), order, mode, cval, tol, route, threads, nan_policy)
     chunks = da.core.normalize_chunks(chunks if chunks is not None else darr.chunksize[: len(out_shape)] if
                                       len(out_shape) == darr.ndim else "auto", out_shape, dtype=dtype)
     starts = [np.concatenate([[0], np.cumsum(c)[:-1]]).astype(int) for c in chunks]
@@ -338,14 +384,16 @@ def _on_output_grid(darr, out_shape, chunks, points_of, order, mode, cval, tol, 
 
 
 def map_coordinates(input, coordinates, order=3, mode="constant", cval=0.0, tol=DEFAULT_TOL, output=None,
-                    threads=1, route="truncated"):
+                    threads=1, route="truncated", nan_policy="propagate"):
     """``splinelab.map_coordinates`` with dask: ``input`` (dask or numpy)
     prefiltered once by the certified chunked filter, ``coordinates`` a
     dask array ``(ndim, ...)`` chunked along the points (axis 0 whole); the
     result is chunked like them. Each chunk reads only the coefficient
     region its points need (its bounding box, computed when the graph is
     built). Within ``bound(order, tol, ndim) * max|input|`` (plus rounding)
-    of ``splinelab.map_coordinates`` (module notes above).
+    of ``splinelab.map_coordinates`` (module notes above). ``nan_policy``
+    as :func:`spline_filter` (the coefficients); a coefficient that is NaN
+    reaches the outputs whose window holds it, as unchunked.
 
     >>> import dask.array as da, numpy as np, splinelab, splinelab.dask
     >>> x = np.random.default_rng(0).uniform(-1, 1, (40, 40))
@@ -361,7 +409,7 @@ def map_coordinates(input, coordinates, order=3, mode="constant", cval=0.0, tol=
     if at.ndim < 1 or at.shape[0] != darr.ndim:
         raise ValueError(f"coordinates must have shape ({darr.ndim}, ...), got {at.shape}")
     dtype = _work_dtype(darr, output)
-    plan = _Plan(darr.astype(dtype), order, mode, cval, tol, route, threads)
+    plan = _Plan(darr.astype(dtype), order, mode, cval, tol, route, threads, nan_policy)
     flat = at.reshape(at.shape[0], -1).rechunk({0: -1}).astype(np.float64)
     parts = dask.compute(*flat.to_delayed().ravel())  # each chunk's points, to find its region
     pieces = [_chunk(plan, np.asarray(p), dtype) for p in parts]
@@ -369,7 +417,7 @@ def map_coordinates(input, coordinates, order=3, mode="constant", cval=0.0, tol=
 
 
 def zoom(input, zoom, order=3, mode="constant", cval=0.0, *, grid_mode=False, tol=DEFAULT_TOL, output=None,
-         chunks=None, threads=1, route="truncated"):
+         chunks=None, threads=1, route="truncated", nan_policy="propagate"):
     """``splinelab.zoom`` of a dask array (scipy's output shape and
     coordinates), output in ``chunks`` (default: the input's chunk size).
     Bound as :func:`map_coordinates`."""
@@ -384,11 +432,11 @@ def zoom(input, zoom, order=3, mode="constant", cval=0.0, *, grid_mode=False, to
     factors = np.divide(num, div, out=np.ones(darr.ndim, dtype=np.float64), where=div != 0)
     axes = _zoom_shift_coordinates(out_shape, zooms=factors, grid_mode=grid_mode)
     return _on_output_grid(darr, out_shape, chunks, lambda s: _grid_points(axes, s), order, mode, cval, tol, route,
-                           output, threads)
+                           output, threads, nan_policy)
 
 
 def shift(input, shift, order=3, mode="constant", cval=0.0, *, tol=DEFAULT_TOL, output=None, chunks=None,
-          threads=1, route="truncated"):
+          threads=1, route="truncated", nan_policy="propagate"):
     """``splinelab.shift`` of a dask array; arguments and bound as :func:`zoom`."""
     from splinelab._resample import _per_axis, _zoom_shift_coordinates
 
@@ -396,7 +444,7 @@ def shift(input, shift, order=3, mode="constant", cval=0.0, *, tol=DEFAULT_TOL, 
     shifts = [-s for s in _per_axis(shift, darr.ndim, "shift")]
     axes = _zoom_shift_coordinates(darr.shape, shifts=shifts)
     return _on_output_grid(darr, darr.shape, chunks, lambda s: _grid_points(axes, s), order, mode, cval, tol, route,
-                           output, threads)
+                           output, threads, nan_policy)
 
 
 def _grid_points(axes, slices):
@@ -405,7 +453,7 @@ def _grid_points(axes, slices):
 
 
 def affine_transform(input, matrix, offset=0.0, output_shape=None, order=3, mode="constant", cval=0.0, *,
-                     tol=DEFAULT_TOL, output=None, chunks=None, threads=1, route="truncated"):
+                     tol=DEFAULT_TOL, output=None, chunks=None, threads=1, route="truncated", nan_policy="propagate"):
     """``splinelab.affine_transform`` of a dask array (every matrix form
     scipy takes); arguments and bound as :func:`zoom`."""
     from splinelab._resample import _affine_parts, _zoom_shift_coordinates
@@ -431,11 +479,12 @@ def affine_transform(input, matrix, offset=0.0, output_shape=None, order=3, mode
                 points[h] = t
             return points
 
-    return _on_output_grid(darr, out_shape, chunks, points_of, order, mode, cval, tol, route, output, threads)
+    return _on_output_grid(darr, out_shape, chunks, points_of, order, mode, cval, tol, route, output, threads,
+                           nan_policy)
 
 
 def rotate(input, angle, axes=(1, 0), reshape=True, order=3, mode="constant", cval=0.0, *, tol=DEFAULT_TOL,
-           output=None, chunks=None, threads=1, route="truncated"):
+           output=None, chunks=None, threads=1, route="truncated", nan_policy="propagate"):
     """``splinelab.rotate`` of a dask array (scipy's matrix, centre and
     output shape); arguments and bound as :func:`zoom`. Above two
     dimensions the rotation is one N-D affine map, the identity off the
@@ -451,4 +500,4 @@ def rotate(input, angle, axes=(1, 0), reshape=True, order=3, mode="constant", cv
     offset = np.zeros(darr.ndim)
     offset[axes] = plane_offset
     return affine_transform(darr, matrix, offset, out_shape, order, mode, cval, tol=tol,
-                            output=output, chunks=chunks, threads=threads, route=route)
+                            output=output, chunks=chunks, threads=threads, route=route, nan_policy=nan_policy)

@@ -1,7 +1,7 @@
 //! Line filters kept between calls: building one computes the poles in
 //! MPFR (and for `tol` the certified width), about 0.1 ms — as long as
-//! filtering 10⁴ samples. Keyed by scalar type, degree, mode, `cval` and
-//! route; at most [`CAPACITY`] kept (cleared when full).
+//! filtering 10⁴ samples. Keyed by scalar type, degree, mode, `cval`,
+//! route and NaN policy; at most [`CAPACITY`] kept (cleared when full).
 
 use splinelab::prelude::*;
 use std::any::{Any, TypeId};
@@ -10,7 +10,7 @@ use std::sync::{Arc, Mutex, OnceLock};
 
 const CAPACITY: usize = 64;
 
-type Key = (TypeId, u32, Mode, u64, Option<(bool, u64)>);
+type Key = (TypeId, u32, Mode, u64, Option<(bool, u64)>, NanPolicy);
 type Filters = HashMap<Key, Arc<dyn Any + Send + Sync>>;
 
 static FILTERS: OnceLock<Mutex<Filters>> = OnceLock::new();
@@ -21,6 +21,7 @@ pub fn line_filter<T, E>(
     mode: Mode,
     cval: f64,
     route: Route,
+    nan_policy: NanPolicy,
     build: impl FnOnce() -> Result<LineFilter<T>, E>,
 ) -> Result<Arc<LineFilter<T>>, E>
 where
@@ -31,7 +32,14 @@ where
         Route::Truncated { tol } => Some((false, tol.to_bits())),
         Route::Convolution { tol } => Some((true, tol.to_bits())),
     };
-    let key = (TypeId::of::<T>(), degree, mode, cval.to_bits(), tol);
+    let key = (
+        TypeId::of::<T>(),
+        degree,
+        mode,
+        cval.to_bits(),
+        tol,
+        nan_policy,
+    );
     let filters = FILTERS.get_or_init(|| Mutex::new(HashMap::new()));
     let hit = filters
         .lock()

@@ -3,8 +3,31 @@
 
 use pyo3::PyErr;
 use pyo3::exceptions::PyValueError;
+use splinelab::ndimage::NdimageError;
+
+pyo3::create_exception!(
+    _splinelab,
+    NonFiniteCoordinateError,
+    PyValueError,
+    "A coordinate is NaN or infinite (the engine evaluates finite points only; the Python layer gives scipy's values there)."
+);
 
 /// Any displayable Rust error as a `ValueError` with its message.
 pub fn value_error(e: impl std::fmt::Display) -> PyErr {
     PyValueError::new_err(e.to_string())
+}
+
+/// An engine error as a Python exception: a non-finite coordinate as
+/// [`NonFiniteCoordinateError`] (a `ValueError` the Python layer catches to
+/// reproduce scipy's values at such points), anything else as [`value_error`].
+pub fn engine_error(e: NdimageError) -> PyErr {
+    match e {
+        NdimageError::NonFiniteCoordinate(_) => NonFiniteCoordinateError::new_err(e.to_string()),
+        e => value_error(e),
+    }
+}
+
+/// A NaN policy by name (`ValueError` naming the three choices otherwise).
+pub fn nan_policy(name: &str) -> Result<splinelab::prelude::NanPolicy, PyErr> {
+    name.parse().map_err(value_error)
 }

@@ -20,21 +20,23 @@
 use crate::cache;
 use crate::error::value_error;
 use crate::pool::run_with;
-use ndarray::{ArrayViewD, ArrayViewMutD};
+use ndarray::{ArrayView1, ArrayViewD, ArrayViewMut1, ArrayViewMutD};
 use numpy::{Element, PyReadonlyArrayDyn, PyReadwriteArrayDyn};
 use pyo3::prelude::*;
 use splinelab::ndimage::NdimageError;
-use splinelab::ndimage::nd_prefilter::spline_filter_from;
+use splinelab::ndimage::nd_prefilter::{filter_missing, spline_filter_from};
 use splinelab::prelude::*;
 use std::sync::Arc;
 
-/// How to filter: degree, mode, `cval` and route (`tol` → truncated, or
-/// with `convolution` the local truncated convolution chunked filtering needs).
+/// How to filter: degree, mode, `cval`, route (`tol` → truncated, or
+/// with `convolution` the local truncated convolution chunked filtering
+/// needs) and what non-finite samples do.
 struct Spec {
     degree: u32,
     mode: Mode,
     cval: f64,
     route: Route,
+    nan_policy: NanPolicy,
 }
 
 impl Spec {
@@ -44,8 +46,10 @@ impl Spec {
         cval: f64,
         tol: Option<f64>,
         convolution: bool,
+        nan_policy: &str,
     ) -> PyResult<Spec> {
         let mode: Mode = mode.parse().map_err(value_error)?;
+        let nan_policy = crate::error::nan_policy(nan_policy)?;
         let route = match (tol, convolution) {
             (Some(tol), true) => Route::Convolution { tol },
             (Some(tol), false) => Route::Truncated { tol },
@@ -56,6 +60,7 @@ impl Spec {
             mode,
             cval,
             route,
+            nan_policy,
         })
     }
 
@@ -69,20 +74,28 @@ impl Spec {
         }
         let build = || {
             let family = SplineFamily::order(self.degree.saturating_add(1))?;
-            LineFilter::new(&family, self.mode, self.cval, self.route)
+            LineFilter::new(&family, self.mode, self.cval, self.route)?
+                .with_nan_policy(self.nan_policy)
         };
-        cache::line_filter(self.degree, self.mode, self.cval, self.route, build).map(Some)
+        cache::line_filter(
+            self.degree,
+            self.mode,
+            self.cval,
+            self.route,
+            self.nan_policy,
+            build,
+        )
+        .map(Some)
     }
 }
 
 /// Values per block of [`copy_checked`]: 32 KiB of f64, an L1 data cache.
 const BLOCK: usize = 4096;
 
-/// Copies `src` into `dst`, reports its first non-finite value (the
-/// engine's `NonFinite` error, index in logical order) and returns
-/// `max|src|` (for the overflow check) — one pass: each block is checked
-/// while it is still in L1.
-fn copy_checked<T: Real + Copy>(src: &[T], dst: &mut [T]) -> Result<f64, NdimageError> {
+/// Copies `src` into `dst` and returns `max|src|` (for the overflow
+/// check), `None` where a value is not finite — one pass: each block is
+/// checked while it is still in L1.
+fn copy_checked<T: Real + Copy>(src: &[T], dst: &mut [T]) -> Result<Option<f64>, NdimageError> {
     if src.is_empty() {
         return Err(NdimageError::Empty);
     }
@@ -93,11 +106,17 @@ fn copy_checked<T: Real + Copy>(src: &[T], dst: &mut [T]) -> Result<f64, Ndimage
         finite &= d.iter().fold(true, |ok, x| ok & x.is_finite());
         max = d.iter().fold(max, |m, x| m.max(x.to_f64().abs()));
     }
-    if finite {
-        return Ok(max);
-    }
-    let i = src.iter().position(|x| !x.is_finite()).unwrap_or(0);
-    Err(NdimageError::NonFinite(i))
+    Ok(finite.then_some(max))
+}
+
+/// One line `s` holding a non-finite sample, filtered into `d` by the
+/// filter's NaN policy (the engine's slow path: refused, or filled and marked).
+fn missing_line<T: Real + Send + Sync>(
+    s: &[T],
+    d: &mut [T],
+    f: &LineFilter<T>,
+) -> Result<(), NdimageError> {
+    filter_missing(&ArrayView1::from(s), &mut ArrayViewMut1::from(d), &[0], f)
 }
 
 /// Whether filtering `axes` of an array of `shape` (`len` elements) is one
@@ -130,7 +149,9 @@ fn filter_into<T: Real + Copy + Send + Sync + 'static>(
     }
     // One line: the same call the engine makes for a single lane.
     if f.is_convolution() {
-        let max = copy_checked(s, d)?;
+        let Some(max) = copy_checked(s, d)? else {
+            return missing_line(s, d, f);
+        };
         f.check_magnitude(max, 1)?;
         f.apply(d, &mut Vec::new());
         return Ok(());
@@ -147,8 +168,8 @@ fn filter_into<T: Real + Copy + Send + Sync + 'static>(
     if d[0].is_finite() {
         return Ok(());
     }
-    if let Some(i) = s.iter().position(|x| !x.is_finite()) {
-        return Err(NdimageError::NonFinite(i));
+    if s.iter().any(|x| !x.is_finite()) {
+        return missing_line(s, d, f);
     }
     let max = s.iter().fold(0.0f64, |m, x| m.max(x.to_f64().abs()));
     f.check_magnitude(max, 1)?;
@@ -225,7 +246,7 @@ macro_rules! filter_fn {
     ($name:ident, $t:ty, $doc:literal) => {
         #[doc = $doc]
         #[pyfunction]
-        #[pyo3(signature = (input, output, axes, degree, mode, cval, tol, threads, convolution=false))]
+        #[pyo3(signature = (input, output, axes, degree, mode, cval, tol, threads, convolution=false, nan_policy="propagate"))]
         #[allow(clippy::too_many_arguments)]
         pub fn $name<'py>(
             py: Python<'py>,
@@ -238,13 +259,14 @@ macro_rules! filter_fn {
             tol: Option<f64>,
             threads: Option<usize>,
             convolution: bool,
+            nan_policy: &str,
         ) -> PyResult<()> {
             filter_generic(
                 py,
                 input,
                 output,
                 axes,
-                Spec::new(degree, mode, cval, tol, convolution)?,
+                Spec::new(degree, mode, cval, tol, convolution, nan_policy)?,
                 threads,
             )
         }
@@ -268,9 +290,18 @@ filter_fn!(
 #[pyfunction]
 #[pyo3(signature = (degree, tol))]
 pub fn filter_bound(degree: u32, tol: Option<f64>) -> PyResult<(Option<usize>, f64, f64)> {
-    let spec = Spec::new(degree, "mirror", 0.0, tol, false)?;
+    let spec = Spec::new(degree, "mirror", 0.0, tol, false, "propagate")?;
     match spec.line_filter::<f64>().map_err(value_error)? {
         Some(f) => Ok((f.half_width(), f.bound(), f.recursive().amplification())),
         None => Ok((tol.map(|_| 0), 0.0, 1.0)),
     }
+}
+
+/// How many samples a missing one reaches under `nan_policy="local"`
+/// (the engine's `nan_reach`: the certified half-width for `tol` plus the
+/// spline's window `degree // 2 + 1`).
+#[pyfunction]
+#[pyo3(signature = (degree, tol))]
+pub fn nan_reach(degree: u32, tol: f64) -> PyResult<usize> {
+    splinelab::prelude::nan_reach(degree, tol).map_err(value_error)
 }

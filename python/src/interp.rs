@@ -6,7 +6,7 @@
 //! With `deriv`, a partial derivative of the interpolant instead of its values;
 //! with `cval_outside`, `cval` at points outside the grid (scipy's 'constant').
 
-use crate::error::value_error;
+use crate::error::{engine_error, value_error};
 use crate::pool::run_with;
 use numpy::{Element, IntoPyArray, PyArray1, PyReadonlyArray2, PyReadonlyArrayDyn};
 use pyo3::prelude::*;
@@ -14,9 +14,16 @@ use rayon::prelude::*;
 use splinelab::ndimage::interpolant::PointRule;
 use splinelab::prelude::*;
 
-pub(crate) fn options(degree: u32, mode: &str, cval: f64, tol: Option<f64>) -> PyResult<Options> {
+pub(crate) fn options(
+    degree: u32,
+    mode: &str,
+    cval: f64,
+    tol: Option<f64>,
+    nan_policy: &str,
+) -> PyResult<Options> {
     let mut opts = Options::new(degree, mode.parse().map_err(value_error)?);
     opts.cval = cval;
+    opts.nan_policy = crate::error::nan_policy(nan_policy)?;
     if let Some(tol) = tol {
         opts.route = Route::Truncated { tol };
     }
@@ -33,7 +40,7 @@ pub(crate) fn interpolant<T: Real + Send + Sync>(
     if prefilter {
         Interpolant::new(data, opts)
     } else {
-        Interpolant::from_coefficients(data, opts.degree, opts.mode, opts.cval)
+        Interpolant::from_coefficients_with(data, opts)
     }
 }
 
@@ -84,7 +91,7 @@ where
         f.eval_many_with(at.t(), rule, &mut out).map(|()| out)
     };
     let out = py.detach(|| run_with(threads, run))?;
-    Ok(out.map_err(value_error)?.into_pyarray(py))
+    Ok(out.map_err(engine_error)?.into_pyarray(py))
 }
 
 /// The float64 and float32 entry points, one generic body.
@@ -92,7 +99,7 @@ macro_rules! map_fn {
     ($name:ident, $t:ty, $doc:literal) => {
         #[doc = $doc]
         #[pyfunction]
-        #[pyo3(signature = (input, coordinates, degree, mode, cval, tol, prefilter, threads, deriv=None, cval_outside=false))]
+        #[pyo3(signature = (input, coordinates, degree, mode, cval, tol, prefilter, threads, deriv=None, cval_outside=false, nan_policy="propagate"))]
         #[allow(clippy::too_many_arguments)]
         pub fn $name<'py>(
             py: Python<'py>,
@@ -106,8 +113,9 @@ macro_rules! map_fn {
             threads: Option<usize>,
             deriv: Option<Vec<u32>>,
             cval_outside: bool,
+            nan_policy: &str,
         ) -> PyResult<Bound<'py, PyArray1<$t>>> {
-            let opts = options(degree, mode, cval, tol)?;
+            let opts = options(degree, mode, cval, tol, nan_policy)?;
             map_generic(
                 py,
                 input,

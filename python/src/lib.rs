@@ -21,6 +21,11 @@ use pyo3::prelude::*;
 #[pymodule]
 fn _splinelab(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    m.add(
+        "NonFiniteCoordinateError",
+        m.py().get_type::<error::NonFiniteCoordinateError>(),
+    )?;
+    m.add_function(wrap_pyfunction!(filter::nan_reach, m)?)?;
     m.add_function(wrap_pyfunction!(filter::filter_f64, m)?)?;
     m.add_function(wrap_pyfunction!(filter::filter_f32, m)?)?;
     m.add_function(wrap_pyfunction!(filter::filter_bound, m)?)?;

@@ -4,7 +4,7 @@
 //! ([`Interpolant::resample_grid`]: `degree + 1` multiply-adds per output
 //! sample and axis), optionally a partial derivative.
 
-use crate::error::value_error;
+use crate::error::{engine_error, value_error};
 use crate::pool::run_with;
 use numpy::{
     Element, PyArrayDyn, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2, PyReadonlyArrayDyn,
@@ -41,7 +41,8 @@ where
         let f = crate::interp::interpolant(&data, opts, prefilter)?;
         f.resample_grid(&axes, &deriv, out)
     };
-    py.detach(|| run_with(threads, run))?.map_err(value_error)?;
+    py.detach(|| run_with(threads, run))?
+        .map_err(engine_error)?;
     drop(view);
     Ok(result)
 }
@@ -51,7 +52,7 @@ macro_rules! resample_fn {
     ($name:ident, $t:ty, $doc:literal) => {
         #[doc = $doc]
         #[pyfunction]
-        #[pyo3(signature = (input, coordinates, degree, mode, cval, tol, prefilter, deriv, threads))]
+        #[pyo3(signature = (input, coordinates, degree, mode, cval, tol, prefilter, deriv, threads, nan_policy="propagate"))]
         #[allow(clippy::too_many_arguments)]
         pub fn $name<'py>(
             py: Python<'py>,
@@ -64,8 +65,9 @@ macro_rules! resample_fn {
             prefilter: bool,
             deriv: Vec<u32>,
             threads: Option<usize>,
+            nan_policy: &str,
         ) -> PyResult<Bound<'py, PyArrayDyn<$t>>> {
-            let opts = crate::interp::options(degree, mode, cval, tol)?;
+            let opts = crate::interp::options(degree, mode, cval, tol, nan_policy)?;
             resample_generic(py, input, coordinates, opts, prefilter, deriv, threads)
         }
     };
@@ -119,7 +121,8 @@ where
         let f = crate::interp::interpolant(&data, opts, prefilter)?;
         f.resample_affine(m, offset, &out_shape, shift, rule, out)
     };
-    py.detach(|| run_with(threads, run))?.map_err(value_error)?;
+    py.detach(|| run_with(threads, run))?
+        .map_err(engine_error)?;
     drop(view);
     Ok(result)
 }
@@ -129,7 +132,7 @@ macro_rules! affine_fn {
     ($name:ident, $t:ty, $doc:literal) => {
         #[doc = $doc]
         #[pyfunction]
-        #[pyo3(signature = (input, matrix, offset, out_shape, degree, mode, cval, tol, prefilter, shift, rule, threads))]
+        #[pyo3(signature = (input, matrix, offset, out_shape, degree, mode, cval, tol, prefilter, shift, rule, threads, nan_policy="propagate"))]
         #[allow(clippy::too_many_arguments)]
         pub fn $name<'py>(
             py: Python<'py>,
@@ -145,8 +148,9 @@ macro_rules! affine_fn {
             shift: f64,
             rule: &str,
             threads: Option<usize>,
+            nan_policy: &str,
         ) -> PyResult<Bound<'py, PyArrayDyn<$t>>> {
-            let opts = crate::interp::options(degree, mode, cval, tol)?;
+            let opts = crate::interp::options(degree, mode, cval, tol, nan_policy)?;
             affine_generic(
                 py, input, matrix, offset, out_shape, opts, prefilter, shift, rule, threads,
             )

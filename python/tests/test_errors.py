@@ -25,8 +25,10 @@ import splinelab
         (lambda: splinelab.spline_filter1d(np.ones(5), tol=float("nan")), ValueError, "toleran"),
         (lambda: splinelab.spline_filter1d(np.ones(5), tol="1e-3"), TypeError, "tol"),
         (lambda: splinelab.spline_filter1d(np.ones((3, 4)), axis=2), np.exceptions.AxisError, "axis"),
-        (lambda: splinelab.spline_filter1d(np.array([1.0, np.nan, 2.0])), ValueError, "finite"),
-        (lambda: splinelab.spline_filter1d(np.array([1.0, np.inf])), ValueError, "finite"),
+        (lambda: splinelab.spline_filter1d(np.array([1.0, np.nan, 2.0]), nan_policy="raise"), ValueError,
+         "sample 1 is not finite (nan)"),
+        (lambda: splinelab.spline_filter1d(np.array([1.0, np.inf]), nan_policy="raise"), ValueError,
+         "sample 1 is not finite (inf)"),
         (lambda: splinelab.spline_filter1d(np.zeros(0)), ValueError, "empty"),
         (lambda: splinelab.spline_filter1d(np.ones(3, complex), output="float64"), TypeError, "complex"),
         (lambda: splinelab.spline_filter1d(np.array(["a", "b"])), TypeError, "numeric"),
@@ -46,7 +48,7 @@ import splinelab
         (lambda: splinelab.spline_filter(np.ones(5), output=np.empty(4)), ValueError, "shape"),
         (lambda: splinelab.spline_filter(np.ones(5), threads=0), ValueError, "threads"),
         (lambda: splinelab.map_coordinates(np.ones((3, 3)), np.ones((3, 2))), ValueError, "shape"),
-        (lambda: splinelab.map_coordinates(np.ones(3), [[np.nan]]), ValueError, "finite"),
+        (lambda: splinelab.map_coordinates(np.ones(3), [[np.nan]], nan_policy="raise"), ValueError, "finite"),
         (lambda: splinelab.map_coordinates(np.ones(3), [[1.0]], order=200), ValueError, "egree"),
         (lambda: splinelab.map_coordinates(np.ones(3), [[1.0]], prefilter="no"), TypeError, "prefilter"),
         (lambda: splinelab.truncation_width(degree=3, tol=0.0), ValueError, "toleran"),
@@ -120,4 +122,4 @@ def test_non_finite_coordinates_are_refused_in_every_mode_without_warnings(mode,
         warnings.simplefilter("error")
         for kw in calls:
             with pytest.raises(ValueError, match="coordinate [0-9]+ is not finite"):
-                splinelab.map_coordinates(coordinates=c, mode=mode, **kw)
+                splinelab.map_coordinates(coordinates=c, mode=mode, nan_policy="raise", **kw)

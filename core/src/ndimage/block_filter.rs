@@ -37,11 +37,14 @@
 use super::NdimageError;
 use super::line_filter::{LineFilter, Route};
 use super::mode::Mode;
+use super::nan_policy::{NanPolicy, fill_filter_mark};
 use super::stash::Stash;
 use super::window_recursion::{Ahead, WindowRecursion, lanes};
 use crate::scalar::Real;
 use crate::sspline::SplineFamily;
+#[cfg(doc)]
 use crate::sspline::width::certified_width;
+use ndarray::{ArrayView1, ArrayViewMut1};
 use rayon::prelude::*;
 
 /// The block-parallel prefilter (module documentation).
@@ -76,14 +79,24 @@ impl<T: Real + Send + Sync> BlockPrefilter<T> {
         cval: f64,
         tol: f64,
     ) -> Result<Self, NdimageError> {
-        let (overlap, bound) = certified_width(family, tol)?;
-        let filter = LineFilter::new(family, mode, cval, Route::Exact)?;
+        // The truncated route's filter runs the exact recursion on a line
+        // (the blocks' own kernel) and knows its certified width.
+        let filter = LineFilter::new(family, mode, cval, Route::Truncated { tol })?;
         Ok(BlockPrefilter {
             kernel: kernel(&filter),
+            overlap: filter
+                .half_width()
+                .expect("the truncated route has a width"),
+            bound: filter.bound(),
             filter,
-            overlap,
-            bound,
         })
+    }
+
+    /// The blocks with `policy` for non-finite samples
+    /// ([`LineFilter::with_nan_policy`]; default `Propagate`).
+    pub fn with_nan_policy(mut self, policy: NanPolicy) -> Result<Self, NdimageError> {
+        self.filter = self.filter.with_nan_policy(policy)?;
+        Ok(self)
     }
 
     /// The blocks of `filter`'s route: overlap its certified half-width,
@@ -204,8 +217,14 @@ impl<T: Real + Send + Sync> BlockPrefilter<T> {
         if finite {
             return self.filter.check_magnitude(max, 1);
         }
-        if let Some(i) = s.iter().position(|x| !x.is_finite()) {
-            return Err(NdimageError::NonFinite(i));
+        if s.iter().any(|x| !x.is_finite()) {
+            // The filter's policy: refused, or filled and marked.
+            let (s, mut o) = (ArrayView1::from(s), ArrayViewMut1::from(out));
+            return fill_filter_mark(&s, &mut o, &[0], &self.filter, |o| {
+                let line = o.as_slice_mut().expect("a slice's view is contiguous");
+                self.filter.apply(line, &mut Vec::new());
+                Ok(())
+            });
         }
         self.filter.check_magnitude(max, 1)?;
         // Finite data within the growth bound cannot overflow

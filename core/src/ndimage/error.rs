@@ -1,6 +1,7 @@
 //! Why the N-D engine refused a request or failed: [`NdimageError`].
 
 use crate::sspline::prefilter::PrefilterError;
+use crate::validation::NonFiniteValue;
 
 /// Why a prefilter, interpolation or resampling request of the engine was
 /// refused or failed. The 1-D prefilters' own failures (an ill-conditioned
@@ -12,9 +13,24 @@ pub enum NdimageError {
     /// No samples.
     #[error("the signal is empty")]
     Empty,
-    /// A sample is NaN or infinite (its flat index in the array's logical order).
-    #[error("sample {0} is not finite")]
-    NonFinite(usize),
+    /// A sample is NaN or infinite under
+    /// [`NanPolicy::Raise`](super::nan_policy::NanPolicy::Raise): the first
+    /// one, its flat index in the array's logical order and its value.
+    #[error("sample {index} is not finite ({value})")]
+    NonFinite {
+        /// Flat index in logical (C) order.
+        index: usize,
+        /// What it holds.
+        value: NonFiniteValue,
+    },
+    /// [`NanPolicy::Local`](super::nan_policy::NanPolicy::Local) without a
+    /// tolerance: the exact recursive prefilter carries a missing sample
+    /// along the whole line, so no finite reach exists.
+    #[error(
+        "nan_policy \"local\" needs a tolerance (tol): the exact prefilter (tol=None) spreads a missing \
+         sample along its whole line, so there is no finite reach; give tol (e.g. 1e-12) or use \"propagate\""
+    )]
+    LocalNeedsTol,
     /// Samples so large that the coefficients could overflow the scalar.
     #[error(
         "samples up to {max:e} could overflow: the filter forms values up to {growth:e} × max|s| per axis; \
@@ -77,7 +93,7 @@ impl From<PrefilterError> for NdimageError {
     fn from(e: PrefilterError) -> Self {
         match e {
             PrefilterError::Empty => NdimageError::Empty,
-            PrefilterError::NonFinite(i) => NdimageError::NonFinite(i),
+            PrefilterError::NonFinite { index, value } => NdimageError::NonFinite { index, value },
             other => NdimageError::Prefilter(other),
         }
     }

@@ -20,6 +20,7 @@
 use super::NdimageError;
 use super::line_filter::{LineFilter, Route};
 use super::mode::Mode;
+use super::nan_policy::NanPolicy;
 use super::nd_prefilter::{check_finite, padded_coefficients, spline_filter_from};
 use crate::scalar::Real;
 use crate::sspline::bspline_uniform::{cell_derivatives_into, centred_cell};
@@ -51,6 +52,10 @@ pub struct Options {
     pub cval: f64,
     /// Exact or truncated coefficients.
     pub route: Route,
+    /// What non-finite samples do ([`NanPolicy`]; default
+    /// [`NanPolicy::Propagate`], scipy's pattern). [`NanPolicy::Local`]
+    /// needs a truncated route for degrees ≥ 2.
+    pub nan_policy: NanPolicy,
 }
 
 impl Options {
@@ -61,6 +66,7 @@ impl Options {
             mode,
             cval: 0.0,
             route: Route::Exact,
+            nan_policy: NanPolicy::default(),
         }
     }
 }
@@ -95,7 +101,11 @@ const SMALL: usize = 24;
 
 impl<T: Real + Send + Sync> Interpolant<T> {
     /// The interpolant of `data` (1 to N dimensions, at least one sample per
-    /// axis, all finite), degree `0..=199`. Degrees 0 (the nearest sample,
+    /// axis), degree `0..=199`; non-finite samples by `opts.nan_policy`
+    /// ([`super::nan_policy`]: under `Propagate` every coefficient of a
+    /// degree ≥ 2 is NaN once one sample is; under `Local` those within the
+    /// certified half-width; the evaluation carries a NaN coefficient to every
+    /// output whose window holds it). Degrees 0 (the nearest sample,
     /// [`Mode::nearest_index`]) and 1 (multilinear) need no prefilter: their
     /// coefficients are the samples, as in scipy.
     ///
@@ -122,7 +132,7 @@ impl<T: Real + Send + Sync> Interpolant<T> {
         D: Dimension,
     {
         if opts.degree <= 1 {
-            return Self::from_coefficients(data, opts.degree, opts.mode, opts.cval)
+            return Self::from_coefficients_with(data, opts)
                 .map(|f| Interpolant { given: false, ..f });
         }
         if opts.degree >= MAX_ORDER {
@@ -130,7 +140,8 @@ impl<T: Real + Send + Sync> Interpolant<T> {
         }
         let order = opts.degree + 1;
         let family = SplineFamily::order(order)?;
-        let filter = LineFilter::new(&family, opts.mode, opts.cval, opts.route)?;
+        let filter = LineFilter::new(&family, opts.mode, opts.cval, opts.route)?
+            .with_nan_policy(opts.nan_policy)?;
         let mut pad = order as usize / 2 + 2;
         if matches!(opts.mode, Mode::GridConstant | Mode::Nearest) {
             // Beyond this the coefficients equal cval (the end sample) to
@@ -201,6 +212,40 @@ impl<T: Real + Send + Sync> Interpolant<T> {
         S: Data<Elem = T>,
         D: Dimension,
     {
+        let opts = Options {
+            cval,
+            ..Options::new(degree, mode)
+        };
+        Self::from_coefficients_with(coeffs, opts)
+    }
+
+    /// [`Self::from_coefficients`] with `opts.degree`, `mode`, `cval` and
+    /// `nan_policy` (`route` unused): non-finite coefficients are refused
+    /// under [`NanPolicy::Raise`] (naming the first), and otherwise carried
+    /// to every output whose window holds one (scipy's `0 · NaN`), the
+    /// pattern of both `Propagate` and `Local` (given coefficients have no
+    /// prefilter to reach through; `Local` makes them NaN, `Propagate`
+    /// leaves ±∞ as it is).
+    ///
+    /// ```
+    /// use splinelab::prelude::*;
+    /// let c = ndarray::array![0.0, 6.0, f64::NAN, 0.0, 0.0, 0.0, 1.0];
+    /// let f: Interpolant<f64> = Interpolant::from_coefficients_with(&c, Options::new(3, Mode::Mirror)).unwrap();
+    /// // The cubic window at x reads ⌊x⌋ − 1 ..= ⌊x⌋ + 2: at 3 the NaN has weight 0, and counts.
+    /// assert!(f.eval(&[3.0]).unwrap().is_nan() && f.eval(&[0.0]).unwrap().is_nan());
+    /// assert!((f.eval(&[5.0]).unwrap() - 1.0 / 6.0).abs() < 1e-15);
+    /// ```
+    pub fn from_coefficients_with<S, D>(
+        coeffs: &ArrayBase<S, D>,
+        opts: Options,
+    ) -> Result<Self, NdimageError>
+    where
+        S: Data<Elem = T>,
+        D: Dimension,
+    {
+        let Options {
+            degree, mode, cval, ..
+        } = opts;
         if degree >= MAX_ORDER {
             return Err(NdimageError::Degree(degree));
         }
@@ -215,10 +260,16 @@ impl<T: Real + Send + Sync> Interpolant<T> {
         } else {
             order as usize / 2 + 2
         };
-        let (padded, finite) = extend_padded(coeffs, mode, &T::from_f64_exact(cval), pad);
-        if !finite {
+        let (mut padded, finite) = extend_padded(coeffs, mode, &T::from_f64_exact(cval), pad);
+        match opts.nan_policy {
             // Names the first non-finite coefficient.
-            check_finite(coeffs)?;
+            NanPolicy::Raise if !finite => check_finite(coeffs)?,
+            // Missing is NaN under `Local` (±∞ would give ±∞ at full weight).
+            NanPolicy::Local if !finite => {
+                let nan = T::from_f64_exact(f64::NAN);
+                padded.par_mapv_inplace(|x| if x.is_finite() { x } else { nan.clone() });
+            }
+            _ => {}
         }
         Ok(Interpolant {
             shape: coeffs.shape().to_vec(),

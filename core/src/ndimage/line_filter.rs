@@ -38,6 +38,7 @@
 use super::NdimageError;
 use super::lanes;
 use super::mode::Mode;
+use super::nan_policy::NanPolicy;
 use crate::scalar::Real;
 use crate::sspline::SplineFamily;
 use crate::sspline::prefilter::{ConvolutionPrefilter, RecursivePrefilter};
@@ -97,6 +98,7 @@ pub struct LineFilter<T> {
     bound: f64,
     mode: Mode,
     cval: T,
+    nan_policy: NanPolicy,
 }
 
 impl<T: Real> LineFilter<T> {
@@ -151,7 +153,44 @@ impl<T: Real> LineFilter<T> {
             bound,
             mode,
             cval: T::from_f64_exact(cval),
+            nan_policy: NanPolicy::default(),
         })
+    }
+
+    /// The filter with `policy` for non-finite samples (default
+    /// [`NanPolicy::Propagate`]), read by the N-D prefilters
+    /// ([`spline_filter1d`](super::nd_prefilter::spline_filter1d),
+    /// [`spline_filter`](super::nd_prefilter::spline_filter),
+    /// [`spline_filter_from`](super::nd_prefilter::spline_filter_from)).
+    /// [`NanPolicy::Local`] needs a certified half-width: refused
+    /// ([`NdimageError::LocalNeedsTol`]) for [`Route::Exact`].
+    ///
+    /// ```
+    /// use splinelab::prelude::*;
+    /// use splinelab::ndimage::nan_policy::NanPolicy;
+    /// let f = LineFilter::<f64>::new(&SplineFamily::Order(4), Mode::Mirror, 0.0, Route::Exact).unwrap();
+    /// assert!(f.clone().with_nan_policy(NanPolicy::Local).is_err());
+    /// let f = f.with_nan_policy(NanPolicy::Raise).unwrap();
+    /// let mut a = ndarray::array![1.0, f64::NAN, 2.0];
+    /// let e = spline_filter(&mut a, &f).unwrap_err();
+    /// assert_eq!(e.to_string(), "sample 1 is not finite (nan)");
+    /// ```
+    pub fn with_nan_policy(mut self, policy: NanPolicy) -> Result<Self, NdimageError> {
+        if policy == NanPolicy::Local && self.width.is_none() {
+            return Err(NdimageError::LocalNeedsTol);
+        }
+        self.nan_policy = policy;
+        Ok(self)
+    }
+
+    /// What the N-D prefilters do with non-finite samples.
+    pub fn nan_policy(&self) -> NanPolicy {
+        self.nan_policy
+    }
+
+    /// The constant beyond the ends of `grid-constant`.
+    pub(crate) fn cval(&self) -> &T {
+        &self.cval
     }
 
     /// The mode.

@@ -21,6 +21,8 @@
 //!   certified width;
 //! - [`interpolant`]: the interpolant built once and evaluated at points,
 //!   with derivatives, one point or many (`interpolant::batch`);
+//! - [`nan_policy`]: what non-finite samples (missing data) do —
+//!   scipy's propagation, refusal, or a certified local reach;
 //! - [`error`]: [`NdimageError`], why a request was refused.
 //!
 //! ```
@@ -43,6 +45,7 @@ pub mod interpolant;
 mod lanes;
 pub mod line_filter;
 pub mod mode;
+pub mod nan_policy;
 pub mod nd_prefilter;
 mod stash;
 mod window_recursion;

@@ -59,27 +59,17 @@ use super::block_filter::BlockPrefilter;
 use super::lanes;
 use super::line_filter::{LineFilter, RowCheck};
 use super::mode::Mode;
+use super::nan_policy::{
+    NanPolicy, cval_missing, dilate, fill_filter_mark, fill_missing, first_non_finite, max_finite,
+    missing, write_nan,
+};
 use super::stash::Stash;
 use crate::scalar::Real;
-use ndarray::{Array, ArrayBase, ArrayView3, ArrayViewMut3, Axis, Data, DataMut, Dimension, Zip};
+use crate::validation::NonFiniteValue;
+use ndarray::{
+    Array, ArrayBase, ArrayD, ArrayView3, ArrayViewMut3, Axis, Data, DataMut, Dimension, IxDyn, Zip,
+};
 use rayon::prelude::*;
-
-/// Refuses samples that `filter` could overflow along `axes` axes
-/// ([`LineFilter::check_magnitude`]). One pass on the pool, after [`check_finite`].
-pub(crate) fn check_range<T: Real + Send + Sync, S: Data<Elem = T>, D: Dimension>(
-    a: &ArrayBase<S, D>,
-    filter: &LineFilter<T>,
-    axes: usize,
-) -> Result<(), NdimageError> {
-    if T::BITS > 53 {
-        return Ok(());
-    }
-    let max = match a.as_slice_memory_order() {
-        Some(s) => scan(s).1,
-        None => a.iter().fold(0.0f64, |m, x| m.max(x.to_f64().abs())),
-    };
-    filter.check_magnitude(max, axes)
-}
 
 /// The first non-finite element (in logical order), as an error.
 pub(crate) fn check_finite<T: Real + Send + Sync, S: Data<Elem = T>, D: Dimension>(
@@ -97,34 +87,96 @@ pub(crate) fn check_finite<T: Real + Send + Sync, S: Data<Elem = T>, D: Dimensio
     first_non_finite(a)
 }
 
-/// [`check_finite`] and [`check_range`] in one pass over the samples.
-fn check_samples<T: Real + Send + Sync, S: Data<Elem = T>, D: Dimension>(
+/// The finiteness and overflow checks ([`LineFilter::check_magnitude`]) in one pass over the samples:
+/// `Ok(true)` where every sample is finite (and below the overflow limit),
+/// `Ok(false)` where some is not (for [`filter_missing`] to handle by the
+/// filter's [`NanPolicy`]).
+fn scan_samples<T: Real + Send + Sync, S: Data<Elem = T>, D: Dimension>(
     a: &ArrayBase<S, D>,
     filter: &LineFilter<T>,
     axes: usize,
-) -> Result<(), NdimageError> {
+) -> Result<bool, NdimageError> {
     if a.is_empty() {
         return Err(NdimageError::Empty);
     }
-    let Some(s) = a.as_slice_memory_order() else {
-        check_finite(a)?;
-        return check_range(a, filter, axes);
+    let (finite, max) = match a.as_slice_memory_order() {
+        Some(s) => scan(s),
+        None => {
+            let mut scan = Scan::default();
+            a.iter().for_each(|x| scan.add(std::slice::from_ref(x)));
+            scan.result()
+        }
     };
-    match scan(s) {
-        (true, max) => filter.check_magnitude(max, axes),
-        (false, _) => first_non_finite(a),
+    if finite {
+        filter.check_magnitude(max, axes)?;
     }
+    Ok(finite)
 }
 
-/// The error naming the first non-finite element of `a` in logical order
-/// (`Ok` if there is none). Serial: runs only on failure.
-fn first_non_finite<T: Real, S: Data<Elem = T>, D: Dimension>(
-    a: &ArrayBase<S, D>,
-) -> Result<(), NdimageError> {
-    match a.iter().position(|x| !x.is_finite()) {
-        Some(i) => Err(NdimageError::NonFinite(i)),
-        None => Ok(()),
-    }
+/// `src`, which holds a non-finite sample, filtered along `axes` into
+/// `out` by the filter's [`NanPolicy`] ([`super::nan_policy`]): refused
+/// ([`NanPolicy::Raise`]); or the missing samples filled with 0, filtered by
+/// the filter's route, and NaN written where the policy's pattern says — every
+/// line through a missing sample along a filtered axis
+/// ([`NanPolicy::Propagate`], scipy's), or the coefficients within the
+/// certified half-width of one ([`NanPolicy::Local`]). The slow path, run
+/// only where the one scan of the samples met a non-finite one: a mask, a
+/// refill, the filter again.
+///
+/// **Accuracy**: outside the NaN pattern the finite route's values for the
+/// filled samples; under `Local` within
+/// [`local_bound`](super::nan_policy::local_bound)` · max|finite s|` of the exact
+/// coefficients of any filling in `[−max|s|, max|s|]`.
+///
+/// ```
+/// use splinelab::prelude::*;
+/// use splinelab::ndimage::nan_policy::NanPolicy;
+/// use splinelab::ndimage::nd_prefilter::spline_filter_from;
+/// let route = Route::Truncated { tol: 1e-12 };
+/// let f = LineFilter::<f64>::new(&SplineFamily::Order(4), Mode::Mirror, 0.0, route).unwrap();
+/// let mut s = ndarray::Array1::from_iter((0..80).map(|i| (i as f64 * 0.3).sin()));
+/// s[40] = f64::NAN;
+/// let mut out = ndarray::Array1::zeros(80);
+/// // scipy's pattern: the whole line.
+/// spline_filter_from(&s, &mut out, &[0], Some(&f)).unwrap();
+/// assert!(out.iter().all(|x| x.is_nan()));
+/// // Local: the 2n + 1 coefficients within the certified half-width.
+/// let f = f.with_nan_policy(NanPolicy::Local).unwrap();
+/// spline_filter_from(&s, &mut out, &[0], Some(&f)).unwrap();
+/// let n = f.half_width().unwrap();
+/// assert_eq!(out.iter().filter(|x| x.is_nan()).count(), 2 * n + 1);
+/// assert!(out[40 - n].is_nan() && out[40 - n - 1].is_finite());
+/// ```
+pub fn filter_missing<T, S1, S2, D>(
+    src: &ArrayBase<S1, D>,
+    out: &mut ArrayBase<S2, D>,
+    axes: &[usize],
+    filter: &LineFilter<T>,
+) -> Result<(), NdimageError>
+where
+    T: Real + Send + Sync,
+    S1: Data<Elem = T>,
+    S2: DataMut<Elem = T>,
+    D: Dimension,
+{
+    fill_filter_mark(src, out, axes, filter, |o| {
+        filter_axes_unchecked(o, axes, filter)
+    })
+}
+
+/// [`filter_missing`] in place.
+fn filter_missing_in_place<T, S, D>(
+    a: &mut ArrayBase<S, D>,
+    axes: &[usize],
+    filter: &LineFilter<T>,
+) -> Result<(), NdimageError>
+where
+    T: Real + Send + Sync,
+    S: DataMut<Elem = T>,
+    D: Dimension,
+{
+    let src = a.to_owned();
+    filter_missing(&src, a, axes, filter)
 }
 
 /// Values per task of the scans and copies: 256 KiB of `f64` (the pool's
@@ -250,7 +302,8 @@ fn check_axis<D: Dimension>(dim: &D, axis: usize) -> Result<(), NdimageError> {
 }
 
 /// Replaces `a` by its coefficients along `axis` (scipy's `spline_filter1d`
-/// with `order` = degree and `mode`). Lines in parallel.
+/// with `order` = degree and `mode`). Lines in parallel. Non-finite samples
+/// by the filter's [`NanPolicy`] ([`filter_missing`]).
 ///
 ///
 /// **Accuracy**: the [`LineFilter`] route's per line; scipy 1.17.1's output within 16 ulps
@@ -275,7 +328,9 @@ where
     D: Dimension,
 {
     check_axis(&a.raw_dim(), axis)?;
-    check_samples(a, filter, 1)?;
+    if !scan_samples(a, filter, 1)? {
+        return filter_missing_in_place(a, &[axis], filter);
+    }
     filter_axis_unchecked(a, axis, filter)
 }
 
@@ -683,7 +738,8 @@ fn filter_strip<T: Real>(
 }
 
 /// Replaces `a` by its coefficients along every axis (scipy's
-/// `spline_filter`): the tensor-product interpolation coefficients. A
+/// `spline_filter`): the tensor-product interpolation coefficients; non-finite
+/// samples by the filter's [`NanPolicy`] ([`filter_missing`]). A
 /// standard-layout array of three or more dimensions is filtered along
 /// axis 0, then slab by slab along the others (module documentation).
 ///
@@ -699,8 +755,10 @@ where
     S: DataMut<Elem = T>,
     D: Dimension,
 {
-    check_samples(a, filter, a.ndim())?;
     let axes: Vec<usize> = (0..a.ndim()).collect();
+    if !scan_samples(a, filter, a.ndim())? {
+        return filter_missing_in_place(a, &axes, filter);
+    }
     filter_axes_unchecked(a, &axes, filter)
 }
 
@@ -709,7 +767,9 @@ where
 /// layout the first pass reads `src` and writes `out` (the copy fused into
 /// it), checking the samples as it reads them (finite, and below the
 /// overflow limit [`LineFilter::check_magnitude`]); on failure `out`
-/// holds unspecified values and the error says why. Otherwise (other
+/// holds unspecified values and the error says why. A non-finite sample
+/// found there is handled by the filter's [`NanPolicy`] ([`filter_missing`],
+/// which reads `src` again: only then). Otherwise (other
 /// layouts, one line, no axes) `src` is copied and checked in one pass on
 /// the pool first (the first touch of `out`'s pages included), then
 /// filtered in place. `filter` `None`: the copy only (degrees 0 and 1).
@@ -766,7 +826,7 @@ where
         let stash = Stash::default();
         return match filter_run(d, Some(s), &shape, axes, f, On::Pool(&stash)).result() {
             (true, max) => f.check_magnitude(max, axes.len()),
-            (false, _) => first_non_finite(src),
+            (false, _) => filter_missing(src, out, axes, f),
         };
     }
     let scanned = match (src.as_slice(), out.as_slice_mut()) {
@@ -781,10 +841,13 @@ where
     let Some(filter) = filter else {
         return Ok(());
     };
-    match scanned {
-        Some((true, max)) => filter.check_magnitude(max, axes.len())?,
-        Some((false, _)) => first_non_finite(src)?,
-        None => check_samples(src, filter, axes.len())?,
+    let finite = match scanned {
+        Some((true, max)) => filter.check_magnitude(max, axes.len()).map(|()| true)?,
+        Some((false, _)) => false,
+        None => scan_samples(src, filter, axes.len())?,
+    };
+    if !finite {
+        return filter_missing(src, out, axes, filter);
     }
     filter_axes_unchecked(out, axes, filter)
 }
@@ -795,7 +858,9 @@ where
 /// `D_i`, `i ∈ [−pad, ν + pad)`.
 ///
 /// **Method**: [`padded_extension`] then the exact prefilter along every axis
-/// ([`LineFilter::apply_padded`]). **Accuracy**: as [`LineFilter::apply_padded`]
+/// ([`LineFilter::apply_padded`]); non-finite samples by the filter's
+/// [`NanPolicy`] as in [`filter_missing`] (`Propagate`: every coefficient,
+/// `Local`: the folded certified half-width on the padded layout). **Accuracy**: as [`LineFilter::apply_padded`]
 /// (`verify/tests/engine_properties.rs::nearest_outside_the_grid_is_the_edge_extended_spline`).
 /// **Source**: scipy's `_prepad_for_spline_filter` convention, the pad widened to the pole
 /// horizon.
@@ -809,11 +874,32 @@ where
     S: Data<Elem = T>,
     D: Dimension,
 {
-    check_finite(a)?;
-    check_range(a, filter, a.ndim())?;
-    Ok(pad_lanes(a, pad, |buf| {
+    let run = |a: &ArrayBase<S, D>| {
+        pad_lanes(a, pad, |buf| filter.apply_padded(buf, pad, &mut Vec::new()))
+    };
+    if scan_samples(a, filter, a.ndim())? {
+        return Ok(run(a));
+    }
+    if filter.nan_policy() == NanPolicy::Raise {
+        first_non_finite(a)?;
+    }
+    filter.check_magnitude(max_finite(a), a.ndim())?;
+    let mask = missing(a);
+    let mut filled = a.to_owned();
+    fill_missing(a, &mut filled);
+    let mut c = pad_lanes(&filled, pad, |buf| {
         filter.apply_padded(buf, pad, &mut Vec::new())
-    }))
+    });
+    let axes: Vec<usize> = (0..a.ndim()).collect();
+    let nan = match (filter.nan_policy(), filter.half_width()) {
+        (NanPolicy::Local, Some(n)) => {
+            dilate(&mask, &axes, n, filter.mode(), cval_missing(filter), pad)
+        }
+        // Every axis filtered: one missing sample reaches everything.
+        _ => ArrayD::from_elem(IxDyn(c.shape()), true),
+    };
+    write_nan(&mut c, &nan);
+    Ok(c)
 }
 
 /// `a` extended by `pad` values beyond each end of each axis as `mode`
@@ -1036,8 +1122,14 @@ mod tests {
                 let mut a = samples::<f64>(&shape, 3);
                 a[IxDyn(&at)] = bad;
                 let mut out = ArrayD::from_elem(IxDyn(&shape), 0.0);
-                let err = spline_filter_from(&a, &mut out, axes, Some(&f)).unwrap_err();
-                assert_eq!(err, NdimageError::NonFinite(flat), "{axes:?}");
+                let raise = f.clone().with_nan_policy(NanPolicy::Raise).unwrap();
+                let err = spline_filter_from(&a, &mut out, axes, Some(&raise)).unwrap_err();
+                let value = NonFiniteValue::of(&bad).unwrap();
+                assert_eq!(
+                    err,
+                    NdimageError::NonFinite { index: flat, value },
+                    "{axes:?}"
+                );
             }
             let mut a = samples::<f64>(&shape, 3);
             a[IxDyn(&at)] = 1e307;

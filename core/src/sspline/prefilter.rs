@@ -23,6 +23,7 @@ use super::end_conditions::EndRule;
 use super::node_values::node_values_exact;
 use super::{SplineFamily, SsplineError, TruncatedBasis};
 use crate::scalar::{Mp, Real};
+use crate::validation::NonFiniteValue;
 use rug::Rational;
 
 /// Why a prefilter could not be built or applied.
@@ -32,8 +33,13 @@ pub enum PrefilterError {
     #[error("the signal is empty")]
     Empty,
     /// A sample is NaN or infinite.
-    #[error("sample {0} is not finite")]
-    NonFinite(usize),
+    #[error("sample {index} is not finite ({value})")]
+    NonFinite {
+        /// Its index.
+        index: usize,
+        /// What it holds.
+        value: NonFiniteValue,
+    },
     /// The recursive filter has no exact initial values for this end rule.
     #[error("the recursive prefilter supports the mirror and periodic ends, not {0:?}")]
     UnsupportedEnd(EndRule),
@@ -111,8 +117,12 @@ fn check_samples<T: Real>(s: &[T]) -> Result<(), PrefilterError> {
     if s.is_empty() {
         return Err(PrefilterError::Empty);
     }
-    match s.iter().position(|x| !x.is_finite()) {
-        Some(i) => Err(PrefilterError::NonFinite(i)),
+    match s
+        .iter()
+        .enumerate()
+        .find_map(|(i, x)| Some((i, NonFiniteValue::of(x)?)))
+    {
+        Some((index, value)) => Err(PrefilterError::NonFinite { index, value }),
         None => Ok(()),
     }
 }

@@ -350,10 +350,9 @@ pub fn decimal<T: Real>(working: Working, x: &T) -> String {
 /// The engine options of a run (degree, mode, cval, route).
 pub fn options(plan: &Plan, args: &EngineArgs) -> Options {
     Options {
-        degree: plan.degree,
-        mode: args.mode,
         cval: args.cval,
         route: plan.route,
+        ..Options::new(plan.degree, args.mode)
     }
 }
 
@@ -365,7 +364,7 @@ pub fn to_working<T: Real>(data: &ArrayD<f64>) -> ArrayD<T> {
 /// An engine error about the input, with the file named.
 pub fn engine_error(input: &Path, e: NdimageError) -> CliError {
     match e {
-        NdimageError::NonFinite(_) | NdimageError::Empty => input_error(input, e.to_string()),
+        NdimageError::NonFinite { .. } | NdimageError::Empty => input_error(input, e.to_string()),
         NdimageError::Prefilter(PrefilterError::IllConditioned { .. }) => {
             CliError::Numerical(format!("{e} (or accept it with --max-error)"))
         }

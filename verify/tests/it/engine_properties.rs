@@ -6,6 +6,7 @@
 
 use splinelab::ndarray::{Array1, Array2};
 use splinelab::prelude::*;
+use splinelab::validation::NonFiniteValue;
 use splinelab_verify::rng::SplitMix64;
 
 /// A fixed pseudo-random signal in [−1, 1).
@@ -127,13 +128,21 @@ fn filtering_a_copy_equals_filtering_in_place() {
         spline_filter_from(&plane.t(), &mut got, &[0, 1], Some(&f)).unwrap();
         assert_eq!(got, want, "{route:?} transposed");
     }
-    let f =
-        LineFilter::<f64>::new(&SplineFamily::Order(4), Mode::Mirror, 0.0, Route::Exact).unwrap();
+    let f = LineFilter::<f64>::new(&SplineFamily::Order(4), Mode::Mirror, 0.0, Route::Exact)
+        .unwrap()
+        .with_nan_policy(NanPolicy::Raise)
+        .unwrap();
     let mut bad = plane.clone();
     bad[[20, 7]] = f64::NAN;
     let mut out = Array2::zeros(bad.raw_dim());
     let err = spline_filter_from(&bad, &mut out, &[0, 1], Some(&f)).unwrap_err();
-    assert_eq!(err, NdimageError::NonFinite(20 * 53 + 7));
+    assert_eq!(
+        err,
+        NdimageError::NonFinite {
+            index: 20 * 53 + 7,
+            value: NonFiniteValue::Nan
+        }
+    );
     assert_eq!(spline_filter(&mut bad, &f).unwrap_err(), err);
     let big = Array2::from_elem((3, 3), 1e308);
     let mut out = Array2::zeros((3, 3));
@@ -197,9 +206,12 @@ fn parallel_blocks_report_the_first_non_finite_sample() {
     let mut s = signal(50_000, 5);
     s[41_234] = f64::NAN;
     s[45_000] = f64::INFINITY;
-    let f = BlockPrefilter::<f64>::new(&SplineFamily::Order(4), Mode::Mirror, 0.0, 1e-9).unwrap();
+    let f = BlockPrefilter::<f64>::new(&SplineFamily::Order(4), Mode::Mirror, 0.0, 1e-9)
+        .unwrap()
+        .with_nan_policy(NanPolicy::Raise)
+        .unwrap();
     let err = f.apply(&s, 4096).unwrap_err();
-    assert_eq!(err.to_string(), NdimageError::NonFinite(41_234).to_string());
+    assert_eq!(err.to_string(), "sample 41234 is not finite (nan)");
 }
 
 #[test]

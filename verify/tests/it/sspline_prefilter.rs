@@ -11,6 +11,7 @@ use splinelab::sspline::end_conditions::EndRule;
 use splinelab::sspline::euler_frobenius::PoleExpansion;
 use splinelab::sspline::node_values::node_values_exact;
 use splinelab::sspline::prefilter::{ConvolutionPrefilter, PrefilterError, RecursivePrefilter};
+use splinelab::validation::NonFiniteValue;
 use splinelab_verify::exact::solve_rational;
 use splinelab_verify::update_cost::inverse_norm;
 
@@ -152,11 +153,17 @@ fn bad_signals_are_refused() {
     let bad = [1.0, f64::NAN, 2.0];
     assert_eq!(
         r.apply(&bad, EndRule::Periodic),
-        Err(PrefilterError::NonFinite(1))
+        Err(PrefilterError::NonFinite {
+            index: 1,
+            value: NonFiniteValue::Nan
+        })
     );
     assert_eq!(
         c.apply(&[f64::INFINITY], EndRule::Reflect),
-        Err(PrefilterError::NonFinite(0))
+        Err(PrefilterError::NonFinite {
+            index: 0,
+            value: NonFiniteValue::Inf
+        })
     );
     assert_eq!(
         r.apply(&[1.0, 2.0], EndRule::Free),

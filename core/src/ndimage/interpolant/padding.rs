@@ -173,7 +173,8 @@ mod tests {
     #[test]
     fn non_finite_sources_are_reported_and_named() {
         use crate::ndimage::NdimageError;
-        use crate::ndimage::interpolant::Interpolant;
+        use crate::ndimage::interpolant::{Interpolant, Options};
+        use crate::ndimage::nan_policy::NanPolicy;
         let shape = [4usize, 5, 3];
         let clean = ArrayD::from_shape_fn(IxDyn(&shape), |i| (i[0] * 15 + i[1] * 3 + i[2]) as f64);
         for mode in Mode::ALL {
@@ -183,8 +184,12 @@ mod tests {
                 a.as_slice_mut().unwrap()[at] = bad;
                 a.as_slice_mut().unwrap()[at.max(40)] = f64::NAN;
                 assert!(!extend_padded(&a, mode, &0.0, 3).1, "{mode} at {at}");
-                match Interpolant::<f64>::from_coefficients(&a, 3, mode, 0.0) {
-                    Err(NdimageError::NonFinite(k)) => assert_eq!(k, at, "{mode}"),
+                let opts = Options {
+                    nan_policy: NanPolicy::Raise,
+                    ..Options::new(3, mode)
+                };
+                match Interpolant::<f64>::from_coefficients_with(&a, opts) {
+                    Err(NdimageError::NonFinite { index, .. }) => assert_eq!(index, at, "{mode}"),
                     other => panic!("{mode} at {at}: {other:?}"),
                 }
             }
