@@ -49,9 +49,9 @@ use super::line_filter::LineFilter;
 use super::line_filter::Route;
 use super::mode::Mode;
 use crate::scalar::Real;
-use crate::validation::NonFiniteValue;
 use crate::sspline::SplineFamily;
 use crate::sspline::width::certified_width;
+use crate::validation::NonFiniteValue;
 use ndarray::{ArrayBase, ArrayD, Axis, Data, DataMut, Dimension, IxDyn, Zip};
 
 /// What the engine does with non-finite samples (module documentation).
@@ -348,7 +348,9 @@ where
     fill_missing(src, out);
     run(out)?;
     let nan = match (policy, filter.half_width()) {
-        (NanPolicy::Local, Some(n)) => dilate(&mask, axes, n, filter.mode(), cval_missing(filter), 0),
+        (NanPolicy::Local, Some(n)) => {
+            dilate(&mask, axes, n, filter.mode(), cval_missing(filter), 0)
+        }
         _ => spread(&mask, axes),
     };
     write_nan(out, &nan);

@@ -65,7 +65,6 @@ use super::nan_policy::{
 };
 use super::stash::Stash;
 use crate::scalar::Real;
-use crate::validation::NonFiniteValue;
 use ndarray::{
     Array, ArrayBase, ArrayD, ArrayView3, ArrayViewMut3, Axis, Data, DataMut, Dimension, IxDyn, Zip,
 };
@@ -978,6 +977,7 @@ mod tests {
     use crate::ndimage::line_filter::Route;
     use crate::scalar::Mp;
     use crate::sspline::SplineFamily;
+    use crate::validation::NonFiniteValue;
     use ndarray::{ArrayD, IxDyn};
 
     /// Arrays of 3 and 4 dimensions: slabs, sub-slabs, an axis of one
