@@ -13,10 +13,10 @@ if [ ! -x "$bin" ]; then
   if [ "${features[*]-}" = "--features splinelab/system-gmp" ]; then
     gmp="linking the system GMP/MPFR"
   else
-    gmp="GMP/MPFR from source: BUILD_TIME_GMP more unless ~/.cache/gmp-mpfr-sys has them"
+    gmp="and GMP/MPFR from source first unless ~/.cache/gmp-mpfr-sys has them"
   fi
-  # FINAL FIGURES: the lead measures these on a quiet 2-core machine (README, "The two commands").
-  echo "splinelab: first build of the release binary (about BUILD_TIME_RUST on 2 cores; $gmp); later runs rebuild in seconds" >&2
+  # FINAL FIGURES: put the times measured on a quiet 2-core machine here (README, "The two commands").
+  echo "splinelab: first build of the release binary (a few minutes on 2 cores, see the README; $gmp); later runs rebuild in seconds" >&2
 fi
 cargo build --release "${quiet[@]+"${quiet[@]}"}" --manifest-path "$root/Cargo.toml" -p splinelab-reports \
   --bin splinelab "${features[@]+"${features[@]}"}" >&2

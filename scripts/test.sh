@@ -2,8 +2,10 @@
 # The test command: set up the machine, then run every test (unit, property,
 # integration and doc tests), then the Python package's (scripts/python.sh
 # builds it into .venv; pytest runs python/tests and the docstring examples).
-# Tests run in the release profile, which the report shares, so the two
-# commands compile the workspace once.
+# Tests run in the release profile and with the same features as the report
+# and the Python extension (core/Cargo.toml pins them), so the three compile
+# each crate once; each crate's integration tests are one test binary
+# (verify/tests/it, reports/tests/it), not one per file (issue 38).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
