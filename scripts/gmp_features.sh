@@ -1,11 +1,20 @@
 #!/usr/bin/env bash
-# Prints the cargo flag that links the system's GMP and MPFR (6.3+ and 4.2+)
-# (`--features splinelab/system-gmp`) when both link here, and nothing
-# otherwise: rug then builds them from source (minutes, cached in
-# ~/.cache/gmp-mpfr-sys). SPLINELAB_BUNDLED_GMP=1 forces the bundled build
+# Prints the cargo flags that every cargo and maturin call takes:
+# `--features splinelab/system-gmp` (link the system's GMP 6.3+ and MPFR
+# 4.2+) when both link here; otherwise rug builds them from source (cached
+# in ~/.cache/gmp-mpfr-sys, or $GMP_MPFR_SYS_CACHE) and this prints
+# `--features splinelab/gmp-no-check`: build them without running their own
+# test suites (`make check`), more than half of that C build (233
+# CPU-seconds with them, 103 without, on 2 cores; issue 38; core/Cargo.toml
+# says why that is safe). SPLINELAB_GMP_CHECK=1 runs the suites anyway (a cache built with
+# them serves both). SPLINELAB_BUNDLED_GMP=1 forces the build from source
 # (e.g. for a wheel that must run on a machine without them).
 set -euo pipefail
-[ "${SPLINELAB_BUNDLED_GMP:-0}" = 1 ] && exit 0
+from_source() {
+  [ "${SPLINELAB_GMP_CHECK:-0}" = 1 ] || echo "--features splinelab/gmp-no-check"
+  exit 0
+}
+[ "${SPLINELAB_BUNDLED_GMP:-0}" = 1 ] && from_source
 probe=$(mktemp -d)
 trap 'rm -rf "$probe"' EXIT
 cat >"$probe/p.c" <<'C'
@@ -22,4 +31,6 @@ int main(void) { mpfr_t x; mpfr_init2(x, 64); mpfr_clear(x); return 0; }
 C
 if cc "$probe/p.c" -o "$probe/p" -lmpfr -lgmp >/dev/null 2>&1 && "$probe/p"; then
   echo "--features splinelab/system-gmp"
+else
+  from_source
 fi

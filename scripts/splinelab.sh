@@ -10,12 +10,13 @@ read -r -a features <<<"$(bash "$root/scripts/gmp_features.sh")"
 quiet=(--quiet)
 if [ ! -x "$bin" ]; then
   quiet=()
-  if [ ${#features[@]} -gt 0 ]; then
+  if [ "${features[*]-}" = "--features splinelab/system-gmp" ]; then
     gmp="linking the system GMP/MPFR"
   else
-    gmp="GMP/MPFR from source: 2-4 min more unless ~/.cache/gmp-mpfr-sys has them"
+    gmp="and GMP/MPFR from source first unless ~/.cache/gmp-mpfr-sys has them"
   fi
-  echo "splinelab: first build of the release binary (about 2 min 20 s on 2 cores; $gmp); later runs rebuild in seconds" >&2
+  # FINAL FIGURES: put the times measured on a quiet 2-core machine here (README, "The two commands").
+  echo "splinelab: first build of the release binary (a few minutes on 2 cores, see the README; $gmp); later runs rebuild in seconds" >&2
 fi
 cargo build --release "${quiet[@]+"${quiet[@]}"}" --manifest-path "$root/Cargo.toml" -p splinelab-reports \
   --bin splinelab "${features[@]+"${features[@]}"}" >&2

@@ -4,8 +4,10 @@
 # builds it into .venv; pytest runs python/tests and the docstring examples),
 # then scripts/downstream.sh (reproject's, nibabel's, sunpy's and scipy's own
 # interpolation tests with splinelab swapped in for scipy.ndimage's functions).
-# Tests run in the release profile, which the report shares, so the two
-# commands compile the workspace once.
+# Tests run in the release profile and with the same features as the report
+# and the Python extension (core/Cargo.toml pins them), so the three compile
+# each crate once; each crate's integration tests are one test binary
+# (verify/tests/it, reports/tests/it), not one per file (issue 38).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
