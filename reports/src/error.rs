@@ -1,6 +1,6 @@
 //! The command line's error type.
 
-use crate::output::path_text;
+use crate::path_text::path_text;
 use std::path::PathBuf;
 
 /// Everything that can go wrong in a command. Each is reported as

@@ -14,5 +14,6 @@ pub mod input;
 pub mod interrupt;
 pub mod npy_layout;
 pub mod output;
+pub mod path_text;
 pub mod report;
 pub mod threads;

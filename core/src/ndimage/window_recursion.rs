@@ -679,46 +679,37 @@ mod x86 {
         };
     }
 
-    /// `valignq` on `f64` lanes.
-    #[target_feature(enable = "avx512f")]
-    #[inline]
-    fn after_pd8<const N: i32>(hi: __m512d, lo: __m512d) -> __m512d {
-        _mm512_castsi512_pd(_mm512_alignr_epi64::<N>(
-            _mm512_castpd_si512(hi),
-            _mm512_castpd_si512(lo),
-        ))
+    /// A lane operation of AVX-512 done on the registers viewed as integers:
+    /// `$from($op($to(a), $to(b)))`, the same bits in and out (the casts are
+    /// free).
+    macro_rules! on_integers {
+        ($(#[$doc:meta])* $name:ident $(<$n:ident>)?, $m:ty, $to:ident, $from:ident, $op:ident) => {
+            $(#[$doc])*
+            #[target_feature(enable = "avx512f")]
+            #[inline]
+            fn $name$(<const $n: i32>)?(a: $m, b: $m) -> $m {
+                $from($op$(::<$n>)?($to(a), $to(b)))
+            }
+        };
     }
 
-    /// `valignd` on `f32` lanes.
-    #[target_feature(enable = "avx512f")]
-    #[inline]
-    fn after_ps16<const N: i32>(hi: __m512, lo: __m512) -> __m512 {
-        _mm512_castsi512_ps(_mm512_alignr_epi32::<N>(
-            _mm512_castps_si512(hi),
-            _mm512_castps_si512(lo),
-        ))
-    }
-
-    /// `x + zero` as 64-bit integers: `x` when `zero` is 0, in the
-    /// integer domain ([`avx512_f64`]'s `fir`).
-    #[target_feature(enable = "avx512f")]
-    #[inline]
-    fn int_pd8(x: __m512d, zero: __m512d) -> __m512d {
-        _mm512_castsi512_pd(_mm512_add_epi64(
-            _mm512_castpd_si512(x),
-            _mm512_castpd_si512(zero),
-        ))
-    }
-
-    /// `x + zero` as 32-bit integers ([`int_pd8`] for `f32`).
-    #[target_feature(enable = "avx512f")]
-    #[inline]
-    fn int_ps16(x: __m512, zero: __m512) -> __m512 {
-        _mm512_castsi512_ps(_mm512_add_epi32(
-            _mm512_castps_si512(x),
-            _mm512_castps_si512(zero),
-        ))
-    }
+    on_integers!(
+        /// `valignq` on `f64` lanes: lanes `N .. N + 8` of `[b, a]`.
+        after_pd8<N>, __m512d, _mm512_castpd_si512, _mm512_castsi512_pd, _mm512_alignr_epi64
+    );
+    on_integers!(
+        /// `valignd` on `f32` lanes: lanes `N .. N + 16` of `[b, a]`.
+        after_ps16<N>, __m512, _mm512_castps_si512, _mm512_castsi512_ps, _mm512_alignr_epi32
+    );
+    on_integers!(
+        /// `a + b` as 64-bit integers: `a` when `b` is 0, in the integer
+        /// domain ([`avx512_f64`]'s `fir`).
+        int_pd8, __m512d, _mm512_castpd_si512, _mm512_castsi512_pd, _mm512_add_epi64
+    );
+    on_integers!(
+        /// `a + b` as 32-bit integers ([`int_pd8`] for `f32`).
+        int_ps16, __m512, _mm512_castps_si512, _mm512_castsi512_ps, _mm512_add_epi32
+    );
 
     /// The operations of the kernels on a chunk in two AVX2 registers
     /// `$pair` of `$reg` (each half with its instruction): `$set1`, `$zero`,

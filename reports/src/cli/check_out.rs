@@ -5,14 +5,13 @@
 //! beside its destination and renamed into place, so a reader never sees a
 //! half-written one.
 
-use super::check::Outcome;
 use crate::array_io::write_npy_f64;
 use crate::check_charts::{bound_chart, cond_chart, error_chart};
 use crate::error::CliError;
 use crate::html::{escape, num, paragraph, table};
 use crate::report::Figure;
 use serde_json::{Value, json};
-use splinelab_verify::check::{CheckSummary, ElementError, Region};
+use splinelab_verify::check::{CheckSummary, ElementError, Outcome, Region};
 use std::path::{Path, PathBuf};
 
 /// The headline figures of a check, named `check.<kind>.…`: every figure

@@ -19,7 +19,8 @@
 use crate::error::CliError;
 use crate::input::{input_error, parse_json, read_text};
 use crate::outln;
-use crate::output::{PendingFiles, emit, path_text, print_json};
+use crate::output::{PendingFiles, emit, print_json};
+use crate::path_text::path_text;
 use crate::report::bernstein_inverse::surface_chart;
 use clap::Args;
 use serde::Deserialize;

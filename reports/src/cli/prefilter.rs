@@ -9,7 +9,8 @@ use super::engine_io::{
 };
 use crate::error::CliError;
 use crate::outln;
-use crate::output::{emit, path_text};
+use crate::output::emit;
+use crate::path_text::path_text;
 use crate::with_real;
 use clap::Args;
 use serde_json::json;

@@ -6,7 +6,8 @@ use super::width_emit::{Dtype, Emit, Table, parse_dtype, parse_emit, parse_name}
 use crate::budget::BudgetArgs;
 use crate::error::CliError;
 use crate::outln;
-use crate::output::{emit, path_text, print_json, write_atomic};
+use crate::output::{emit, print_json, write_atomic};
+use crate::path_text::path_text;
 use clap::Args;
 use serde_json::json;
 use splinelab::sspline::width::certified_width;

@@ -76,18 +76,31 @@ impl<T: Real + Copy + Send + Sync> Interpolant<T> {
         if let Some(i) = matrix.iter().chain(offset).position(|v| !v.is_finite()) {
             return Err(NdimageError::NonFiniteCoordinate(i));
         }
-        let src = AffinePoints {
+        let src = self.affine_points(matrix, offset, out_shape, shift, rule);
+        if self.has_run_kernel(rule) {
+            self.eval_affine_runs(&src, out)
+        } else {
+            self.eval_source(&src, out)
+        }
+    }
+
+    /// The points [`Self::resample_affine`] evaluates, from its arguments
+    /// (checked there).
+    pub(super) fn affine_points<'a>(
+        &'a self,
+        matrix: &'a [f64],
+        offset: &'a [f64],
+        out_shape: &'a [usize],
+        shift: f64,
+        rule: PointRule,
+    ) -> AffinePoints<'a> {
+        AffinePoints {
             matrix,
             offset,
             out_shape,
             shift,
             rule,
             shape: &self.shape,
-        };
-        if self.has_run_kernel(rule) {
-            self.eval_affine_runs(&src, out)
-        } else {
-            self.eval_source(&src, out)
         }
     }
 }

@@ -279,14 +279,7 @@ mod tests {
         let mut runs = vec![T::zero(); count];
         f.resample_affine(matrix, offset, out_shape, shift, rule, &mut runs)
             .unwrap();
-        let src = AffinePoints {
-            matrix,
-            offset,
-            out_shape,
-            shift,
-            rule,
-            shape: f.shape(),
-        };
+        let src = f.affine_points(matrix, offset, out_shape, shift, rule);
         let mut batch = vec![T::zero(); count];
         f.eval_source(&src, &mut batch).unwrap();
         for (k, (r, b)) in runs.iter().zip(&batch).enumerate() {
