@@ -5,8 +5,9 @@ Each selection of :data:`CLIENTS` runs twice in its own pytest process,
 with ``--splinelab-swap=off`` (scipy) and ``on`` (splinelab), and the two
 outcome sets are compared: every test must end the same way in both runs,
 except the known differences of :mod:`known`, which must pass on scipy and
-xfail (strictly) on splinelab. Prints the figures (tests, outcomes and
-seconds per run) and exits 1 on any other difference, 0 otherwise.
+xfail (strictly) on splinelab. Prints the figures (tests, outcomes,
+wall-clock and CPU seconds, and calls into the installed functions per
+run) and exits 1 on any other difference, 0 otherwise.
 
     .venv/bin/python python/tests/downstream/run.py [--client NAME ...] [--json FILE]
 """
@@ -17,6 +18,7 @@ import argparse
 import collections
 import json
 import os
+import resource
 import subprocess
 import sys
 import sysconfig
@@ -45,8 +47,9 @@ CLIENTS = {
 
 def run_selection(modules, swap, workdir):
     """One pytest process over ``modules`` (its rootdir site-packages, so
-    node ids read ``reproject/tests/...``); returns (outcomes, seconds, rc,
-    log)."""
+    node ids read ``reproject/tests/...``); returns (outcomes, calls,
+    seconds, cpu seconds, rc, log): wall-clock and the process's user +
+    system CPU time (the steadier figure on a shared machine)."""
     outcomes = Path(workdir) / f"outcomes-{swap}.json"
     ini = Path(workdir) / "pytest.ini"
     ini.write_text("[pytest]\n")
@@ -55,14 +58,19 @@ def run_selection(modules, swap, workdir):
            f"--rootdir={sysconfig.get_paths()['purelib']}", "-m", "not remote_data", "-rfE", "--pyargs", *modules]
     env = dict(os.environ, PYTHONPATH=os.pathsep.join([str(HERE), os.environ.get("PYTHONPATH", "")]).rstrip(os.pathsep),
                MPLBACKEND="Agg")
-    start = time.perf_counter()
+    start, cpu = time.perf_counter(), _child_cpu()
     proc = subprocess.run(cmd, cwd=workdir, env=env, capture_output=True, text=True)
-    seconds = time.perf_counter() - start
+    seconds, cpu = time.perf_counter() - start, _child_cpu() - cpu
     if not outcomes.exists():
         sys.stdout.write(proc.stdout[-4000:] + proc.stderr[-4000:])
         raise SystemExit(f"pytest wrote no outcomes for {modules} (swap {swap}), rc {proc.returncode}")
     record = json.loads(outcomes.read_text())
-    return record["outcomes"], record["calls"], seconds, proc.returncode, proc.stdout
+    return record["outcomes"], record["calls"], seconds, cpu, proc.returncode, proc.stdout
+
+
+def _child_cpu():
+    usage = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return usage.ru_utime + usage.ru_stime
 
 
 def compare(base, swapped, known):
@@ -91,11 +99,12 @@ def main(argv=None):
         runs, logs = {}, {}
         for swap in ("off", "on"):
             with tempfile.TemporaryDirectory() as workdir:
-                outcomes, calls, seconds, rc, logs[swap] = run_selection(CLIENTS[name], swap, workdir)
+                outcomes, calls, seconds, cpu, rc, logs[swap] = run_selection(CLIENTS[name], swap, workdir)
             counts = collections.Counter(outcomes.values())
-            runs[swap] = {"tests": len(outcomes), "seconds": round(seconds, 1), "rc": rc, **dict(sorted(counts.items())),
-                          "calls": {k: v for k, v in calls.items() if v}, "outcomes": outcomes}
-            print(f"{name:10s} swap {swap:3s}: {len(outcomes):5d} tests in {seconds:6.1f} s  "
+            runs[swap] = {"tests": len(outcomes), "seconds": round(seconds, 1), "cpu_seconds": round(cpu, 1), "rc": rc,
+                          **dict(sorted(counts.items())), "calls": {k: v for k, v in calls.items() if v},
+                          "outcomes": outcomes}
+            print(f"{name:10s} swap {swap:3s}: {len(outcomes):5d} tests in {seconds:6.1f} s ({cpu:6.1f} s CPU)  "
                   + "  ".join(f"{k} {v}" for k, v in sorted(counts.items()))
                   + f"  ({sum(calls.values())} calls into {'splinelab' if swap == 'on' else 'scipy'})", flush=True)
         bad = compare(runs["off"]["outcomes"], runs["on"]["outcomes"], KNOWN)
