@@ -221,8 +221,15 @@ pub fn check_input_file(path: &Path) -> Result<(), CliError> {
 }
 
 /// Reads an array of samples (any shape, at least one sample per axis,
-/// within the input size limit), with the dtype it was stored in.
+/// within the input size limit, every sample finite), with the dtype it
+/// was stored in.
 pub fn read_samples(path: &Path) -> Result<(ArrayD<f64>, UserFormat), CliError> {
+    read_samples_as(path, true)
+}
+
+/// [`read_samples`], NaN and ±inf samples kept where `finite` is false
+/// (missing data, for the engine's `nan_policy`).
+pub fn read_samples_as(path: &Path, finite: bool) -> Result<(ArrayD<f64>, UserFormat), CliError> {
     check_input_file(path)?;
     let a = read_array(path)?;
     if a.shape.is_empty() {
@@ -237,7 +244,7 @@ pub fn read_samples(path: &Path) -> Result<(ArrayD<f64>, UserFormat), CliError> 
             format!("no samples (shape {:?})", a.shape),
         ));
     }
-    if let Some(i) = a.data.iter().position(|x| !x.is_finite()) {
+    if finite && let Some(i) = a.data.iter().position(|x| !x.is_finite()) {
         return Err(input_error(
             path,
             format!(

@@ -9,6 +9,7 @@ pub mod chart;
 pub mod check_charts;
 pub mod cli;
 pub mod error;
+pub mod heatmap;
 pub mod html;
 pub mod input;
 pub mod interrupt;

@@ -1,6 +1,7 @@
-//! What `splinelab prefilter` and `splinelab interpolate` share: the engine
-//! options (degree or order, scipy mode, tolerance, precision), reading the
-//! samples, the conditioning check, the cost estimate and the output file.
+//! What `splinelab prefilter`, `interpolate` and `resample` share: the
+//! engine options (degree or order, scipy mode, tolerance, precision,
+//! `--nan-policy`), reading the samples, the conditioning check, the cost
+//! estimate and the output file.
 //!
 //! Precision: without `--prec` the engine runs in the input's own type (an
 //! f32 `.npy` in f32, anything else in f64), as scipy does not; `--prec f64`
@@ -8,7 +9,9 @@
 //! from the working type into the output: the input's dtype for `.npy`,
 //! decimal strings (the digits `BITS` carries) for `.json`.
 
+use super::nan_io::{LOCAL_TOL, nan_policy_parser};
 use super::prec::{Prec, parse_prec};
+use crate::array_io::read_samples_as;
 pub use crate::array_io::{check_input_file, read_samples, unravel};
 use crate::array_io::{write_npy_f32, write_npy_f64};
 use crate::budget::{BudgetArgs, Estimate, number_bytes, unit_seconds};
@@ -20,7 +23,7 @@ use clap::Args;
 use ndarray::ArrayD;
 use serde_json::json;
 use splinelab::prelude::{
-    Mode, NdimageError, Options, PrefilterError, RecursivePrefilter, Route, SplineFamily,
+    Mode, NanPolicy, NdimageError, Options, PrefilterError, RecursivePrefilter, Route, SplineFamily,
 };
 use splinelab::scalar::Real;
 use splinelab_verify::check::UserFormat;
@@ -53,9 +56,21 @@ pub struct EngineArgs {
     pub cval: f64,
     /// Truncate the prefilter to the certified width for this tolerance
     /// (0 < tol < 1): each coefficient moves by at most bound·max|s| per
-    /// axis, bound < tol. Without it, the exact recursive filter.
+    /// axis, bound < tol. Without it, the exact recursive filter (under
+    /// --nan-policy local: 1e-12, as the Python package).
     #[arg(long)]
     pub tol: Option<f64>,
+    /// What NaN and ±inf samples (missing data) do. propagate: scipy's
+    /// pattern (a missing sample makes every line through it along each
+    /// filtered axis NaN, so the whole result from degree 2 on). raise:
+    /// refused, naming the first. local: NaN only within the certified reach
+    /// of a missing sample (the truncated prefilter's half-width for --tol
+    /// plus the spline's window; without --tol, tol = 1e-12, as the Python
+    /// package: the exact prefilter has no finite reach); every other
+    /// result within the printed bound of the exact spline of any filling
+    /// of the missing samples by values up to max|finite sample|.
+    #[arg(long, default_value_t = NanPolicy::default(), value_parser = nan_policy_parser())]
+    pub nan_policy: NanPolicy,
     /// Working precision: f64, or MPFR bits (16..=2048). Default: the
     /// input's type (f32 for a float32 .npy, else f64).
     #[arg(long, value_parser = parse_prec)]
@@ -132,6 +147,10 @@ pub struct Plan {
     pub output: OutputKind,
     /// The conditioning threshold.
     pub max_error: f64,
+    /// What non-finite samples do.
+    pub nan_policy: NanPolicy,
+    /// How many samples are not finite.
+    pub missing: usize,
 }
 
 /// Checks the options and reads the samples; degrees from `min_degree`
@@ -145,7 +164,12 @@ pub fn plan(args: &EngineArgs, min_degree: u32) -> Result<Plan, CliError> {
             SplineFamily::order(d + 1).map_err(|e| CliError::invalid("--degree", e.to_string()))?
         }
     };
-    let route = match args.tol {
+    // `local` without --tol: the Python package's default (nan_io::LOCAL_TOL).
+    let tol = match (args.tol, args.nan_policy) {
+        (None, NanPolicy::Local) => Some(LOCAL_TOL),
+        (tol, _) => tol,
+    };
+    let route = match tol {
         None => Route::Exact,
         Some(t) if t > 0.0 && t < 1.0 => Route::Truncated { tol: t },
         Some(t) => {
@@ -159,7 +183,10 @@ pub fn plan(args: &EngineArgs, min_degree: u32) -> Result<Plan, CliError> {
         return Err(CliError::invalid("--cval", "must be a finite number"));
     }
     let output = output_kind(&args.output)?;
-    let data = read_samples(&args.input)?;
+    // Under raise the reader refuses the first non-finite sample (by its
+    // multi-index); the other policies hand them to the engine.
+    let data = read_samples_as(&args.input, args.nan_policy == NanPolicy::Raise)?;
+    let missing = data.0.iter().filter(|x| !x.is_finite()).count();
     let working = match (args.prec, data.1) {
         (Some(p), _) => Working::Prec(p),
         (None, UserFormat::F32) => Working::F32,
@@ -188,6 +215,8 @@ pub fn plan(args: &EngineArgs, min_degree: u32) -> Result<Plan, CliError> {
         working,
         output,
         max_error,
+        nan_policy: args.nan_policy,
+        missing,
     })
 }
 
@@ -348,11 +377,12 @@ pub fn decimal<T: Real>(working: Working, x: &T) -> String {
     }
 }
 
-/// The engine options of a run (degree, mode, cval, route).
+/// The engine options of a run (degree, mode, cval, route, nan policy).
 pub fn options(plan: &Plan, args: &EngineArgs) -> Options {
     Options {
         cval: args.cval,
         route: plan.route,
+        nan_policy: plan.nan_policy,
         ..Options::new(plan.degree, args.mode)
     }
 }
@@ -369,6 +399,7 @@ pub fn engine_error(input: &Path, e: NdimageError) -> CliError {
         NdimageError::Prefilter(PrefilterError::IllConditioned { .. }) => {
             CliError::Numerical(format!("{e} (or accept it with --max-error)"))
         }
+        NdimageError::LocalNeedsTol => CliError::invalid("--tol", e.to_string()),
         e => CliError::numerical(e),
     }
 }

@@ -3,7 +3,8 @@
 //! any degree 0..=199 (0: the nearest sample, 1: multilinear, no prefilter,
 //! as scipy), exact or truncated coefficients, f32, f64 or MPFR; with
 //! `--coeffs` the input already holds the coefficients (scipy's
-//! `prefilter=False`).
+//! `prefilter=False`). NaN/±inf samples by `--nan-policy`
+//! ([`super::nan_io`]).
 //!
 //! Points are sample indices, one row per point: shape `(k, ndim)`, or
 //! `(k,)` for a 1-D array (scipy's own layout is the transpose, `(ndim, k)`).
@@ -16,6 +17,7 @@ use super::engine_io::{
     EngineArgs, Plan, Working, check_conditioning, engine_error, estimate, options, plan,
     to_working, write_result,
 };
+use super::nan_io::{NanSummary, eval_reach, with_summary};
 use crate::array_io::read_array;
 use crate::error::CliError;
 use crate::input::input_error;
@@ -47,7 +49,8 @@ pub struct InterpolateArgs {
 /// Runs `splinelab interpolate`.
 pub fn run(args: &InterpolateArgs) -> Result<(), CliError> {
     let plan = plan(&args.engine, 0)?;
-    if args.coeffs && plan.route != splinelab::prelude::Route::Exact {
+    // The user's --tol (plan.route also carries local's default tolerance).
+    if args.coeffs && args.engine.tol.is_some() {
         return Err(CliError::invalid(
             "--tol",
             "does not apply with --coeffs (no prefilter runs)",
@@ -66,7 +69,7 @@ pub fn run(args: &InterpolateArgs) -> Result<(), CliError> {
         points.nrows() as f64 * per_point,
         &what,
     ))?;
-    let bound = match plan.working {
+    let (bound, nan) = match plan.working {
         Working::F32 => compute::<f32>(&plan, args, &points)?,
         Working::Prec(p) => with_real!(p, T => compute::<T>(&plan, args, &points)?),
     };
@@ -81,12 +84,13 @@ pub fn run(args: &InterpolateArgs) -> Result<(), CliError> {
         points.nrows(),
         plan.working.name()
     );
-    if plan.route != splinelab::prelude::Route::Exact {
+    if plan.route != splinelab::prelude::Route::Exact && !args.coeffs {
         outln!(
             text,
             "coefficients     truncated, bound per axis {bound:e} (·max|s|)"
         );
     }
+    nan.lines(&mut text, "values");
     outln!(text, "wrote            {}", path_text(&e.output));
     emit(&text)
 }
@@ -95,11 +99,11 @@ fn compute<T: Real + Send + Sync>(
     plan: &Plan,
     args: &InterpolateArgs,
     points: &Array2<f64>,
-) -> Result<f64, CliError> {
+) -> Result<(f64, NanSummary), CliError> {
     let e = &args.engine;
     let data = to_working::<T>(&plan.data);
     let f = if args.coeffs {
-        Interpolant::from_coefficients(&data, plan.degree, e.mode, e.cval)
+        Interpolant::from_coefficients_with(&data, options(plan, e))
     } else {
         if plan.degree >= 1 {
             check_conditioning::<T>(plan)?;
@@ -110,13 +114,21 @@ fn compute<T: Real + Send + Sync>(
     let mut out = vec![T::zero(); points.nrows()];
     f.eval_many(points.view(), &mut out)
         .map_err(|err| input_error(&args.at, err.to_string()))?;
+    let (reach, bound) = eval_reach::<T>(plan, e, !args.coeffs)?;
+    let nan = NanSummary::of(plan, &out, reach, bound);
     let header = json!({
         "degree": plan.degree,
         "mode": e.mode.name(),
         "bound_per_axis": f.truncation_bound(),
     });
-    write_result(plan, &e.output, &[out.len()], &out, header)?;
-    Ok(f.truncation_bound())
+    write_result(
+        plan,
+        &e.output,
+        &[out.len()],
+        &out,
+        with_summary(header, &nan),
+    )?;
+    Ok((f.truncation_bound(), nan))
 }
 
 /// Reads the points: `(k, ndim)`, or `(k,)` when `ndim = 1`; every

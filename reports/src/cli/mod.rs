@@ -11,6 +11,7 @@ pub mod deform;
 pub mod engine_io;
 pub mod flatten;
 pub mod interpolate;
+pub mod nan_io;
 pub mod prec;
 pub mod prefilter;
 pub mod qi;

@@ -8,12 +8,14 @@
 //! the engine's, as in `interpolate` (`nearest` and `grid-constant` the
 //! exact spline of the extended signal, which scipy approximates by
 //! padding 12 samples; scipy's `constant` and `wrap` are the Python
-//! package's). Works in f64, or f32 for a float32 input.
+//! package's). Works in f64, or f32 for a float32 input. NaN/±inf
+//! samples by `--nan-policy` ([`super::nan_io`]).
 
 use super::engine_io::{
     EngineArgs, Plan, Working, check_conditioning, engine_error, estimate, options, plan,
     to_working, write_result,
 };
+use super::nan_io::{NanSummary, eval_reach, with_summary};
 use super::prec::Prec;
 use crate::array_io::read_array;
 use crate::error::CliError;
@@ -97,10 +99,10 @@ pub fn run(args: &ResampleArgs) -> Result<(), CliError> {
         count as f64 * m.powi(shape.len() as i32),
         &what,
     ))?;
-    match plan.working {
+    let nan = match plan.working {
         Working::F32 => compute::<f32>(&plan, args, &points, &shape)?,
         _ => compute::<f64>(&plan, args, &points, &shape)?,
-    }
+    };
     let e = &args.engine;
     let mut text = String::new();
     outln!(
@@ -111,6 +113,7 @@ pub fn run(args: &ResampleArgs) -> Result<(), CliError> {
         e.mode,
         plan.working.name()
     );
+    nan.lines(&mut text, "values");
     outln!(text, "wrote            {}", path_text(&e.output));
     emit(&text)
 }
@@ -120,7 +123,7 @@ fn compute<T: Real + Copy + Send + Sync>(
     args: &ResampleArgs,
     points: &Points,
     shape: &[usize],
-) -> Result<(), CliError> {
+) -> Result<NanSummary, CliError> {
     let e = &args.engine;
     if plan.degree >= 1 {
         check_conditioning::<T>(plan)?;
@@ -140,8 +143,11 @@ fn compute<T: Real + Copy + Send + Sync>(
         } => f.resample_affine(matrix, offset, shape, 0.0, PointRule::Fold, &mut out),
     };
     done.map_err(|err| CliError::invalid("--matrix", err.to_string()))?;
+    let (reach, bound) = eval_reach::<T>(plan, e, true)?;
+    let nan = NanSummary::of(plan, &out, reach, bound);
     let header = json!({"degree": plan.degree, "mode": e.mode.name(), "shape": shape});
-    write_result(plan, &e.output, shape, &out, header)
+    write_result(plan, &e.output, shape, &out, with_summary(header, &nan))?;
+    Ok(nan)
 }
 
 /// One value per axis: a single value repeated, or exactly `ndim`.

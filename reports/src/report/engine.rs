@@ -4,7 +4,11 @@
 //! those fixtures against 256-bit MPFR beside scipy's own (agreement is not
 //! accuracy), the truncated route against its
 //! certified bound, the interpolation residual at high degree in MPFR
-//! (judged from exact node values), and in-process prefilter throughput.
+//! (judged from exact node values), missing data (scipy's all-NaN zoom
+//! beside the `local` NaN policy, [`nan`]), and in-process prefilter
+//! throughput.
+
+mod nan;
 
 use super::{Figure, Profile, ReportError, Section, TIME_BAND};
 use crate::array_io::read_samples;
@@ -662,8 +666,9 @@ pub fn section(profile: &Profile) -> Result<Section, ReportError> {
     let mpfr = mpfr_part()?;
     let truncated = truncation_part()?;
     let residual = residual_part(profile)?;
+    let missing = nan::part()?;
     let throughput = throughput_part(profile)?;
-    let html = [&scipy, &mpfr, &truncated, &residual, &throughput]
+    let html = [&scipy, &mpfr, &truncated, &residual, &missing, &throughput]
         .iter()
         .map(|p| p.html.as_str())
         .collect();
@@ -672,14 +677,15 @@ pub fn section(profile: &Profile) -> Result<Section, ReportError> {
         "mpfr_spline_filter_ulps": mpfr.json,
         "truncated": truncated.json,
         "residual": residual.json,
+        "nan_local": missing.json,
         "throughput": throughput.json,
     });
-    let parts = [scipy, mpfr, truncated, residual, throughput];
+    let parts = [scipy, mpfr, truncated, residual, missing, throughput];
     let charts = parts.iter().flat_map(|p| p.charts.clone()).collect();
     let figures = parts.into_iter().flat_map(|p| p.figures).collect();
     Ok(Section {
         id: "engine",
-        title: "The interpolation engine: scipy agreement, accuracy against MPFR, certified truncation, high degrees"
+        title: "The interpolation engine: scipy agreement, accuracy against MPFR, certified truncation, high degrees, missing data"
             .into(),
         html,
         charts,
