@@ -33,6 +33,7 @@ mod engine_properties;
 mod engine_proptest;
 mod engine_scipy;
 mod knot_insertion;
+mod module_cycles;
 mod nan_policy;
 mod nd_prefilter_mpfr;
 mod param_curve;
