@@ -4,7 +4,7 @@
 //! `splinelab check`/`compare` from `pip install` without a Rust toolchain.
 
 use pyo3::prelude::*;
-use splinelab_reports::entry::{main, status_number};
+use splinelab_reports::cli::entry::{main, status_number};
 use std::ffi::OsString;
 
 /// Runs `splinelab ARGS…` (`args[0]` is the program name) with the GIL

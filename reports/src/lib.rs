@@ -8,7 +8,6 @@ pub mod budget;
 pub mod chart;
 pub mod check_charts;
 pub mod cli;
-pub mod entry;
 pub mod error;
 pub mod html;
 pub mod input;

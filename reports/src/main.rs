@@ -3,5 +3,5 @@
 use std::process::ExitCode;
 
 fn main() -> ExitCode {
-    splinelab_reports::entry::main(std::env::args_os())
+    splinelab_reports::cli::entry::main(std::env::args_os())
 }

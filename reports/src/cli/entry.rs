@@ -3,7 +3,7 @@
 //! (`splinelab.__main__`, through the extension) both run it, so a wheel
 //! installs the same command line without a Rust toolchain.
 
-use crate::cli::{parse_args, run};
+use super::{parse_args, run};
 use crate::error::{CliError, EXIT_ERROR};
 use crate::output::{cap_echo, emit, note};
 use std::ffi::OsString;
