@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import os
 
 import numpy as np
 
@@ -27,14 +28,21 @@ def _list(x, what):
     return _vector(x, what).astype(np.float64).tolist()
 
 
-def _check_prefilter(samples, coeffs, degree=None, order=None, mode="mirror", max_ulps=None, format=None):
+def _out(out):
+    return None if out is None else os.fspath(out)
+
+
+def _check_prefilter(samples, coeffs, degree=None, order=None, mode="mirror", max_ulps=None, format=None, out=None):
     d = _degree_or_order(degree, order)
     user, fmt = _values(coeffs, format)
-    return _ext.check_prefilter(_list(samples, "samples"), user, fmt, d, _mode(mode), _opt_float(max_ulps, "max_ulps"))
+    return _ext.check_prefilter(
+        _list(samples, "samples"), user, fmt, d, _mode(mode), _opt_float(max_ulps, "max_ulps"), _out(out)
+    )
 
 
 def _check_interp(
-    samples, coordinates, values, degree=None, order=None, mode="mirror", cval=0.0, max_ulps=None, format=None
+    samples, coordinates, values, degree=None, order=None, mode="mirror", cval=0.0, max_ulps=None, format=None,
+    out=None,
 ):
     s = _real_array(samples, "samples")
     if s.ndim < 1:
@@ -48,37 +56,39 @@ def _check_interp(
     return _ext.check_interp(
         np.ascontiguousarray(s, dtype=np.float64).ravel().tolist(), list(s.shape),
         c.T.ravel().tolist(), user, fmt, _degree_or_order(degree, order), _mode(mode), _opt_float(cval, "cval"),
-        _opt_float(max_ulps, "max_ulps"),
+        _opt_float(max_ulps, "max_ulps"), _out(out),
     )
 
 
-def _check_cond(nodes, values, basis="bernstein", norm="2", max_ulps=None, format=None):
+def _check_cond(nodes, values, basis="bernstein", norm="2", max_ulps=None, format=None, out=None):
     if isinstance(nodes, np.ndarray) and nodes.ndim == 1 or (len(nodes) > 0 and np.ndim(nodes[0]) == 0):
         sets = [_list(nodes, "nodes")]
     else:
         sets = [_list(n, "nodes") for n in nodes]
     user, fmt = _values(values, format)
-    return _ext.check_cond(sets, str(basis), str(norm), user, fmt, _opt_float(max_ulps, "max_ulps"))
+    return _ext.check_cond(sets, str(basis), str(norm), user, fmt, _opt_float(max_ulps, "max_ulps"), _out(out))
 
 
-def _check_coeffs(values, order=None, degree=None, tension=None, max_ulps=None, format=None):
+def _check_coeffs(values, order=None, degree=None, tension=None, max_ulps=None, format=None, out=None):
     m = _family(degree, order) if tension is None else 4
     user, fmt = _values(values, format)
     t = None if tension is None else str(tension)
-    return _ext.check_coeffs(user, fmt, m, t, _opt_float(max_ulps, "max_ulps"))
+    return _ext.check_coeffs(user, fmt, m, t, _opt_float(max_ulps, "max_ulps"), _out(out))
 
 
-def _check_bspline_eval(knots, coeffs, degree, x, values, extrapolate=True, max_ulps=None, format=None):
+def _check_bspline_eval(knots, coeffs, degree, x, values, extrapolate=True, max_ulps=None, format=None, out=None):
     user, fmt = _values(values, format)
     return _ext.check_bspline_eval(
         _list(knots, "knots"), _list(coeffs, "coeffs"), _count(degree, "degree"), _list(x, "x"),
-        user, fmt, bool(extrapolate), _opt_float(max_ulps, "max_ulps"),
+        user, fmt, bool(extrapolate), _opt_float(max_ulps, "max_ulps"), _out(out),
     )
 
 
-def _check_bezier_eval(coeffs, t, values, max_ulps=None, format=None):
+def _check_bezier_eval(coeffs, t, values, max_ulps=None, format=None, out=None):
     user, fmt = _values(values, format)
-    return _ext.check_bezier_eval(_list(coeffs, "coeffs"), _list(t, "t"), user, fmt, _opt_float(max_ulps, "max_ulps"))
+    return _ext.check_bezier_eval(
+        _list(coeffs, "coeffs"), _list(t, "t"), user, fmt, _opt_float(max_ulps, "max_ulps"), _out(out)
+    )
 
 
 def _spline(s, what):
@@ -89,9 +99,10 @@ def _spline(s, what):
     return (_list(t, f"{what} t"), _list(c, f"{what} c"), _count(k, f"{what} k"))
 
 
-def _check_knot_insertion(before, after, max_ulps=None, format=None):
+def _check_knot_insertion(before, after, max_ulps=None, format=None, out=None):
     return _ext.check_knot_insertion(
-        _spline(before, "before"), _spline(after, "after"), format or "f64", _opt_float(max_ulps, "max_ulps")
+        _spline(before, "before"), _spline(after, "after"), format or "f64", _opt_float(max_ulps, "max_ulps"),
+        _out(out),
     )
 
 
@@ -139,7 +150,12 @@ def check(kind, **kwargs):
       ``norm='2'`` or 'inf'.
 
     Every kind takes ``max_ulps=`` (verdict 'fail' when an element exceeds
-    it) and ``format=`` ('f64'/'f32'; default: the values' dtype).
+    it), ``format=`` ('f64'/'f32'; default: the values' dtype) and
+    ``out=`` (a folder: the command line's ``--out`` page, SVG charts,
+    ``reference.npy``/``error.npy``/``bound.npy`` and a ``summary.json``
+    whose ``figures`` ``splinelab compare`` reads; the folder is replaced).
+    For pytest, :func:`splinelab.testing.assert_check` raises with the
+    summary instead of returning it.
 
     >>> import numpy as np, splinelab
     >>> s = np.array([1.0, 2.0, 0.5, 3.0, 1.0, 0.0, 2.0, 1.0])
@@ -147,6 +163,12 @@ def check(kind, **kwargs):
     >>> r["kind"], r["verdict"], r["degree"], r["verdict_basis"]
     ('prefilter', 'pass', 3, 'stable-bound')
     """
+    return _run(kind, kwargs)[0]
+
+
+def _run(kind, kwargs):
+    """``check``'s dict and the command line's text summary of it."""
     if kind not in _KINDS:
         raise ValueError(f"unknown check kind {kind!r} (expected one of {', '.join(_KINDS)})")
-    return json.loads(_KINDS[kind](**kwargs))
+    result, text = _KINDS[kind](**kwargs)
+    return json.loads(result), text

@@ -1,11 +1,17 @@
 //! `check(kind, ...)`: the `splinelab check` KINDs on arrays, returning the
 //! same JSON object as the command line's `--json` (built by
-//! [`Outcome::to_json`], shared with the CLI).
+//! [`Outcome::to_json`], shared with the CLI), its text summary, and with
+//! `out` its page, charts and `summary.json` (the command line's `--out`
+//! writer).
 
 use crate::error::value_error;
 use crate::width::family;
+use pyo3::exceptions::PyOSError;
 use pyo3::prelude::*;
 use serde_json::Map;
+use splinelab_reports::cli::check::table;
+use splinelab_reports::cli::check_out::write_check_dir;
+use splinelab_reports::error::CliError;
 use splinelab_verify::check::bezier_eval::check_bezier_eval as bezier;
 use splinelab_verify::check::bspline_eval::{BSplineEvalInput, check_bspline_eval as bspline};
 use splinelab_verify::check::coeffs::check_coeffs as coeffs;
@@ -17,6 +23,7 @@ use splinelab_verify::check::prefilter::{PrefilterInput, check_prefilter as pref
 use splinelab_verify::check::rational_bspline::RationalBSpline;
 use splinelab_verify::check::{CheckError, Outcome, UserFormat};
 use splinelab_verify::conditioning::Basis;
+use std::path::PathBuf;
 
 fn format(name: &str) -> PyResult<UserFormat> {
     name.parse().map_err(value_error)
@@ -31,13 +38,37 @@ fn max_ulps(k: Option<f64>) -> PyResult<Option<f64>> {
     }
 }
 
+/// What every check returns: the JSON contract and the command line's text
+/// summary.
+type Report = (String, String);
+
+/// The JSON and text of `o`, after writing its folder into `out` when
+/// given (an unwritable folder is an `OSError`).
+fn report(
+    py: Python<'_>,
+    o: Outcome,
+    extra: &Map<String, serde_json::Value>,
+    out: Option<PathBuf>,
+) -> PyResult<Report> {
+    let json = o.to_json(extra);
+    if let Some(dir) = out {
+        py.detach(|| write_check_dir(&dir, &o, &json))
+            .map_err(|e| match e {
+                CliError::Output { .. } => PyOSError::new_err(e.to_string()),
+                e => value_error(e),
+            })?;
+    }
+    Ok((json.to_string(), table(&o)))
+}
+
 fn elements(
     py: Python<'_>,
     run: impl FnOnce() -> Result<splinelab_verify::check::CheckSummary, CheckError> + Send,
     extra: Map<String, serde_json::Value>,
-) -> PyResult<String> {
+    out: Option<PathBuf>,
+) -> PyResult<Report> {
     let s = py.detach(run).map_err(value_error)?;
-    Ok(Outcome::Elements(Box::new(s)).to_json(&extra).to_string())
+    report(py, Outcome::Elements(Box::new(s)), &extra, out)
 }
 
 /// What the grid kinds (`prefilter`, `interp`) share: the mode, the user's
@@ -63,7 +94,8 @@ impl GridArgs {
 
 /// `check prefilter`: samples, the user's coefficients, degree, mode.
 #[pyfunction]
-#[pyo3(signature = (samples, user, fmt, degree, mode, max_ulps_))]
+#[pyo3(signature = (samples, user, fmt, degree, mode, max_ulps_, out = None))]
+#[allow(clippy::too_many_arguments)]
 pub fn check_prefilter(
     py: Python<'_>,
     samples: Vec<f64>,
@@ -72,7 +104,8 @@ pub fn check_prefilter(
     degree: usize,
     mode: &str,
     max_ulps_: Option<f64>,
-) -> PyResult<String> {
+    out: Option<PathBuf>,
+) -> PyResult<Report> {
     let g = GridArgs::new(mode, fmt, degree, max_ulps_)?;
     let family =
         splinelab_verify::check::prefilter::family_of_degree(degree).map_err(value_error)?;
@@ -84,12 +117,12 @@ pub fn check_prefilter(
         mode: g.mode.spline_mode(),
         max_ulps: g.max_ulps,
     };
-    elements(py, || prefilter(&input), g.extra)
+    elements(py, || prefilter(&input), g.extra, out)
 }
 
 /// `check coeffs`: the user's c_0..c_{K−1} of an order (or Beta2 tension).
 #[pyfunction]
-#[pyo3(signature = (user, fmt, order, tension, max_ulps_))]
+#[pyo3(signature = (user, fmt, order, tension, max_ulps_, out = None))]
 pub fn check_coeffs(
     py: Python<'_>,
     user: Vec<f64>,
@@ -97,15 +130,16 @@ pub fn check_coeffs(
     order: u32,
     tension: Option<&str>,
     max_ulps_: Option<f64>,
-) -> PyResult<String> {
+    out: Option<PathBuf>,
+) -> PyResult<Report> {
     let family = family(order, tension)?;
     let (f, k) = (format(fmt)?, max_ulps(max_ulps_)?);
-    elements(py, || coeffs(&family, &user, f, k), Map::new())
+    elements(py, || coeffs(&family, &user, f, k), Map::new(), out)
 }
 
 /// `check bspline-eval`: knots, coefficients, degree, x, the user's values.
 #[pyfunction]
-#[pyo3(signature = (t, c, k, x, user, fmt, extrapolate, max_ulps_))]
+#[pyo3(signature = (t, c, k, x, user, fmt, extrapolate, max_ulps_, out = None))]
 #[allow(clippy::too_many_arguments)]
 pub fn check_bspline_eval(
     py: Python<'_>,
@@ -117,7 +151,8 @@ pub fn check_bspline_eval(
     fmt: &str,
     extrapolate: bool,
     max_ulps_: Option<f64>,
-) -> PyResult<String> {
+    out: Option<PathBuf>,
+) -> PyResult<Report> {
     let input = BSplineEvalInput {
         t,
         c,
@@ -128,12 +163,12 @@ pub fn check_bspline_eval(
         format: format(fmt)?,
         max_ulps: max_ulps(max_ulps_)?,
     };
-    elements(py, || bspline(&input), Map::new())
+    elements(py, || bspline(&input), Map::new(), out)
 }
 
 /// `check bezier-eval`: Bernstein coefficients, t, the user's values.
 #[pyfunction]
-#[pyo3(signature = (b, t, user, fmt, max_ulps_))]
+#[pyo3(signature = (b, t, user, fmt, max_ulps_, out = None))]
 pub fn check_bezier_eval(
     py: Python<'_>,
     b: Vec<f64>,
@@ -141,35 +176,37 @@ pub fn check_bezier_eval(
     user: Vec<f64>,
     fmt: &str,
     max_ulps_: Option<f64>,
-) -> PyResult<String> {
+    out: Option<PathBuf>,
+) -> PyResult<Report> {
     let (f, k) = (format(fmt)?, max_ulps(max_ulps_)?);
-    elements(py, || bezier(&b, &t, &user, f, k), Map::new())
+    elements(py, || bezier(&b, &t, &user, f, k), Map::new(), out)
 }
 
 /// `check knot-insertion`: a B-spline `(t, c, k)` before and after.
 #[pyfunction]
-#[pyo3(signature = (before, after, fmt, max_ulps_))]
+#[pyo3(signature = (before, after, fmt, max_ulps_, out = None))]
 pub fn check_knot_insertion(
     py: Python<'_>,
     before: (Vec<f64>, Vec<f64>, usize),
     after: (Vec<f64>, Vec<f64>, usize),
     fmt: &str,
     max_ulps_: Option<f64>,
-) -> PyResult<String> {
+    out: Option<PathBuf>,
+) -> PyResult<Report> {
     let spline = |(t, c, k): &(Vec<f64>, Vec<f64>, usize), what: &str| {
         RationalBSpline::from_f64(t, c, *k).map_err(|e| value_error(format!("{what}: {e}")))
     };
     let (b, a) = (spline(&before, "before")?, spline(&after, "after")?);
     let (f, k) = (format(fmt)?, max_ulps(max_ulps_)?);
     let s = py.detach(|| insertion(&b, &a, f, k)).map_err(value_error)?;
-    Ok(Outcome::Insertion(s).to_json(&Map::new()).to_string())
+    report(py, Outcome::Insertion(s), &Map::new(), out)
 }
 
 /// `check interp`: 1-D or 2-D samples (C order, `shape`), points point-major
 /// (`points[k·D + a]`), the user's values, degree, mode, `cval` (scipy's
 /// constant for `grid-constant`).
 #[pyfunction]
-#[pyo3(signature = (samples, shape, points, user, fmt, degree, mode, cval, max_ulps_))]
+#[pyo3(signature = (samples, shape, points, user, fmt, degree, mode, cval, max_ulps_, out = None))]
 #[allow(clippy::too_many_arguments)]
 pub fn check_interp(
     py: Python<'_>,
@@ -182,7 +219,8 @@ pub fn check_interp(
     mode: &str,
     cval: f64,
     max_ulps_: Option<f64>,
-) -> PyResult<String> {
+    out: Option<PathBuf>,
+) -> PyResult<Report> {
     let g = GridArgs::new(mode, fmt, degree, max_ulps_)?;
     let input = InterpInput {
         samples,
@@ -194,13 +232,14 @@ pub fn check_interp(
         mode: g.mode,
         max_ulps: g.max_ulps,
     };
-    elements(py, || interp(&input, cval), g.extra)
+    elements(py, || interp(&input, cval), g.extra, out)
 }
 
 /// `check cond`: node sets, basis (`bernstein`, `monomial`), norm (`2`,
 /// `inf`), the user's condition numbers (one per set).
 #[pyfunction]
-#[pyo3(signature = (node_sets, basis, norm, user, fmt, max_ulps_))]
+#[pyo3(signature = (node_sets, basis, norm, user, fmt, max_ulps_, out = None))]
+#[allow(clippy::too_many_arguments)]
 pub fn check_cond(
     py: Python<'_>,
     node_sets: Vec<Vec<f64>>,
@@ -209,7 +248,8 @@ pub fn check_cond(
     user: Vec<f64>,
     fmt: &str,
     max_ulps_: Option<f64>,
-) -> PyResult<String> {
+    out: Option<PathBuf>,
+) -> PyResult<Report> {
     let input = CondInput {
         node_sets,
         basis: basis.parse::<Basis>().map_err(value_error)?,
@@ -218,5 +258,5 @@ pub fn check_cond(
         format: format(fmt)?,
         max_ulps: max_ulps(max_ulps_)?,
     };
-    elements(py, || cond(&input), Map::new())
+    elements(py, || cond(&input), Map::new(), out)
 }

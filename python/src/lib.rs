@@ -8,6 +8,7 @@
 
 mod cache;
 mod check;
+mod cli;
 mod error;
 mod filter;
 mod interp;
@@ -45,5 +46,6 @@ fn _splinelab(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(check::check_knot_insertion, m)?)?;
     m.add_function(wrap_pyfunction!(check::check_interp, m)?)?;
     m.add_function(wrap_pyfunction!(check::check_cond, m)?)?;
+    m.add_function(wrap_pyfunction!(cli::cli_main, m)?)?;
     Ok(())
 }

@@ -11,10 +11,10 @@ use std::sync::{Arc, Mutex, OnceLock};
 
 static POOLS: OnceLock<Mutex<HashMap<usize, Arc<ThreadPool>>>> = OnceLock::new();
 
-/// The most threads a pool may have: the CLI's clamp of `RAYON_NUM_THREADS`
-/// (`splinelab_reports::threads::MAX_THREADS`); `splinelab._validate`
-/// refuses larger requests first, this is the backstop for direct calls.
-pub const MAX_THREADS: usize = 256;
+// The most threads a pool may have: the CLI's clamp of `RAYON_NUM_THREADS`;
+// `splinelab._validate` refuses larger requests first, this is the backstop
+// for direct calls.
+use splinelab_reports::threads::MAX_THREADS;
 
 /// Pools kept at once: a program that tries many sizes keeps the last few,
 /// not one pool (and its threads) per size ever asked for.

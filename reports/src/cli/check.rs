@@ -604,8 +604,9 @@ fn fmt_opt<T: std::fmt::Display>(x: Option<T>) -> String {
 }
 
 /// The plain-text result (written through [`emit`]: a closed pipe or a
-/// failed write is handled, never a panic).
-fn table(o: &Outcome) -> String {
+/// failed write is handled, never a panic); also the message of the Python
+/// package's `splinelab.testing.assert_check`.
+pub fn table(o: &Outcome) -> String {
     let mut text = String::new();
     match o {
         Outcome::Insertion(s) => {

@@ -9,6 +9,7 @@ pub mod compare;
 pub mod cond;
 pub mod deform;
 pub mod engine_io;
+pub mod entry;
 pub mod flatten;
 pub mod interpolate;
 pub mod nan_io;

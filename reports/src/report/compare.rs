@@ -82,11 +82,13 @@ impl Outcome {
         !self.regressed().is_empty() || !self.missing.is_empty()
     }
 
-    /// A plain sentence on the profiles, when they differ or are unknown.
+    /// A plain sentence on the profiles, when they differ (or only one file
+    /// records one); none for two files without a profile, such as two
+    /// `check --out` or pytest-plugin summaries.
     pub fn profile_note(&self) -> Option<String> {
         let show = |p: &Option<String>| p.clone().unwrap_or_else(|| "not recorded".into());
         match &self.profiles {
-            (Some(a), Some(b)) if a == b => None,
+            (a, b) if a == b => None,
             (a, b) => Some(format!(
                 "The profiles differ (baseline: {}, current: {}): of the {} figures both runs \
                  have, the {} measured over the same cases gate and the {} measured over \
@@ -496,5 +498,20 @@ mod tests {
         let tiny = Figure::cost("s.t", 0.01, "s", 4.0).with_floor(0.5);
         assert_eq!(judge(&tiny, 0.3), Verdict::Ok);
         assert_eq!(judge(&tiny, 2.1), Verdict::Regressed);
+    }
+
+    #[test]
+    fn profiles_are_noted_only_when_they_differ() {
+        let figs = [Figure::error("s.e", 1.0, "ulps", 0.5)];
+        let note = |a: Option<&str>, b: Option<&str>| {
+            let p = (a.map(str::to_string), b.map(str::to_string));
+            compare(&figs, &figs, Path::new("c"), Gates::default(), p)
+                .unwrap()
+                .profile_note()
+        };
+        assert_eq!(note(None, None), None);
+        assert_eq!(note(Some("quick"), Some("quick")), None);
+        assert!(note(None, Some("full")).unwrap().contains("not recorded"));
+        assert!(note(Some("quick"), Some("full")).unwrap().contains("full"));
     }
 }
