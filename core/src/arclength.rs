@@ -23,7 +23,7 @@
 //!
 //! **Accuracy**: the estimate is not a bound; measured against closed forms
 //! (line, circle arc by a rational quadratic NURBS, parabola) and 256-bit
-//! MPFR references in `verify/tests/arclength.rs`, the error stays below
+//! MPFR references in `verify/tests/it/arclength.rs`, the error stays below
 //! `accuracy` (and far below it for smooth curves).
 //!
 //! **Source**: adaptive quadrature by interval halving (Gander & Gautschi,

@@ -108,7 +108,7 @@ pub fn norm_inf<T: Real>(a: &DMatrix<T>) -> T {
 /// partial pivoting. **Cost** `O(n³)`. **Accuracy**: the computed inverse has
 /// relative error `O(n u cond)`, hence so does the result.
 /// In MPFR it reproduces `cond_∞(B_u ⊗ B_v) = cond_∞(B_u) cond_∞(B_v)` to `1e-60`
-/// relative (`verify/tests/conditioning.rs::tensor_condition_numbers_are_products_of_the_univariate_ones`).
+/// relative (`verify/tests/it/conditioning.rs::tensor_condition_numbers_are_products_of_the_univariate_ones`).
 /// **Source**: Higham, 2nd ed., §14.3 (inversion by LU) and Golub & Van
 /// Loan, §3.4; the quantity is seed 001's `cond(B̃)`.
 pub fn cond_inf<T: Real>(a: &DMatrix<T>) -> Result<T, ConditionError> {

@@ -165,7 +165,7 @@ where
 /// **Cost**: as [`de_casteljau`]. **Accuracy**: control point `j` of either
 /// half is a de Casteljau value of degree `j` (or `n − j`), within
 /// `γ_{3n} max_i |P_i|` of exact for `t ∈ [0, 1]`; measured against exact
-/// rationals by `verify/tests/bezier_eval_subdivision.rs::subdivision_consistency_f64`
+/// rationals by `verify/tests/it/bezier_eval_subdivision.rs::subdivision_consistency_f64`
 /// (and `_mp128`). **Source**: Farouki & Rajan (1987), de Casteljau's
 /// subdivision; Piegl & Tiller, *The NURBS Book*, §1.4.
 pub fn subdivide<T, V>(points: &[V], t: &T) -> Result<(Vec<V>, Vec<V>), BezierError>

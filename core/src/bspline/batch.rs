@@ -25,7 +25,7 @@ impl<T: Real, const D: usize> BSpline<T, D> {
     /// **Method**: per parameter, span search then de Boor's algorithm, as
     /// [`BSpline::eval`](super::de_boor::BSpline::eval). **Accuracy**: equal bit
     /// for bit to pointwise evaluation
-    /// (`verify/tests/curves_bspline.rs::batch_evaluation_equals_pointwise_eval`).
+    /// (`verify/tests/it/curves_bspline.rs::batch_evaluation_equals_pointwise_eval`).
     /// **Source**: de Boor, *A Practical Guide to Splines*; seed 003 eqs 1–2.
     ///
     /// ```

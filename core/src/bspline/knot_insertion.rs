@@ -56,7 +56,7 @@ pub enum InsertionError {
 /// the copies, `k − 1` affine combinations.
 /// **Method**: Boehm's rule `Q'_j = (1 − α_j) Q_{j−1} + α_j Q_j`,
 /// `α_j = (u − t_j)/(t_{j+k−1} − t_j)`. **Accuracy**: exact over the rationals
-/// (`verify/tests/knot_insertion.rs::insertion_is_exactly_invariant_in_rationals`);
+/// (`verify/tests/it/knot_insertion.rs::insertion_is_exactly_invariant_in_rationals`);
 /// the curve moves by at most 4 ulps in f64 (`insertion_is_invariant_to_4_ulps_in_f64`).
 pub fn insert_raw<F, P>(order: usize, knots: &[F], points: &[P], u: &F) -> Option<(Vec<F>, Vec<P>)>
 where
@@ -205,7 +205,7 @@ impl<T: Real, const D: usize> BSpline<T, D> {
     /// domain. `s` spans give `s` new points. **Cost** `O(s·(n + k))` by
     /// successive in-place insertions (each moves the tail once).
     /// **Accuracy**: as [`insert_raw`] per insertion; the curve is kept
-    /// (`verify/tests/knot_insertion.rs::global_refinement_doubles_spans_and_keeps_the_curve`).
+    /// (`verify/tests/it/knot_insertion.rs::global_refinement_doubles_spans_and_keeps_the_curve`).
     pub fn refine_midpoints(&self) -> Result<Self, InsertionError> {
         let (k, n) = (self.order(), self.points().len() - 1);
         let t = self.knots().as_slice();

@@ -324,7 +324,7 @@ impl<T: Real> NurbsSurface<T, 3> {
     /// from the `z` axis. Errors as [`NurbsCurve::circle`], or for a
     /// non-finite height. **Accuracy**: exact in the representation; the
     /// radial error of evaluated points is `≤ 8u` in f64 (`≤ 256u` in MPFR)
-    /// (`verify/tests/curves_rational.rs::nurbs_circle_and_cylinder_are_exact`).
+    /// (`verify/tests/it/curves_rational.rs::nurbs_circle_and_cylinder_are_exact`).
     /// **Source**: Piegl & Tiller, *The NURBS Book*, §7.5 (circle) and §8.3
     /// (extruded surfaces).
     ///
@@ -373,7 +373,7 @@ impl<T: Real, const D: usize> ParamCurveDeriv<T, D> for NurbsCurve<T, D> {
     /// and the weight function `w = Σ N_j w_j`, each with its derivative by de
     /// Boor (Piegl & Tiller, *The NURBS Book*, §4.3, eq 4.8). **Accuracy**:
     /// that of the de Boor derivatives divided by `w > 0`; the NURBS circle's
-    /// speed is checked against its closed form in `verify/tests/arclength.rs`.
+    /// speed is checked against its closed form in `verify/tests/it/arclength.rs`.
     fn deriv(&self, t: &T) -> Result<SVector<T, D>, BSplineError> {
         let h = &self.homogeneous;
         let w = BSpline::new(

@@ -168,7 +168,7 @@ pub(crate) fn checked_pieces<T: Real, const D: usize, C: ParamCurveBezier<T, D> 
 /// more than [`MAX_DEPTH`] levels.
 ///
 /// **Accuracy**: judged in 256-bit MPFR for Bézier, NURBS, Catmull–Rom and
-/// S-spline curves by `verify/tests/curves_flatten_any.rs`. **Source**: seed 002
+/// S-spline curves by `verify/tests/it/curves_flatten_any.rs`. **Source**: seed 002
 /// method 2; the convex hull property (Farin, *Curves and Surfaces for CAGD*, §3).
 ///
 /// ```
@@ -264,7 +264,7 @@ fn subdivide_piece<T: Real, const D: usize>(
 /// **Accuracy**: each vertex that of `eval` (for a Bézier curve within de
 /// Casteljau's `γ_{2n} max|P|` of the curve point, Farouki–Rajan 1987); the
 /// chord error is [`uniform_segments_bound`]'s, tested in
-/// `verify/tests/curves_flatten.rs::uniform_count_is_the_smallest_passing_count`.
+/// `verify/tests/it/curves_flatten.rs::uniform_count_is_the_smallest_passing_count`.
 /// **Source**: seed 002 method 1.
 ///
 /// ```
@@ -309,7 +309,7 @@ pub fn uniform_polyline<T: Real, const D: usize, C: ParamCurve<T, D> + ?Sized>(
 /// **Cost**: `segments · samples` evaluations.
 ///
 /// **Source**: seed 002 (uniform vs adaptive drawing); judged in 256-bit MPFR by
-/// `reports/tests/cli_flatten.rs::at_1e_12_the_deviation_stays_within_the_tolerance_judged_in_mpfr`.
+/// `reports/tests/it/cli_flatten.rs::at_1e_12_the_deviation_stays_within_the_tolerance_judged_in_mpfr`.
 ///
 /// ```
 /// use nalgebra::Vector2;
@@ -392,7 +392,7 @@ pub fn uniform_segments_bound<T: Real, const D: usize>(
 ///
 /// **Accuracy**: the count is the smallest passing one up to the sampled deviation's
 /// `O(1/samples²)`, tested in
-/// `verify/tests/curves_flatten.rs::uniform_count_is_the_smallest_passing_count`.
+/// `verify/tests/it/curves_flatten.rs::uniform_count_is_the_smallest_passing_count`.
 /// **Source**: seed 002's uniform drawing, the count it needs.
 pub fn uniform_segments<T: Real, const D: usize, C: ParamCurveBezier<T, D> + ?Sized>(
     curve: &C,

@@ -47,7 +47,7 @@ pub enum CubicEnds<T: Real, const D: usize> {
 ///
 /// **Method**: the tridiagonal system `D_{i−1} + 4 D_i + D_{i+1} = 6 P_i`
 /// (end rows from `ends`) by forward elimination and back substitution. **Accuracy**: agrees with the Hermite solver to
-/// `1e-13` (`verify/tests/sspline_curve.rs::global_cubic_matches_hermite_solver`).
+/// `1e-13` (`verify/tests/it/sspline_curve.rs::global_cubic_matches_hermite_solver`).
 /// **Source**: de Boor, *A Practical Guide to Splines*, ch. IV (cubic spline interpolation).
 ///
 /// ```
@@ -143,7 +143,7 @@ fn solve<T: Real, const D: usize>(
 /// [`super::sspline_curve::SsplineCurve::to_bspline`].
 /// **Method**: [`control_points`] wrapped with the uniform knots; no further
 /// rounding. **Accuracy**: as [`control_points`]
-/// (`verify/tests/sspline_curve.rs::global_cubic_matches_hermite_solver`).
+/// (`verify/tests/it/sspline_curve.rs::global_cubic_matches_hermite_solver`).
 /// **Source**: de Boor, *A Practical Guide to Splines*.
 pub fn interpolant<T: Real, const D: usize>(
     data: &[SVector<T, D>],

@@ -166,9 +166,9 @@ fn sub_polygon<T: Real, const D: usize>(
 /// predicted from the curvature, then bisected until [`chord_deviation_bound`] is within
 /// `tol`. **Source**: seed 002's adaptive drawing; optimum count after R. Levien,
 /// *Flattening quadratic Béziers* (2019). Tested in
-/// `verify/tests/curves_flatten.rs::greedy_flattening_is_within_tol_below_uniform_and_near_the_optimum`;
+/// `verify/tests/it/curves_flatten.rs::greedy_flattening_is_within_tol_below_uniform_and_near_the_optimum`;
 /// over NURBS, Catmull–Rom and S-spline curves judged in 256-bit MPFR by
-/// `verify/tests/curves_flatten_any.rs`.
+/// `verify/tests/it/curves_flatten_any.rs`.
 ///
 /// ```
 /// use nalgebra::Vector2;

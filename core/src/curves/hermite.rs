@@ -116,7 +116,7 @@ impl<T: Real, const D: usize> Hermite<T, D> {
     /// `x'_0 = 3(P_1 − P_0)`, `x'_1 = 3(P_3 − P_2)`. A typed error unless the
     /// curve has degree 3. **Accuracy**: derivatives within `2u` relative of
     /// `3(P_1 − P_0)` per coordinate.
-    /// Tested in `verify/tests/curves_hermite.rs::end_values_derivatives_and_bezier_form_hold_in_f64`.
+    /// Tested in `verify/tests/it/curves_hermite.rs::end_values_derivatives_and_bezier_form_hold_in_f64`.
     /// **Source**: seed 002 (Hermite ↔ Bézier).
     pub fn from_bezier(curve: &Bezier<T, D>) -> Result<Self, CurveError> {
         if curve.degree() != 3 {

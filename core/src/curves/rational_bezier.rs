@@ -146,7 +146,7 @@ impl<T: Real, const D: usize> RationalBezier<T, D> {
     ///
     /// **Cost**: `O(nD)`. **Accuracy**: each new coordinate is within
     /// `3u` relative of the exact convex combination of the stored values.
-    /// Measured in `verify/tests/curves_rational.rs::degree_elevation_keeps_the_curve`.
+    /// Measured in `verify/tests/it/curves_rational.rs::degree_elevation_keeps_the_curve`.
     /// **Source**: Piegl & Tiller, *The NURBS Book*, §5.5 (degree elevation).
     pub fn elevate(&self) -> Self {
         let n1 = self.weights.len(); // n + 1
@@ -187,10 +187,10 @@ impl<T: Real> RationalBezier<T, 2> {
     /// measured distance from the centre within 4 ulps of `r` in f64 for
     /// `c = 0`, `r = 1`, plus `u·(|start + sweep/2| + |start + sweep|)·r`
     /// for the rounding of the two angles formed (up to ~19u near 3π; see
-    /// `verify/tests/curves_rational.rs`).
+    /// `verify/tests/it/curves_rational.rs`).
     /// **Source**: seed 002 (rational Bézier, exact circular arcs); Piegl &
     /// Tiller, *The NURBS Book*, §7.3; the test is
-    /// `verify/tests/curves_rational.rs::arcs_up_to_180_degrees_are_on_the_circle_f64`.
+    /// `verify/tests/it/curves_rational.rs::arcs_up_to_180_degrees_are_on_the_circle_f64`.
     ///
     /// ```
     /// // In MPFR: the 120° arc of radius 3 about (1, 2); every point at distance 3.

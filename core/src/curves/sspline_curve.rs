@@ -42,7 +42,7 @@ pub(crate) struct Axis<T> {
 impl<T: Real> Axis<T> {
     /// One direction: validates `len ≥ 2` and the order, then computes
     /// `c_0..c_n` by [`TruncatedBasis::new`] (production coefficients, ≤ 1 ulp
-    /// each; `verify/tests/sspline_coefficients.rs`) and the control index
+    /// each; `verify/tests/it/sspline_coefficients.rs`) and the control index
     /// range (integers, exact). **Source**: seed 000 eqs 10 and 20–23.
     pub fn new(
         family: &SplineFamily,
@@ -119,7 +119,7 @@ impl<T: Real> Axis<T> {
     /// merged, inclusive ranges; with each preimage `i` of `k`.
     /// **Method**: the preimages of `k` under the end rule's fold, each
     /// widened by `±n`; integer arithmetic, exact (checked by
-    /// `verify/tests/sspline_curve.rs::interior_edit_touches_2n_plus_1_points`).
+    /// `verify/tests/it/sspline_curve.rs::interior_edit_touches_2n_plus_1_points`).
     /// **Source**: seed 000 §3 (local update).
     pub fn affected(&self, k: usize) -> (Vec<i64>, Vec<(usize, usize)>) {
         let n = self.half_width() as i64;
@@ -194,7 +194,7 @@ impl<T: Real, const D: usize> SsplineCurve<T, D> {
     /// truncation error of `n` times `max |P|` (see [`crate::sspline::truncation`]).
     /// Measured: the curve interpolates its data and equals the de Boor
     /// evaluation of its B-spline view
-    /// (`verify/tests/sspline_curve.rs::interpolates_and_matches_de_boor`).
+    /// (`verify/tests/it/sspline_curve.rs::interpolates_and_matches_de_boor`).
     /// **Source**: seed 000 eqs 10 and 20–23.
     ///
     /// Errors: fewer than 2 points, order `> ν`, non-finite data or tangents,
@@ -315,7 +315,7 @@ impl<T: Real, const D: usize> SsplineCurve<T, D> {
     /// independent of `ν`. **Result**: bitwise identical to a full rebuild
     /// with the moved point (same summation order). Returns the number of
     /// control points recomputed. On error nothing is changed.
-    /// Tested in `verify/tests/sspline_curve.rs::local_edit_equals_rebuild_f64`.
+    /// Tested in `verify/tests/it/sspline_curve.rs::local_edit_equals_rebuild_f64`.
     /// **Source**: seed 000 §3 (local update).
     pub fn move_point(&mut self, k: usize, p: SVector<T, D>) -> Result<usize, CurveError> {
         self.check_edit(k, &p)?;

@@ -55,7 +55,7 @@ impl<T: Real, const D: usize> SsplineSurface<T, D> {
     /// wrong grid size, non-finite data, a tangent rule.
     /// **Method**: the convolution of [`SsplineCurve::new`](super::sspline_curve::SsplineCurve::new)
     /// in `v` (the intermediate net `E`), then in `u` on `E` (the control net `D`). Tested in
-    /// `verify/tests/sspline_curve.rs::surface_edit_interpolation_and_curves_of_curves`.
+    /// `verify/tests/it/sspline_curve.rs::surface_edit_interpolation_and_curves_of_curves`.
     /// **Source**: seed 000 eqs 24–25.
     pub fn new(
         du: &Direction,
@@ -131,7 +131,7 @@ impl<T: Real, const D: usize> SsplineSurface<T, D> {
     /// basis windows and `m_u m_v` axpys. **Accuracy**: error
     /// `≤ γ_{3(m_u+m_v)} Σ |D_{kl}| β_u β_v` (Higham, 2nd ed., §3.1); the
     /// surface reproduces its data grid
-    /// (`verify/tests/sspline_curve.rs::surface_edit_interpolation_and_curves_of_curves`).
+    /// (`verify/tests/it/sspline_curve.rs::surface_edit_interpolation_and_curves_of_curves`).
     /// **Source**: seed 000 eqs 24–25 (tensor-product S-spline surfaces).
     pub fn eval(&self, u: &T, v: &T) -> Result<SVector<T, D>, CurveError> {
         self.u.check_param(u)?;
@@ -154,7 +154,7 @@ impl<T: Real, const D: usize> SsplineSurface<T, D> {
     /// independent of the grid size. Returns the number of `D` entries
     /// recomputed. On error nothing changes.
     /// **Method**: recompute only the `D_{kl}` whose windows hold `P_{ab}`
-    /// (tested in `verify/tests/sspline_curve.rs::surface_edit_interpolation_and_curves_of_curves`).
+    /// (tested in `verify/tests/it/sspline_curve.rs::surface_edit_interpolation_and_curves_of_curves`).
     /// **Source**: seed 000 §3 (local update) and eqs 24–25.
     pub fn move_point(
         &mut self,

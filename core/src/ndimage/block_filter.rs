@@ -63,7 +63,7 @@ impl<T: Real + Send + Sync> BlockPrefilter<T> {
     /// **Method**: the certified half-width `W` of `tol` ([`certified_width`], the pole tail
     /// bound `Σ_{|j|>W} |c_j| < tol`) and the exact recursive [`LineFilter`]. **Accuracy**:
     /// [`Self::bound`], tested in
-    /// `verify/tests/engine_properties.rs::parallel_blocks_stay_within_the_bound_of_the_sequential_filter`.
+    /// `verify/tests/it/engine_properties.rs::parallel_blocks_stay_within_the_bound_of_the_sequential_filter`.
     /// **Source**: seed 000 eq 10 (truncation) with the tail bound; the recursion of Unser,
     /// Aldroubi and Eden (1993).
     ///
@@ -133,8 +133,8 @@ impl<T: Real + Send + Sync> BlockPrefilter<T> {
     /// same bits whatever the thread count.
     ///
     /// **Method**, **accuracy** and **source**: as [`Self::apply_into`]
-    /// (tested in `verify/tests/engine_properties.rs::truncated_route_stays_within_its_certified_bound`,
-    /// against MPFR in `verify/tests/engine_properties.rs::truncated_blocks_match_mpfr_within_the_bound`).
+    /// (tested in `verify/tests/it/engine_properties.rs::truncated_route_stays_within_its_certified_bound`,
+    /// against MPFR in `verify/tests/it/engine_properties.rs::truncated_blocks_match_mpfr_within_the_bound`).
     ///
     /// ```
     /// use splinelab::prelude::*;
@@ -182,7 +182,7 @@ impl<T: Real + Send + Sync> BlockPrefilter<T> {
     /// **Method**: each window `[a − W, b + W)` filtered exactly by the recursion (the
     /// module documentation), in the order of `window_recursion`. **Accuracy**: within
     /// `bound · max|s|` plus rounding of the sequential exact result, tested in
-    /// `verify/tests/engine_properties.rs::parallel_blocks_stay_within_the_bound_of_the_sequential_filter`.
+    /// `verify/tests/it/engine_properties.rs::parallel_blocks_stay_within_the_bound_of_the_sequential_filter`.
     /// **Source**: seed 000 eq 10 and its tail bound (locality of the cardinal spline).
     ///
     /// ```

@@ -113,8 +113,8 @@ impl<T: Real + Send + Sync> Interpolant<T> {
     /// **Method**: the exact recursive prefilter along every axis ([`LineFilter`]), padded for
     /// `nearest`/`grid-constant`. **Accuracy**: the interpolation condition holds to `O(u)`
     /// relative up to degree 31 in f64 and to 1e-60 in 256-bit MPFR up to degree 99
-    /// (`verify/tests/engine_properties.rs::high_degrees_satisfy_the_interpolation_condition`);
-    /// scipy agreement in `verify/tests/engine_scipy.rs::map_coordinates_matches_scipy`.
+    /// (`verify/tests/it/engine_properties.rs::high_degrees_satisfy_the_interpolation_condition`);
+    /// scipy agreement in `verify/tests/it/engine_scipy.rs::map_coordinates_matches_scipy`.
     ///
     /// ```
     /// use splinelab::prelude::*;
@@ -192,7 +192,7 @@ impl<T: Real + Send + Sync> Interpolant<T> {
     ///
     /// **Accuracy**: no rounding beyond the evaluation's (the coefficients are copied); scipy's
     /// `prefilter=False` output reproduced within 16 ulps of max|value|
-    /// (`reports/tests/cli_engine.rs`, the `--coeffs` fixtures).
+    /// (`reports/tests/it/cli_engine.rs`, the `--coeffs` fixtures).
     ///
     /// ```
     /// use splinelab::prelude::*;
@@ -382,7 +382,7 @@ impl<T: Real + Send + Sync> Interpolant<T> {
     /// **Method**: the derivative of each axis' B-spline weights in closed form
     /// ([`cell_derivatives_into`]), then the tensor sum. **Accuracy**: within 1e-9 relative of
     /// 256-bit MPFR central differences
-    /// (`verify/tests/engine_properties.rs::derivatives_match_mpfr_finite_differences`).
+    /// (`verify/tests/it/engine_properties.rs::derivatives_match_mpfr_finite_differences`).
     /// **Source**: the B-spline derivative recurrence (de Boor, *A Practical Guide to Splines*,
     /// ch. X); seed 000 eq 31 for the centred basis.
     pub fn eval_derivative(&self, x: &[f64], deriv: &[u32]) -> Result<T, NdimageError> {
@@ -473,7 +473,7 @@ impl<T: Real + Send + Sync> Interpolant<T> {
 ///
 ///
 /// **Accuracy**: within 16 ulps of max|value| of scipy 1.17.1 in every mode, degrees 1–5
-/// (`verify/tests/engine_scipy.rs::map_coordinates_matches_scipy`), exact where scipy pads
+/// (`verify/tests/it/engine_scipy.rs::map_coordinates_matches_scipy`), exact where scipy pads
 /// (see [`Mode`]).
 ///
 /// ```

@@ -40,7 +40,7 @@
 //! every target computes the baseline build's bits (the quick report's
 //! accuracy figures are unchanged). Tested in f64 and f32 against 128-bit
 //! MPFR and against the one-line scalar recursion in
-//! `verify/tests/engine_lanes.rs`. **Source**: the recursions of Unser,
+//! `verify/tests/it/engine_lanes.rs`. **Source**: the recursions of Unser,
 //! Aldroubi and Eden (1993), as in [`LineFilter`](super::line_filter::LineFilter).
 
 use crate::scalar::Real;

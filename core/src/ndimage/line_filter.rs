@@ -18,7 +18,7 @@
 //!   start over one period and divides by `1 − ξ^{period}`). Accuracy on
 //!   lines of 2 to 40 samples, degrees 2–5, every mode, against the exact
 //!   rational coefficients: worst 2.7 `ε · max|D|`, mean 0.9
-//!   (`verify/tests/prefilter_rounding.rs`). `nearest` and `grid-constant` have no finite
+//!   (`verify/tests/it/prefilter_rounding.rs`). `nearest` and `grid-constant` have no finite
 //!   closed form: the line is padded by `P = max K + 2` extended samples on
 //!   each side and filtered as `mirror`; the mirror of the padded line agrees
 //!   with the true extension to distance `2P`, so the neglected influence is
@@ -110,7 +110,7 @@ impl<T: Real> LineFilter<T> {
     ///
     /// **Accuracy**: exact route as [`RecursivePrefilter`] (`O(u/|V(−1)|)` relative); truncated
     /// and convolution routes within their certified bound
-    /// (`verify/tests/engine_properties.rs::truncated_route_stays_within_its_certified_bound`).
+    /// (`verify/tests/it/engine_properties.rs::truncated_route_stays_within_its_certified_bound`).
     /// **Source**: Unser, Aldroubi and Eden (1993) for the recursion, seed 000 eq 10 for the
     /// truncation.
     ///
@@ -225,7 +225,7 @@ impl<T: Real> LineFilter<T> {
     /// **Method**: compares `max(max_abs, |cval|) · growth^axes` with the scalar's largest
     /// value. **Accuracy**: a sufficient bound (never refuses data that cannot overflow by more
     /// than the growth's slack; data just below the limit is exact,
-    /// `verify/tests/engine_properties.rs::data_that_could_overflow_is_refused_and_data_below_the_limit_is_exact`).
+    /// `verify/tests/it/engine_properties.rs::data_that_could_overflow_is_refused_and_data_below_the_limit_is_exact`).
     /// **Source**: the geometric-series bound of each first-order recursion `|c_k| ≤ max|s|/(1
     /// − |z|)` (Unser, Aldroubi and Eden 1993).
     pub fn check_magnitude(&self, max_abs: f64, axes: usize) -> Result<(), NdimageError> {
@@ -301,7 +301,7 @@ impl<T: Real> LineFilter<T> {
     /// **Method**: the line padded by `P = max K + 2` extended samples each side and filtered
     /// under the mirror rule (module documentation). **Accuracy**: the exact spline of the
     /// extended signal to `2^{−2·BITS}` relative
-    /// (`verify/tests/engine_properties.rs::nearest_outside_the_grid_is_the_edge_extended_spline`).
+    /// (`verify/tests/it/engine_properties.rs::nearest_outside_the_grid_is_the_edge_extended_spline`).
     /// **Source**: scipy's padding of `nearest`/`grid-constant` (`ni_interpolation.c`), with
     /// the pad widened to the pole horizon.
     pub fn apply_padded(&self, out: &mut [T], pad: usize, scratch: &mut Vec<T>) {
@@ -379,7 +379,7 @@ impl<T: Real> LineFilter<T> {
     ///
     ///
     /// **Accuracy**: the doc example and
-    /// `verify/tests/engine_scipy.rs::spline_filter_matches_scipy` (strided axes run here).
+    /// `verify/tests/it/engine_scipy.rs::spline_filter_matches_scipy` (strided axes run here).
     /// **Source**: Unser, Aldroubi and Eden (1993), the causal/anti-causal recursion; initial
     /// values as Thévenaz, Blu and Unser (2000).
     ///
@@ -1226,7 +1226,7 @@ pub(crate) fn anticausal<T: Real>(c: &mut [T], z: T) {
 /// from `j = 0` with running powers, every one of the `≈ K` additions rounds
 /// at the full size of the sum: for a line shorter than the horizon,
 /// folded back and forth, that was the largest error of the filter after
-/// the gain's; `verify/tests/prefilter_rounding.rs` pins it.)
+/// the gain's; `verify/tests/it/prefilter_rounding.rs` pins it.)
 fn causal_start<T: Real>(c: &[T], z: &T, horizon: usize, mode: Mode) -> T {
     let n = c.len();
     let mut sum = T::zero();

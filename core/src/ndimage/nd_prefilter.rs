@@ -306,7 +306,7 @@ fn check_axis<D: Dimension>(dim: &D, axis: usize) -> Result<(), NdimageError> {
 ///
 ///
 /// **Accuracy**: the [`LineFilter`] route's per line; scipy 1.17.1's output within 16 ulps
-/// of max|value| (`verify/tests/engine_scipy.rs::spline_filter_matches_scipy`).
+/// of max|value| (`verify/tests/it/engine_scipy.rs::spline_filter_matches_scipy`).
 ///
 /// ```
 /// use splinelab::prelude::*;
@@ -744,7 +744,7 @@ fn filter_strip<T: Real>(
 ///
 /// **Accuracy**: per axis the [`LineFilter`] route's; the truncated route compounds to `((A
 /// + b)^D − A^D) max|s|` (module documentation); scipy agreement in
-/// `verify/tests/engine_scipy.rs::spline_filter_matches_scipy`.
+/// `verify/tests/it/engine_scipy.rs::spline_filter_matches_scipy`.
 pub fn spline_filter<T, S, D>(
     a: &mut ArrayBase<S, D>,
     filter: &LineFilter<T>,
@@ -774,9 +774,9 @@ where
 /// filtered in place. `filter` `None`: the copy only (degrees 0 and 1).
 ///
 /// **Method**, **accuracy** and **source**: those of [`spline_filter`]
-/// (scipy agreement in `verify/tests/engine_scipy.rs::spline_filter_matches_scipy`;
+/// (scipy agreement in `verify/tests/it/engine_scipy.rs::spline_filter_matches_scipy`;
 /// equal to the in-place call in
-/// `verify/tests/engine_properties.rs::filtering_a_copy_equals_filtering_in_place`).
+/// `verify/tests/it/engine_properties.rs::filtering_a_copy_equals_filtering_in_place`).
 ///
 /// ```
 /// use splinelab::prelude::*;
@@ -860,7 +860,7 @@ where
 /// ([`LineFilter::apply_padded`]); non-finite samples by the filter's
 /// [`NanPolicy`] as in [`filter_missing`] (`Propagate`: every coefficient,
 /// `Local`: the folded certified half-width on the padded layout). **Accuracy**: as [`LineFilter::apply_padded`]
-/// (`verify/tests/engine_properties.rs::nearest_outside_the_grid_is_the_edge_extended_spline`).
+/// (`verify/tests/it/engine_properties.rs::nearest_outside_the_grid_is_the_edge_extended_spline`).
 /// **Source**: scipy's `_prepad_for_spline_filter` convention, the pad widened to the pole
 /// horizon.
 pub fn padded_coefficients<T, S, D>(

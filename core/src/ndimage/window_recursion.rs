@@ -37,7 +37,7 @@
 //! with the contraction `|ξ|^V`, so every `y_k` is within a few `u` of
 //! `Σ_j |ξ|^j |x_{k−j}|` per pass, as the sequential recursion's. Tested
 //! against 128-bit MPFR in f64 and f32 within `bound · max|s| + 64 u A`
-//! (`verify/tests/engine_lanes.rs`: every mode, degrees 2 to 7 and 25,
+//! (`verify/tests/it/engine_lanes.rs`: every mode, degrees 2 to 7 and 25,
 //! lengths around the vector, window and task sizes; `engine_properties.rs`),
 //! and the AVX-512 kernels against this module's plain loops bit for bit
 //! (this module's tests, which fail when a lane shift is off by one): every

@@ -120,7 +120,7 @@ impl<T: Real> QiInterpolation<T> {
 ///
 /// **Accuracy**: the fit hits every point to `1e-12` relative in f64 and to
 /// `2^{−236}` in `Mp<256>`, with G1/G2 joins to `tol`
-/// (`verify/tests/qi_interpolation.rs::f64_fits_hit_every_point_to_1e_12_relative_with_g1_g2_joins`,
+/// (`verify/tests/it/qi_interpolation.rs::f64_fits_hit_every_point_to_1e_12_relative_with_g1_g2_joins`,
 /// `mp256_fits_hit_every_point_to_2_pow_minus_236`).
 ///
 /// Cost: per Newton step one dense `7n × 7n` LU (`≈ 230 n³` flops) and

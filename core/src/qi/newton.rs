@@ -99,7 +99,7 @@ fn all_finite<T: Real>(v: impl IntoIterator<Item = T>) -> bool {
 /// is reported in [`NewtonRun::failure`] with the history so far.
 /// **Method**: Newton–Raphson, one LU solve per step. **Accuracy**: quadratic
 /// convergence to a closed-form root (`newton.rs::tests::converges_quadratically_to_closed_form_root`,
-/// `verify/tests/qi_interpolation.rs::mp256_newton_converges_quadratically`).
+/// `verify/tests/it/qi_interpolation.rs::mp256_newton_converges_quadratically`).
 /// **Source**: seed 004 (solver); Golub & Van Loan, §3.4 (LU with pivoting).
 pub fn newton<T: Real, S: NonlinearSystem<T>>(
     sys: &S,

@@ -71,7 +71,7 @@ pub fn two_prod(a: f64, b: f64) -> (f64, f64) {
 /// part of the base ISA), false elsewhere (where `mul_add` would be a slow
 /// correctly rounded software routine). **Method**: `cfg!`/CPUID as above;
 /// no arithmetic. It only chooses the route: both [`FmaProduct`] and
-/// [`DekkerProduct`] give the exact `two_prod` (`verify/tests/scalar.rs::two_prod_is_exact_on_ties`).
+/// [`DekkerProduct`] give the exact `two_prod` (`verify/tests/it/scalar.rs::two_prod_is_exact_on_ties`).
 /// **Source**: Ogita, Rump & Oishi (2005), TwoProduct with and without FMA.
 pub fn fma_available() -> bool {
     #[cfg(target_feature = "fma")]

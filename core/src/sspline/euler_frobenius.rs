@@ -30,7 +30,7 @@ pub fn polynomial<T: Real>(family: &SplineFamily) -> Result<Vec<T>, SsplineError
 /// (−1, 0); anything else is an error, never a silent result.
 ///
 /// Tests: `euler_frobenius.rs::tests::published_poles` and
-/// `verify/tests/prefilter_every_order.rs`. **Source**: seed 000 eq 16; the
+/// `verify/tests/it/prefilter_every_order.rs`. **Source**: seed 000 eq 16; the
 /// poles as in Unser, Aldroubi & Eden (1993).
 ///
 /// ```

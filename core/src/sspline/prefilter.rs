@@ -152,7 +152,7 @@ impl<T: Real> RecursivePrefilter<T> {
     ///
     /// **Accuracy**: each pole correctly rounded to `T` from the MPFR value;
     /// the filter then matches exact rational solutions
-    /// (`verify/tests/sspline_prefilter.rs::recursive_f64_matches_the_exact_solution`).
+    /// (`verify/tests/it/sspline_prefilter.rs::recursive_f64_matches_the_exact_solution`).
     /// **Source**: Unser, Aldroubi & Eden (1993); seed 000 eq 16.
     ///
     /// ```
@@ -286,7 +286,7 @@ impl<T: Real> RecursivePrefilter<T> {
     /// at most `1/(1 − |ξ|)`; measured in the verify study `update_cost`
     /// against a 256-bit build (a few ulps of `max |s|` for cubic and
     /// quintic). Errors: empty or non-finite samples, the `Free` end.
-    /// Tests: `verify/tests/sspline_prefilter.rs::recursive_f64_matches_the_exact_solution`,
+    /// Tests: `verify/tests/it/sspline_prefilter.rs::recursive_f64_matches_the_exact_solution`,
     /// `recursive_mp256_matches_the_exact_solution`. **Source**: Unser, Aldroubi &
     /// Eden (1993); Thévenaz, Blu & Unser (2000), initial values.
     pub fn apply(&self, samples: &[T], end: EndRule) -> Result<Vec<T>, PrefilterError> {
@@ -464,7 +464,7 @@ impl<T: Real> ConvolutionPrefilter<T> {
     /// rounding of a length-`n + 1` dot product, `≤ γ_{2n+1} Σ_j |c_j| |s|`.
     /// Errors: empty or non-finite samples.
     ///
-    /// Test: `verify/tests/sspline_prefilter.rs::convolution_is_within_its_tail_bound`.
+    /// Test: `verify/tests/it/sspline_prefilter.rs::convolution_is_within_its_tail_bound`.
     /// **Source**: seed 000 eq 10 (truncation at half-width `n`) and its tail bound.
     ///
     /// ```

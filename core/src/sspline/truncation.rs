@@ -152,7 +152,7 @@ impl<T: Real> TruncationAnalysis<T> {
     /// **Cost**: one pole computation and `K` coefficients. **Accuracy**:
     /// the neglected tail `k > K` changes each measure by `< 2^{−60}` of it;
     /// the knot measure agrees with direct evaluation to `1e-14` relative
-    /// (`verify/tests/sspline_truncation.rs::knot_error_matches_direct_evaluation`).
+    /// (`verify/tests/it/sspline_truncation.rs::knot_error_matches_direct_evaluation`).
     /// **Source**: seed 000 eqs 10 and 28 (truncation at half-width `n`).
     pub fn new(family: &SplineFamily, max_n: usize) -> Result<Self, SsplineError> {
         if max_n > super::MAX_HALF_WIDTH {
@@ -204,7 +204,7 @@ impl<T: Real> TruncationAnalysis<T> {
     /// `O(p²)`.
     /// **Method**: the tail sums `Σ_{|i|>n} c_i β(j − i)` at the `2p` knots,
     /// in `T`. **Accuracy**: agrees with direct evaluation to `1e-14` relative
-    /// (`verify/tests/sspline_truncation.rs::knot_error_matches_direct_evaluation`).
+    /// (`verify/tests/it/sspline_truncation.rs::knot_error_matches_direct_evaluation`).
     /// **Source**: seed 000 eq 28.
     pub fn knot_error(&self, n: usize) -> T {
         let p = (self.nodes.len() / 2) as i64;
@@ -269,7 +269,7 @@ impl<T: Real> TruncationAnalysis<T> {
     /// the located value is a lower bound within about `10⁻⁹` relative of the
     /// sup (checked against dense sampling in the tests); the value itself
     /// carries the full accuracy of `T`.
-    /// Test: `verify/tests/sspline_truncation.rs::uniform_error_is_the_sup_of_dense_samples`.
+    /// Test: `verify/tests/it/sspline_truncation.rs::uniform_error_is_the_sup_of_dense_samples`.
     /// **Source**: seed 000 eq 28 (the uniform truncation error).
     pub fn uniform_error(&self, n: usize) -> T {
         const GRID: i32 = 16;

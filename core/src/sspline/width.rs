@@ -104,7 +104,7 @@ impl WidthChooser {
     /// Cost: `O(n_max·K·p)` for knot, plus one or two sup evaluations for
     /// uniform (each `≈ 57·(K − n)·m` products), `K ≈ n_max + 64/log2(1/ρ)`.
     /// **Accuracy**: decisions on 128-bit MPFR values of the measures; the
-    /// cubic matches seed 000 eq 18 (`verify/tests/sspline_truncation.rs::coeff_width_of_the_cubic_matches_eq18`).
+    /// cubic matches seed 000 eq 18 (`verify/tests/it/sspline_truncation.rs::coeff_width_of_the_cubic_matches_eq18`).
     /// **Source**: seed 000 eqs 10, 28 and the tail bound.
     pub fn choose(&self, tol: f64, criterion: Criterion) -> Result<WidthChoice, SsplineError> {
         check_tol(tol)?;

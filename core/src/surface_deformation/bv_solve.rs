@@ -240,7 +240,7 @@ impl<T: Real> BvBidiagonal<T> {
     /// `r` is the caller's contract (checked by the public tensor/1D entry
     /// points); a wrong length panics on indexing.
     /// **Accuracy**: a few ulps against exact rational solutions
-    /// (`verify/tests/bv_solvers.rs::marco_martinez_matches_exact_rational_solutions_to_a_few_ulps`).
+    /// (`verify/tests/it/bv_solvers.rs::marco_martinez_matches_exact_rational_solutions_to_a_few_ulps`).
     /// **Source**: Marco & Martínez (2007); seed 001 eqs 2–3.
     ///
     /// ```

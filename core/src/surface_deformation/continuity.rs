@@ -216,7 +216,7 @@ pub struct JoinDefects<T> {
 /// `k/(samples−1)` along every shared edge. **Cost** `O(n_u n_v · samples · n²)`.
 /// **Method**: evaluate both patches and their cross-boundary derivatives at
 /// the samples and take the largest gaps. **Accuracy**: a sampled maximum
-/// (used in `verify/tests/bv_deform.rs::continuity_correction_gives_c0_and_g1_joins`).
+/// (used in `verify/tests/it/bv_deform.rs::continuity_correction_gives_c0_and_g1_joins`).
 /// **Source**: seed 001 §2.3, eqs 5–6.
 pub fn join_defects<T: Real>(
     grid: &PatchGrid<T>,

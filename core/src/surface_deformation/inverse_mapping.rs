@@ -220,7 +220,7 @@ pub fn deform<T: Real>(
 /// [`continuity`](super::continuity)).
 /// **Method**: [`deform`] per patch, seed 001 eq 4. **Accuracy**: every
 /// deformed patch passes through its moved samples
-/// (`verify/tests/bv_deform.rs::deformed_patches_pass_through_the_moved_samples`,
+/// (`verify/tests/it/bv_deform.rs::deformed_patches_pass_through_the_moved_samples`,
 /// which runs this routine through verify's `push_surfaces`).
 pub fn deform_grid<T: Real>(
     surface: &PatchGrid<T>,

@@ -245,7 +245,7 @@ fn run_dim<const D: usize>(
 /// The tolerance the polyline is made for: `tol` less a bound of the f64
 /// evaluation error of the deviation measure, so that the measured
 /// `max_deviation` (and the true one, judged in 256-bit MPFR by
-/// `reports/tests/cli_flatten.rs`) stays within `tol` itself. The bound is
+/// `reports/tests/it/cli_flatten.rs`) stays within `tol` itself. The bound is
 /// an eighth of [`rounding_floor`], `32 u max(n·max|P|, 1)`, above the
 /// `(2n + 8) u max|P|` that de Casteljau's error (Higham, *Accuracy and
 /// Stability*, §5: `γ_{2n}` of the sum of the absolute terms) and the

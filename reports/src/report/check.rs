@@ -284,7 +284,7 @@ pub fn section(_profile: &Profile) -> Result<Section, ReportError> {
          grid-constant it follows scipy's convention (samples padded by 12, the padded array filtered with the \
          reflect or mirror rule, evaluated at x + 12), which differs from the exact spline of the infinitely \
          extended signal. scipy rounds x + 12 in f64: that rounding is the whole of its larger 'scaled' errors \
-         in those two modes (checked in verify/tests/check_interp.rs).",
+         in those two modes (checked in verify/tests/it/check_interp.rs).",
     ) + &table(
         "scipy.ndimage.map_coordinates against the certified reference",
         &[

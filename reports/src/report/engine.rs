@@ -363,7 +363,7 @@ fn mpfr_part() -> Result<Part, ReportError> {
          recursive filter run line by line along each axis: the engine in f64, in f32 (samples rounded to f32, f32 ulps), and scipy 1.17.1's \
          committed f64 output, all in ulps of the largest reference value. scipy's reflect outputs start short \
          lines from a truncated sum (left out of its worst). The contract, every mode and degree 2–5 in f64 and \
-         f32 within 64 u D A^D max(|s|, |cval|) of the reference, is verify/tests/nd_prefilter_mpfr.rs.",
+         f32 within 64 u D A^D max(|s|, |cval|) of the reference, is verify/tests/it/nd_prefilter_mpfr.rs.",
             title: "N-D prefilter against 256-bit MPFR: ours and scipy's",
             headers: &[
                 "mode",

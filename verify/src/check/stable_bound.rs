@@ -74,7 +74,7 @@ use splinelab::sspline::node_values::node_values_exact;
 /// `K`: an element passes when its error is at most `K` times its stable
 /// bound. The bounds are worst-case (every rounding error aligned), so a
 /// correct implementation sits well below 1 (scipy's filters: excess ≤ 0.4
-/// on the committed fixtures, `verify/tests/check_stable_bound.rs`); 8
+/// on the committed fixtures, `verify/tests/it/check_stable_bound.rs`); 8
 /// leaves room for an algorithm with somewhat larger constants (a recursive
 /// filter instead of an LU) while an error of 10× what the conditioning
 /// explains is a defect.
@@ -209,7 +209,7 @@ fn two_sided_geometric(x: &[f64], r: f64) -> Vec<f64> {
 /// (`X_a` the coefficients after axis `a`, `c` = [`solve_constant`]). `mode`
 /// is mapped to scipy's filter rule. Cost `O(N q²)`. Held by a banded LU
 /// in f64 and f32 within 1 × the bound, and at most about 10³ times its
-/// error (`verify/tests/check_stable_bound.rs`).
+/// error (`verify/tests/it/check_stable_bound.rs`).
 ///
 /// ```
 /// use splinelab_verify::check::prefilter::family_of_degree;

@@ -17,7 +17,7 @@
 //! degrees 1 to 5, `weights.rs`, in `f64`), and the sums are added in the
 //! order of [`Interpolant::tensor_sum`], so in `f64` the results are those
 //! of the general path and of [`Interpolant::eval`] bit for bit
-//! (`verify/tests/engine_batch.rs::batch_equals_single_point_evaluation`).
+//! (`verify/tests/it/engine_batch.rs::batch_equals_single_point_evaluation`).
 //! In `f32` the weights are rounded once from `f64`, as there.
 
 use super::batch::{BATCH, PointSource, prefetch};
