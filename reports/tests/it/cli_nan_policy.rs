@@ -79,6 +79,16 @@ fn samples() -> (ArrayD<f64>, f64) {
     (a, m)
 }
 
+/// A fresh folder holding `a.npy` = [`samples`]: (folder, samples, max
+/// finite |s|, the file).
+fn setup(tag: &str) -> (PathBuf, ArrayD<f64>, f64, PathBuf) {
+    let dir = tmpdir(tag);
+    let (a, m) = samples();
+    let input = dir.join("a.npy");
+    write(&input, &a);
+    (dir, a, m, input)
+}
+
 /// The sample a scipy mode repeats at index `t` of an axis of `len`
 /// (`None`: grid-constant's constant, never missing).
 fn fold(t: i64, len: usize, mode: &str) -> Option<usize> {
@@ -188,10 +198,7 @@ fn assert_pattern(got: &[bool], want: &[bool], what: &str) {
 /// every axis and each axis alone.
 #[test]
 fn prefilter_nan_pattern_is_the_reference_dilation() {
-    let dir = tmpdir("pf");
-    let (a, _) = samples();
-    let input = dir.join("a.npy");
-    write(&input, &a);
+    let (dir, a, _, input) = setup("pf");
     let out = dir.join("c.npy");
     let missing = missing_at(&a);
     for mode in MODES {
@@ -242,6 +249,55 @@ fn prefilter_nan_pattern_is_the_reference_dilation() {
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
+/// Runs `cmd` (the subcommand and its own options) on `input` at
+/// (degree, mode, policy), tol [`TOL`], and reads what it wrote to `out`.
+fn run_eval(
+    cmd: &[&str],
+    input: &Path,
+    out: &Path,
+    (degree, mode, policy): (u32, &str, &str),
+) -> ArrayD<f64> {
+    let (d, tol) = (degree.to_string(), TOL.to_string());
+    let mut args = cmd.to_vec();
+    args.extend([
+        "--input",
+        input.to_str().unwrap(),
+        "--degree",
+        &d,
+        "--mode",
+        mode,
+    ]);
+    args.extend([
+        "--nan-policy",
+        policy,
+        "--tol",
+        &tol,
+        "--output",
+        out.to_str().unwrap(),
+    ]);
+    ok(&args);
+    read(out)
+}
+
+/// The pattern of an evaluation `got` at `points` of samples `a` against
+/// [`eval_reference`]: the prefilter's half-width under `local`, every
+/// line under `propagate`, none without a prefilter (degrees 0, 1).
+fn check_eval(
+    got: &ArrayD<f64>,
+    a: &ArrayD<f64>,
+    points: &[Vec<f64>],
+    (degree, mode, policy): (u32, &str, &str),
+) {
+    let n = match (policy, degree) {
+        (_, 0 | 1) => Some(0),
+        ("local", _) => Some(half_width(degree, TOL)),
+        _ => None,
+    };
+    let want = eval_reference(a, points, degree, n, mode);
+    let got = pattern(got.as_slice().unwrap(), degree);
+    assert_pattern(&got, &want, &format!("{policy} {mode} d{degree}"));
+}
+
 /// Points every 3/8 sample across the grid (integers, halves and others).
 fn grid_points() -> Vec<Vec<f64>> {
     let axis = |len: usize| -> Vec<f64> {
@@ -261,10 +317,7 @@ fn grid_points() -> Vec<Vec<f64>> {
 /// exact spline of two fillings of the missing samples.
 #[test]
 fn interpolate_nan_pattern_and_local_values() {
-    let dir = tmpdir("interp");
-    let (a, m) = samples();
-    let input = dir.join("a.npy");
-    write(&input, &a);
+    let (dir, a, m, input) = setup("interp");
     let points = grid_points();
     let flat: Vec<f64> = points.iter().flatten().copied().collect();
     let at = dir.join("p.npy");
@@ -276,32 +329,9 @@ fn interpolate_nan_pattern_and_local_values() {
     for mode in MODES {
         for degree in 0..=5u32 {
             for policy in ["propagate", "local"] {
-                let (d, tol) = (degree.to_string(), TOL.to_string());
-                ok(&[
-                    "interpolate",
-                    "--input",
-                    input.to_str().unwrap(),
-                    "--at",
-                    at.to_str().unwrap(),
-                    "--degree",
-                    &d,
-                    "--mode",
-                    mode,
-                    "--nan-policy",
-                    policy,
-                    "--tol",
-                    &tol,
-                    "--output",
-                    out.to_str().unwrap(),
-                ]);
-                let n = match (policy, degree) {
-                    (_, 0 | 1) => Some(0),
-                    ("local", _) => Some(half_width(degree, TOL)),
-                    _ => None,
-                };
-                let want = eval_reference(&a, &points, degree, n, mode);
-                let got = pattern(read(&out).as_slice().unwrap(), degree);
-                assert_pattern(&got, &want, &format!("{policy} {mode} d{degree}"));
+                let cmd = ["interpolate", "--at", at.to_str().unwrap()];
+                let got = run_eval(&cmd, &input, &out, (degree, mode, policy));
+                check_eval(&got, &a, &points, (degree, mode, policy));
             }
         }
     }
@@ -378,10 +408,7 @@ fn interpolate_nan_pattern_and_local_values() {
 /// coordinates, made here), in every mode at degrees 1–4.
 #[test]
 fn resample_nan_pattern_is_the_reference() {
-    let dir = tmpdir("resample");
-    let (a, _) = samples();
-    let input = dir.join("a.npy");
-    write(&input, &a);
+    let (dir, a, _, input) = setup("resample");
     let out = dir.join("z.npy");
     let zoom = 1.6f64;
     let axes: Vec<Vec<f64>> = SHAPE
@@ -400,34 +427,14 @@ fn resample_nan_pattern_is_the_reference() {
     for mode in MODES {
         for degree in 1..=4u32 {
             for policy in ["propagate", "local"] {
-                let d = degree.to_string();
-                ok(&[
-                    "resample",
-                    "--input",
-                    input.to_str().unwrap(),
-                    "--zoom",
-                    "1.6",
-                    "--degree",
-                    &d,
-                    "--mode",
-                    mode,
-                    "--nan-policy",
-                    policy,
-                    "--tol",
-                    "1e-4",
-                    "--output",
-                    out.to_str().unwrap(),
-                ]);
-                let z = read(&out);
+                let z = run_eval(
+                    &["resample", "--zoom", "1.6"],
+                    &input,
+                    &out,
+                    (degree, mode, policy),
+                );
                 assert_eq!(z.shape(), [axes[0].len(), axes[1].len()]);
-                let n = match (policy, degree) {
-                    (_, 1) => Some(0),
-                    ("local", _) => Some(half_width(degree, TOL)),
-                    _ => None,
-                };
-                let want = eval_reference(&a, &points, degree, n, mode);
-                let got = pattern(z.as_slice().unwrap(), degree);
-                assert_pattern(&got, &want, &format!("resample {policy} {mode} d{degree}"));
+                check_eval(&z, &a, &points, (degree, mode, policy));
             }
         }
     }
@@ -485,10 +492,7 @@ fn f32_mpfr_and_the_default_policy_give_the_same_pattern() {
 /// summary says which tolerance certified the reach.
 #[test]
 fn local_without_tol_is_local_at_1e_12() {
-    let dir = tmpdir("deftol");
-    let (a, _) = samples();
-    let input = dir.join("a.npy");
-    write(&input, &a);
+    let (dir, _, _, input) = setup("deftol");
     let (o1, o2) = (dir.join("1.npy"), dir.join("2.npy"));
     let run_to = |out: &Path, tol: &[&str]| {
         let mut args = vec!["resample", "--input", input.to_str().unwrap()];
@@ -515,10 +519,7 @@ fn local_without_tol_is_local_at_1e_12() {
 /// exit with status 2 and write nothing; `raise` on finite samples runs.
 #[test]
 fn unknown_policy_and_raise_are_refused_clearly() {
-    let dir = tmpdir("bad");
-    let (a, _) = samples();
-    let input = dir.join("a.npy");
-    write(&input, &a);
+    let (dir, a, _, input) = setup("bad");
     let finite = dir.join("finite.npy");
     write(&finite, &a.mapv(|x| if x.is_finite() { x } else { 0.0 }));
     let out = dir.join("o.npy");
