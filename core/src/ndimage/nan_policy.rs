@@ -251,53 +251,6 @@ pub(crate) fn dilate(
     cur
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// The dilation against its definition, position by position: `dst[p]`
-    /// is set iff some missing `j = fold(p − pad + k)`, `|k| ≤ n`.
-    #[test]
-    fn dilation_is_the_folded_window_definition() {
-        for mode in Mode::ALL {
-            for len in [1usize, 2, 5, 9] {
-                for pad in [0usize, 3] {
-                    for n in [0usize, 1, 4, 11] {
-                        for at in 0..len {
-                            let mut m = ArrayD::from_elem(IxDyn(&[len]), false);
-                            m[[at]] = true;
-                            let got = dilate(&m, &[0], n, mode, false, pad);
-                            for p in 0..len + 2 * pad {
-                                let q = p as i64 - pad as i64;
-                                let want = (-(n as i64)..=n as i64)
-                                    .any(|k| mode.fold(q + k, len) == Some(at));
-                                assert_eq!(
-                                    got[[p]],
-                                    want,
-                                    "{mode} len {len} pad {pad} n {n} at {at} p {p}"
-                                );
-                            }
-                        }
-                    }
-                }
-            }
-        }
-    }
-
-    /// Names and parsing, and the error that lists the three choices.
-    #[test]
-    fn names_parse_and_unknown_lists_the_choices() {
-        for p in NanPolicy::all() {
-            assert_eq!(p.name().parse::<NanPolicy>(), Ok(p));
-        }
-        assert_eq!(NanPolicy::default(), NanPolicy::Propagate);
-        assert_eq!(
-            "omit".parse::<NanPolicy>().unwrap_err(),
-            "unknown nan_policy 'omit' (expected one of propagate, raise, local)"
-        );
-    }
-}
-
 /// The error naming the first non-finite element of `a` in logical order
 /// (`Ok` if there is none). Serial: runs only on failure.
 pub(crate) fn first_non_finite<T: Real, S: Data<Elem = T>, D: Dimension>(
@@ -355,4 +308,51 @@ where
     };
     write_nan(out, &nan);
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The dilation against its definition, position by position: `dst[p]`
+    /// is set iff some missing `j = fold(p − pad + k)`, `|k| ≤ n`.
+    #[test]
+    fn dilation_is_the_folded_window_definition() {
+        for mode in Mode::ALL {
+            for len in [1usize, 2, 5, 9] {
+                for pad in [0usize, 3] {
+                    for n in [0usize, 1, 4, 11] {
+                        for at in 0..len {
+                            let mut m = ArrayD::from_elem(IxDyn(&[len]), false);
+                            m[[at]] = true;
+                            let got = dilate(&m, &[0], n, mode, false, pad);
+                            for p in 0..len + 2 * pad {
+                                let q = p as i64 - pad as i64;
+                                let want = (-(n as i64)..=n as i64)
+                                    .any(|k| mode.fold(q + k, len) == Some(at));
+                                assert_eq!(
+                                    got[[p]],
+                                    want,
+                                    "{mode} len {len} pad {pad} n {n} at {at} p {p}"
+                                );
+                            }
+                        }
+                    }
+                }
+            }
+        }
+    }
+
+    /// Names and parsing, and the error that lists the three choices.
+    #[test]
+    fn names_parse_and_unknown_lists_the_choices() {
+        for p in NanPolicy::all() {
+            assert_eq!(p.name().parse::<NanPolicy>(), Ok(p));
+        }
+        assert_eq!(NanPolicy::default(), NanPolicy::Propagate);
+        assert_eq!(
+            "omit".parse::<NanPolicy>().unwrap_err(),
+            "unknown nan_policy 'omit' (expected one of propagate, raise, local)"
+        );
+    }
 }
