@@ -14,11 +14,11 @@ prefilter=False (1024^2 cubic and quintic, 128^3 cubic). One line per case:
 base and our times in ms, their ratio, and whether the outputs are identical.
 """
 
-import argparse
-import sys
 import time
 
 import numpy as np
+
+from ab_builds import parse_ab
 
 
 def cases():
@@ -48,14 +48,7 @@ def cpu_time(fn):
 
 
 def main():
-    p = argparse.ArgumentParser()
-    p.add_argument("--base", required=True, help="folder holding the other build as splinelab_base")
-    p.add_argument("--rounds", type=int, default=7)
-    p.add_argument("cases", nargs="*")
-    args = p.parse_args()
-    sys.path.insert(0, args.base)
-    import splinelab
-    import splinelab_base
+    args, splinelab, splinelab_base = parse_ab()
 
     table = cases()
     for name in args.cases or list(table):

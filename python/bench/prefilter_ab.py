@@ -12,11 +12,11 @@ Cases: 1e6 and 1e7 samples, degrees 3 and 5, float64 (tol=1e-12) and
 float32 (tol=1e-6), and the exact filter of 1e6 and 1e7 cubic for scale.
 """
 
-import argparse
-import sys
 import time
 
 import numpy as np
+
+from ab_builds import parse_ab
 
 
 def cases():
@@ -45,14 +45,7 @@ def timed(fn, clock, reps=3):
 
 
 def main():
-    p = argparse.ArgumentParser()
-    p.add_argument("--base", required=True, help="folder holding the other build as splinelab_base")
-    p.add_argument("--rounds", type=int, default=7)
-    p.add_argument("cases", nargs="*")
-    args = p.parse_args()
-    sys.path.insert(0, args.base)
-    import splinelab
-    import splinelab_base
+    args, splinelab, splinelab_base = parse_ab()
 
     table = cases()
     for name in args.cases or table:

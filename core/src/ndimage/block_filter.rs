@@ -36,8 +36,9 @@
 
 use super::NdimageError;
 use super::line_filter::{LineFilter, Route};
+use super::missing::fill_filter_mark;
 use super::mode::Mode;
-use super::nan_policy::{NanPolicy, fill_filter_mark};
+use super::nan_policy::NanPolicy;
 use super::stash::Stash;
 use super::window_recursion::{Ahead, WindowRecursion, lanes};
 use crate::scalar::Real;

@@ -23,6 +23,8 @@
 //!   with derivatives, one point or many (`interpolant::batch`);
 //! - [`nan_policy`]: what non-finite samples (missing data) do —
 //!   scipy's propagation, refusal, or a certified local reach;
+//! - [`missing`]: the prefilter's path where samples are missing (fill,
+//!   filter, mark) and `local`'s bound;
 //! - [`error`]: [`NdimageError`], why a request was refused.
 //!
 //! ```
@@ -44,6 +46,7 @@ pub mod error;
 pub mod interpolant;
 mod lanes;
 pub mod line_filter;
+pub mod missing;
 pub mod mode;
 pub mod nan_policy;
 pub mod nd_prefilter;

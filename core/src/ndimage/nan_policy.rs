@@ -13,8 +13,8 @@
 //!   NaN, as in scipy's C). Finite samples give the finite route's values.
 //! - [`NanPolicy::Raise`]: refused, naming the first non-finite sample
 //!   (flat index in logical order, and its value).
-//! - [`NanPolicy::Local`] (needs a tolerance: [`Route::Truncated`] or
-//!   [`Route::Convolution`]): the missing samples are filled with 0, the
+//! - [`NanPolicy::Local`] (needs a tolerance: [`Route::Truncated`](super::line_filter::Route::Truncated) or
+//!   [`Route::Convolution`](super::line_filter::Route::Convolution)): the missing samples are filled with 0, the
 //!   coefficients computed by the filter's route, and a coefficient is
 //!   set to NaN when a missing sample lies within the certified half-width
 //!   `n` of it along every filtered axis (after the mode's folding:
@@ -24,19 +24,21 @@
 //!   coefficients `D*` of the samples with the missing ones filled by any
 //!   values `v` with `|v| ≤ M = max|finite sample|` by at most
 //!   `((A + b)^k − (A − b)^k) · M` over `k` filtered axes
-//!   ([`local_bound`]; `A = 1/|V(−1)|` the filter's amplification `Σ|c_j|`,
-//!   `b = Σ_{|j|>n}|c_j|` the certified tail, [`LineFilter::bound`]): the
+//!   ([`local_bound`](super::missing::local_bound); `A = 1/|V(−1)|` the filter's amplification `Σ|c_j|`,
+//!   `b = Σ_{|j|>n}|c_j|` the certified tail, [`LineFilter::bound`](super::line_filter::LineFilter::bound)): the
 //!   fill enters `D` only through the taps beyond `n` on some axis (at most
 //!   `A^k − (A − b)^k` of it), and the route's own truncation adds at most
 //!   `(A + b)^k − A^k`. Interpolation weights are non-negative and sum to
 //!   one, so outputs obey the same bound.
 //!
-//! The policy is carried by the [`LineFilter`] ([`LineFilter::with_nan_policy`])
+//! The policy is carried by the [`LineFilter`](super::line_filter::LineFilter)
+//! ([`LineFilter::with_nan_policy`](super::line_filter::LineFilter::with_nan_policy))
 //! for the prefilters and by [`Options::nan_policy`](super::interpolant::Options)
 //! for the interpolant. The check costs nothing where every sample is
 //! finite: finiteness is part of the one scan of the samples every route
 //! already makes (for the overflow bound); the masks, the refill and the
-//! second filtering run only where a non-finite sample was found.
+//! second filtering run only where a non-finite sample was found
+//! ([`super::missing`]).
 //!
 //! Coordinates are not samples: a non-finite coordinate is refused under
 //! every policy ([`NdimageError::NonFiniteCoordinate`]); scipy's own output
@@ -44,9 +46,6 @@
 //! which the Python drop-in reproduces.
 
 use super::NdimageError;
-use super::line_filter::LineFilter;
-#[cfg(doc)]
-use super::line_filter::Route;
 use super::mode::Mode;
 use crate::scalar::Real;
 use crate::sspline::SplineFamily;
@@ -75,7 +74,7 @@ crate::named_enum!(NanPolicy, "nan_policy");
 /// [`NanPolicy::Local`] for a spline of `degree` and the prefilter's
 /// tolerance `tol`: `r = n + ⌊d/2⌋ + 1`, with `n` the half-width certified
 /// for `tol` (`Σ_{|j|>n}|c_j| < tol`, [`certified_width`], the
-/// [`LineFilter::half_width`] of the same tolerance; `n = 0` for degrees 0
+/// [`LineFilter::half_width`](super::line_filter::LineFilter::half_width) of the same tolerance; `n = 0` for degrees 0
 /// and 1, which have no prefilter) and `⌊d/2⌋ + 1` the spline's own
 /// window: an output at `x` reads the `d + 1` coefficients `i` with
 /// `|x − i| ≤ (d + 1)/2`.
@@ -85,8 +84,8 @@ crate::named_enum!(NanPolicy, "nan_policy");
 /// at `x` can be NaN only where `|x_a − j_a| ≤ r` on every axis `a` for
 /// some missing `j` (folded): the radius a chunked computation's overlap
 /// must cover. **Cost**: one width search, `O(n)` MPFR terms (the
-/// [`LineFilter`] of the same tolerance makes it too). **Bound** outside
-/// the reach: [`local_bound`]. **Source**: the tail bound of seed 000
+/// [`LineFilter`](super::line_filter::LineFilter) of the same tolerance makes it too). **Bound** outside
+/// the reach: [`local_bound`](super::missing::local_bound). **Source**: the tail bound of seed 000
 /// (`Σ_{|i|>n}|c_i| ≤ 2 Σ_r |κ_r||ξ_r|^{n+1}/(1 − |ξ_r|)`), the B-spline's
 /// support `(d + 1)` (seed 000 eq 31).
 ///
@@ -108,40 +107,6 @@ pub fn nan_reach(degree: u32, tol: f64) -> Result<usize, NdimageError> {
     }
     let (n, _) = certified_width(&SplineFamily::order(degree + 1)?, tol)?;
     Ok(n + window)
-}
-
-/// The bound of [`NanPolicy::Local`] per unit of `max|finite sample|`
-/// outside the reach, over `axes` filtered axes: `(A + b)^k − (A − b)^k`
-/// with `A` the amplification and `b` the certified tail of `filter`
-/// (module documentation); `0` for the exact route, where nothing is
-/// certified.
-///
-/// ```
-/// use splinelab::prelude::*;
-/// use splinelab::ndimage::nan_policy::local_bound;
-/// let f = LineFilter::<f64>::new(&SplineFamily::Order(4), Mode::Mirror, 0.0, Route::Truncated { tol: 1e-12 }).unwrap();
-/// let (b, a) = (f.bound(), f.recursive().amplification());
-/// assert!((local_bound(&f, 1) - 2.0 * b).abs() <= 1e-30);
-/// assert!(local_bound(&f, 2) <= 4.0 * a * b * (1.0 + 1e-12) && local_bound(&f, 2) > 0.0);
-/// ```
-pub fn local_bound<T: Real>(filter: &LineFilter<T>, axes: usize) -> f64 {
-    let b = filter.bound();
-    if b == 0.0 || axes == 0 {
-        return 0.0;
-    }
-    let a = filter.recursive().amplification().to_f64();
-    // (A + b)^k − (A − b)^k = 2 Σ_{odd j} C(k, j) A^{k−j} b^j, summed without
-    // cancellation.
-    let k = axes as i32;
-    let mut sum = 0.0;
-    let mut binom = 1.0;
-    for j in 1..=k {
-        binom = binom * f64::from(k - j + 1) / f64::from(j);
-        if j % 2 == 1 {
-            sum += 2.0 * binom * a.powi(k - j) * b.powi(j);
-        }
-    }
-    sum
 }
 
 /// Where `a` is not finite, in logical order (a copy of its shape).
@@ -264,50 +229,6 @@ pub(crate) fn first_non_finite<T: Real, S: Data<Elem = T>, D: Dimension>(
         Some((index, value)) => Err(NdimageError::NonFinite { index, value }),
         None => Ok(()),
     }
-}
-
-/// Whether the constant `grid-constant` extends with is missing.
-pub(crate) fn cval_missing<T: Real>(filter: &LineFilter<T>) -> bool {
-    filter.mode() == Mode::GridConstant && !filter.cval().is_finite()
-}
-
-/// The slow path of a prefilter whose samples `src` hold a non-finite one,
-/// by the filter's policy: refused ([`NanPolicy::Raise`]); or the missing
-/// samples filled with 0 into `out`, filtered along `axes` by `run` (the
-/// caller's route: the N-D prefilter's axes, or one long line), and NaN
-/// written where the policy's pattern says ([`spread`] for scipy's,
-/// [`dilate`] by the certified half-width for [`NanPolicy::Local`]).
-/// Kept here, not in a route, so that every route reaches it without the
-/// routes naming each other.
-pub(crate) fn fill_filter_mark<T, S1, S2, D>(
-    src: &ArrayBase<S1, D>,
-    out: &mut ArrayBase<S2, D>,
-    axes: &[usize],
-    filter: &LineFilter<T>,
-    run: impl FnOnce(&mut ArrayBase<S2, D>) -> Result<(), NdimageError>,
-) -> Result<(), NdimageError>
-where
-    T: Real + Send + Sync,
-    S1: Data<Elem = T>,
-    S2: DataMut<Elem = T>,
-    D: Dimension,
-{
-    let policy = filter.nan_policy();
-    if policy == NanPolicy::Raise {
-        return first_non_finite(src);
-    }
-    filter.check_magnitude(max_finite(src), axes.len())?;
-    let mask = missing(src);
-    fill_missing(src, out);
-    run(out)?;
-    let nan = match (policy, filter.half_width()) {
-        (NanPolicy::Local, Some(n)) => {
-            dilate(&mask, axes, n, filter.mode(), cval_missing(filter), 0)
-        }
-        _ => spread(&mask, axes),
-    };
-    write_nan(out, &nan);
-    Ok(())
 }
 
 #[cfg(test)]

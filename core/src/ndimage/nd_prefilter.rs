@@ -58,10 +58,10 @@ use super::NdimageError;
 use super::block_filter::BlockPrefilter;
 use super::lanes;
 use super::line_filter::{LineFilter, RowCheck};
+use super::missing::{cval_missing, fill_filter_mark};
 use super::mode::Mode;
 use super::nan_policy::{
-    NanPolicy, cval_missing, dilate, fill_filter_mark, fill_missing, first_non_finite, max_finite,
-    missing, write_nan,
+    NanPolicy, dilate, fill_missing, first_non_finite, max_finite, missing, write_nan,
 };
 use super::stash::Stash;
 use crate::scalar::Real;
@@ -124,7 +124,7 @@ fn scan_samples<T: Real + Send + Sync, S: Data<Elem = T>, D: Dimension>(
 ///
 /// **Accuracy**: outside the NaN pattern the finite route's values for the
 /// filled samples; under `Local` within
-/// [`local_bound`](super::nan_policy::local_bound)` · max|finite s|` of the exact
+/// [`local_bound`](super::missing::local_bound)` · max|finite s|` of the exact
 /// coefficients of any filling in `[−max|s|, max|s|]`.
 ///
 /// ```

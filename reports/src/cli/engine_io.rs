@@ -9,7 +9,6 @@
 //! from the working type into the output: the input's dtype for `.npy`,
 //! decimal strings (the digits `BITS` carries) for `.json`.
 
-use super::nan_io::{LOCAL_TOL, nan_policy_parser};
 use super::prec::{Prec, parse_prec};
 use crate::array_io::read_samples_as;
 pub use crate::array_io::{check_input_file, read_samples, unravel};
@@ -20,6 +19,7 @@ use crate::input::input_error;
 use crate::output::write_atomic;
 use crate::path_text::path_text;
 use clap::Args;
+use clap::builder::{PossibleValuesParser, TypedValueParser};
 use ndarray::ArrayD;
 use serde_json::json;
 use splinelab::prelude::{
@@ -28,6 +28,20 @@ use splinelab::prelude::{
 use splinelab::scalar::Real;
 use splinelab_verify::check::UserFormat;
 use std::path::{Path, PathBuf};
+
+/// The tolerance of `--nan-policy local` without `--tol`: the Python
+/// package's default under `nan_policy="local"` (`LOCAL_TOL` in
+/// python/splinelab/_validate.py), so that the same call gives the same
+/// NaN pattern and values from both. The exact prefilter has no finite
+/// reach (`NdimageError::LocalNeedsTol`), so `local` always runs truncated.
+pub const LOCAL_TOL: f64 = 1e-12;
+
+/// The `--nan-policy` parser: the engine's names ([`NanPolicy::all`]),
+/// which clap lists in the help and in its refusal of any other word.
+pub fn nan_policy_parser() -> impl TypedValueParser<Value = NanPolicy> {
+    PossibleValuesParser::new(NanPolicy::all().map(NanPolicy::name))
+        .try_map(|s| s.parse::<NanPolicy>())
+}
 
 /// Default `--max-error` in f64 and MPFR.
 pub const MAX_ERROR_F64: f64 = 1e-8;
@@ -164,7 +178,7 @@ pub fn plan(args: &EngineArgs, min_degree: u32) -> Result<Plan, CliError> {
             SplineFamily::order(d + 1).map_err(|e| CliError::invalid("--degree", e.to_string()))?
         }
     };
-    // `local` without --tol: the Python package's default (nan_io::LOCAL_TOL).
+    // `local` without --tol: the Python package's default (LOCAL_TOL).
     let tol = match (args.tol, args.nan_policy) {
         (None, NanPolicy::Local) => Some(LOCAL_TOL),
         (tol, _) => tol,

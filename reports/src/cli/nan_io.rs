@@ -4,27 +4,12 @@
 //! non-finite samples did (how many outputs are NaN, how far a missing
 //! sample reaches), on stdout and in the `.json` output.
 
-use super::engine_io::{EngineArgs, Plan, engine_error};
+use super::engine_io::{EngineArgs, LOCAL_TOL, Plan, engine_error};
 use crate::error::CliError;
 use crate::outln;
-use clap::builder::{PossibleValuesParser, TypedValueParser};
 use serde_json::{Value, json};
-use splinelab::ndimage::nan_policy::local_bound;
+use splinelab::ndimage::missing::local_bound;
 use splinelab::prelude::{LineFilter, NanPolicy, Real, Route, nan_reach};
-
-/// The tolerance of `--nan-policy local` without `--tol`: the Python
-/// package's default under `nan_policy="local"` (`LOCAL_TOL` in
-/// python/splinelab/_validate.py), so that the same call gives the same
-/// NaN pattern and values from both. The exact prefilter has no finite
-/// reach (`NdimageError::LocalNeedsTol`), so `local` always runs truncated.
-pub const LOCAL_TOL: f64 = 1e-12;
-
-/// The `--nan-policy` parser: the engine's names ([`NanPolicy::all`]),
-/// which clap lists in the help and in its refusal of any other word.
-pub fn nan_policy_parser() -> impl TypedValueParser<Value = NanPolicy> {
-    PossibleValuesParser::new(NanPolicy::all().map(NanPolicy::name))
-        .try_map(|s| s.parse::<NanPolicy>())
-}
 
 /// How far one missing sample reaches into the results.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

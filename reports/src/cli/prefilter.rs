@@ -16,7 +16,7 @@ use crate::path_text::path_text;
 use crate::with_real;
 use clap::Args;
 use serde_json::json;
-use splinelab::ndimage::nan_policy::local_bound;
+use splinelab::ndimage::missing::local_bound;
 use splinelab::prelude::{LineFilter, NanPolicy, Real, spline_filter, spline_filter1d};
 
 /// Arguments of `splinelab prefilter`.

@@ -5,15 +5,15 @@
 //! closed form `c_i = √3 (√3 − 2)^i` for emitted tables, and the system C
 //! compiler and rustc reading the emitted source back.
 
+use crate::common::{self, splinelab as run, stdout_ok as ok};
 use ndarray::ArrayD;
 use ndarray_npy::{ReadNpyExt, WriteNpyExt};
 use rug::ops::Pow;
 use rug::{Float, Rational};
 use splinelab_verify::metrics::ulps_of_max;
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::process::Command;
 
-const BIN: &str = env!("CARGO_BIN_EXE_splinelab");
 const MODES: [&str; 5] = ["mirror", "reflect", "grid-wrap", "nearest", "grid-constant"];
 /// scipy's `cval` in the fixtures.
 const CVAL: &str = "0.7";
@@ -40,24 +40,7 @@ fn read_f64(path: &Path) -> ArrayD<f64> {
 }
 
 fn tmpdir(tag: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("sl_cli_engine_{tag}_{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
-
-fn run(args: &[&str]) -> Output {
-    Command::new(BIN).args(args).output().unwrap()
-}
-
-fn ok(args: &[&str]) -> String {
-    let o = run(args);
-    assert!(
-        o.status.success(),
-        "{args:?}: {}",
-        String::from_utf8_lossy(&o.stderr)
-    );
-    String::from_utf8(o.stdout).unwrap()
+    common::tmpdir("cli_engine", tag)
 }
 
 /// Runs `cmd --input X <degree flag> --mode M --cval CVAL <rest…> --output

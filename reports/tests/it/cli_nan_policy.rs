@@ -18,13 +18,12 @@
 //! leaving no file; `local` without `--tol` runs at 1e-12 (the Python
 //! package's default) and says so.
 
+use crate::common::{self, splinelab as run, stdout_ok as ok};
 use ndarray::{ArrayD, Dimension, IxDyn};
 use ndarray_npy::{ReadNpyExt, WriteNpyExt};
 use splinelab::prelude::nan_reach;
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
 
-const BIN: &str = env!("CARGO_BIN_EXE_splinelab");
 const MODES: [&str; 5] = ["mirror", "reflect", "grid-wrap", "nearest", "grid-constant"];
 /// The tests' tolerance: the cubic's reach is 10 samples, leaving finite
 /// outputs on a 30 × 33 grid.
@@ -38,24 +37,7 @@ const MISSING: [([usize; 2], f64); 3] = [
 ];
 
 fn tmpdir(tag: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("sl_cli_nan_{tag}_{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
-
-fn run(args: &[&str]) -> Output {
-    Command::new(BIN).args(args).output().unwrap()
-}
-
-fn ok(args: &[&str]) -> String {
-    let o = run(args);
-    assert!(
-        o.status.success(),
-        "{args:?}: {}",
-        String::from_utf8_lossy(&o.stderr)
-    );
-    String::from_utf8(o.stdout).unwrap()
+    common::tmpdir("cli_nan", tag)
 }
 
 fn read(path: &Path) -> ArrayD<f64> {

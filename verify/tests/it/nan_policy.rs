@@ -12,7 +12,7 @@
 
 use proptest::prelude::*;
 use splinelab::ndarray::{ArrayD, IxDyn};
-use splinelab::ndimage::nan_policy::local_bound;
+use splinelab::ndimage::missing::local_bound;
 use splinelab::prelude::*;
 
 /// The `d + 1` coefficient indices the window at `x` reads (scipy's):

@@ -18,7 +18,7 @@ use crate::html::num;
 use crate::report::{Figure, ReportError};
 use ndarray::ArrayD;
 use serde_json::json;
-use splinelab::ndimage::nan_policy::local_bound;
+use splinelab::ndimage::missing::local_bound;
 use splinelab::prelude::*;
 use std::path::PathBuf;
 

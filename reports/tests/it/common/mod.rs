@@ -1,6 +1,7 @@
 //! Helpers shared by the command-line tests: run the built `splinelab`.
 
 use serde_json::Value;
+use std::path::PathBuf;
 use std::process::{Command, Output};
 
 /// Runs the `splinelab` binary of this build with `args`.
@@ -20,4 +21,24 @@ pub fn json_ok(args: &[&str]) -> Value {
         String::from_utf8_lossy(&out.stderr)
     );
     serde_json::from_slice(&out.stdout).unwrap()
+}
+
+/// Runs `splinelab args`, asserts success and returns stdout.
+pub fn stdout_ok(args: &[&str]) -> String {
+    let out = splinelab(args);
+    assert!(
+        out.status.success(),
+        "{args:?}: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    String::from_utf8(out.stdout).unwrap()
+}
+
+/// A fresh, empty folder for the files of one test (`topic`: the test
+/// file, `tag`: the test), unique to this process.
+pub fn tmpdir(topic: &str, tag: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("sl_{topic}_{tag}_{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
 }

@@ -1,0 +1,93 @@
+//! The slow path of a prefilter whose samples hold a missing (non-finite)
+//! one, by the filter's [`NanPolicy`]: fill, filter by the route, mark the
+//! policy's pattern; and the bound [`NanPolicy::Local`] certifies outside
+//! its reach ([`local_bound`]). Apart from [`super::nan_policy`] (the
+//! policy, its reach and masks), which the [`LineFilter`] carries, so that
+//! the filter and the policy do not name each other.
+
+use super::NdimageError;
+use super::line_filter::LineFilter;
+use super::mode::Mode;
+use super::nan_policy::{
+    NanPolicy, dilate, fill_missing, first_non_finite, max_finite, missing, spread, write_nan,
+};
+use crate::scalar::Real;
+use ndarray::{ArrayBase, Data, DataMut, Dimension};
+
+/// The bound of [`NanPolicy::Local`] per unit of `max|finite sample|`
+/// outside the reach, over `axes` filtered axes: `(A + b)^k − (A − b)^k`
+/// with `A` the amplification and `b` the certified tail of `filter`
+/// (module documentation); `0` for the exact route, where nothing is
+/// certified.
+///
+/// ```
+/// use splinelab::prelude::*;
+/// use splinelab::ndimage::missing::local_bound;
+/// let f = LineFilter::<f64>::new(&SplineFamily::Order(4), Mode::Mirror, 0.0, Route::Truncated { tol: 1e-12 }).unwrap();
+/// let (b, a) = (f.bound(), f.recursive().amplification());
+/// assert!((local_bound(&f, 1) - 2.0 * b).abs() <= 1e-30);
+/// assert!(local_bound(&f, 2) <= 4.0 * a * b * (1.0 + 1e-12) && local_bound(&f, 2) > 0.0);
+/// ```
+pub fn local_bound<T: Real>(filter: &LineFilter<T>, axes: usize) -> f64 {
+    let b = filter.bound();
+    if b == 0.0 || axes == 0 {
+        return 0.0;
+    }
+    let a = filter.recursive().amplification().to_f64();
+    // (A + b)^k − (A − b)^k = 2 Σ_{odd j} C(k, j) A^{k−j} b^j, summed without
+    // cancellation.
+    let k = axes as i32;
+    let mut sum = 0.0;
+    let mut binom = 1.0;
+    for j in 1..=k {
+        binom = binom * f64::from(k - j + 1) / f64::from(j);
+        if j % 2 == 1 {
+            sum += 2.0 * binom * a.powi(k - j) * b.powi(j);
+        }
+    }
+    sum
+}
+
+/// Whether the constant `grid-constant` extends with is missing.
+pub(crate) fn cval_missing<T: Real>(filter: &LineFilter<T>) -> bool {
+    filter.mode() == Mode::GridConstant && !filter.cval().is_finite()
+}
+
+/// The slow path of a prefilter whose samples `src` hold a non-finite one,
+/// by the filter's policy: refused ([`NanPolicy::Raise`]); or the missing
+/// samples filled with 0 into `out`, filtered along `axes` by `run` (the
+/// caller's route: the N-D prefilter's axes, or one long line), and NaN
+/// written where the policy's pattern says ([`spread`] for scipy's,
+/// [`dilate`] by the certified half-width for [`NanPolicy::Local`]).
+/// Kept here, not in a route, so that every route reaches it without the
+/// routes naming each other.
+pub(crate) fn fill_filter_mark<T, S1, S2, D>(
+    src: &ArrayBase<S1, D>,
+    out: &mut ArrayBase<S2, D>,
+    axes: &[usize],
+    filter: &LineFilter<T>,
+    run: impl FnOnce(&mut ArrayBase<S2, D>) -> Result<(), NdimageError>,
+) -> Result<(), NdimageError>
+where
+    T: Real + Send + Sync,
+    S1: Data<Elem = T>,
+    S2: DataMut<Elem = T>,
+    D: Dimension,
+{
+    let policy = filter.nan_policy();
+    if policy == NanPolicy::Raise {
+        return first_non_finite(src);
+    }
+    filter.check_magnitude(max_finite(src), axes.len())?;
+    let mask = missing(src);
+    fill_missing(src, out);
+    run(out)?;
+    let nan = match (policy, filter.half_width()) {
+        (NanPolicy::Local, Some(n)) => {
+            dilate(&mask, axes, n, filter.mode(), cval_missing(filter), 0)
+        }
+        _ => spread(&mask, axes),
+    };
+    write_nan(out, &nan);
+    Ok(())
+}
