@@ -266,7 +266,7 @@ pub(crate) const STREAM_BYTES: usize = 32 << 20;
 /// on another thread.
 pub(crate) fn stream_row<T: Real>(dst: &mut [T], src: &[T]) {
     #[cfg(target_arch = "x86_64")]
-    if x86::stream(dst, src) {
+    if const { T::NATIVE } && x86::stream(dst, src) {
         return;
     }
     dst.clone_from_slice(src);
@@ -300,6 +300,10 @@ pub(crate) fn load_strip<T: Real, const G: usize, S: AsRef<[T]>>(
     srcs: &[S],
     gain: &T,
 ) {
+    if const { !T::NATIVE } {
+        // MPFR: no tile clones compiled (`Real::NATIVE`).
+        return load_plain(rows, lo, srcs, gain);
+    }
     match tile_side::<T>() {
         8 if G.is_multiple_of(8) => load_tiles::<T, G, S, 8>(rows, lo, srcs, gain),
         4 if G.is_multiple_of(4) => load_tiles::<T, G, S, 4>(rows, lo, srcs, gain),
@@ -402,6 +406,9 @@ pub(crate) fn store_strip<T: Real, const G: usize>(
     rows: &[[T; G]],
     lo: usize,
 ) {
+    if const { !T::NATIVE } {
+        return store_plain(outs, rows, lo);
+    }
     match tile_side::<T>() {
         8 if G.is_multiple_of(8) => store_tiles::<T, G, 8>(outs, rows, lo),
         4 if G.is_multiple_of(4) => store_tiles::<T, G, 4>(outs, rows, lo),

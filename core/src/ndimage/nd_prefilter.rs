@@ -223,7 +223,7 @@ impl Scan {
     /// Takes in the values of `s`.
     #[inline(always)]
     pub(crate) fn add<T: Real>(&mut self, s: &[T]) {
-        if T::BITS > 53 {
+        if const { !T::NATIVE } {
             self.ok[0] &= s.iter().all(|x| x.is_finite());
             return;
         }

@@ -156,9 +156,11 @@ impl<T: Real> WindowRecursion<T> {
         buf: &mut Vec<T>,
         ahead: Ahead<T>,
     ) -> (f64, bool) {
-        match lanes::<T>() {
-            16 => self.window_in::<16>(src, tail, lo, out, buf, ahead),
-            _ => self.window_in::<8>(src, tail, lo, out, buf, ahead),
+        // `const`: MPFR compiles one width only (`Real::NATIVE`).
+        if const { T::NATIVE } && lanes::<T>() == 16 {
+            self.window_in::<16>(src, tail, lo, out, buf, ahead)
+        } else {
+            self.window_in::<8>(src, tail, lo, out, buf, ahead)
         }
     }
 
@@ -206,13 +208,30 @@ pub(crate) type Ahead<T> = Option<(*const T, *const T)>;
 
 /// The causal pass of the pole of powers `z` down `buf`, reading `src`
 /// (then zeros) when given, else `buf` itself; `max|src|` ([`magnitude`];
-/// 0 without `src`).
+/// 0 without `src`). Hardware floats take the vector clones
+/// ([`causal_simd`]); MPFR the plain loop, whose clones would be the same
+/// library calls (`Real::NATIVE`: none are compiled for it).
+#[inline(always)]
+fn causal<T: Real, const V: usize>(
+    z: &[T],
+    src: Option<&[[T; V]]>,
+    buf: &mut [[T; V]],
+    ahead: Ahead<T>,
+) -> f64 {
+    if const { T::NATIVE } {
+        causal_simd(z, src, buf, ahead)
+    } else {
+        causal_plain(z, src, buf)
+    }
+}
+
+/// [`causal`] compiled for the CPU's vector units.
 #[multiversion(targets(
     "x86_64+avx512f+avx512dq+avx512vl+avx2+fma",
     "x86_64+avx2+fma",
     "aarch64+neon"
 ))]
-fn causal<T: Real, const V: usize>(
+fn causal_simd<T: Real, const V: usize>(
     z: &[T],
     src: Option<&[[T; V]]>,
     buf: &mut [[T; V]],
@@ -240,13 +259,28 @@ fn causal<T: Real, const V: usize>(
 
 /// The anti-causal pass of the pole of powers `z` up `buf` from its end to
 /// chunk `lo`, in place, or when `out` is given into `out[i] = scale ·
-/// Y_{lo·V + i}` (its last chunk may be partial).
+/// Y_{lo·V + i}` (its last chunk may be partial). Dispatched as [`causal`].
+#[inline(always)]
+fn anticausal<T: Real, const V: usize>(
+    z: &[T],
+    buf: &mut [[T; V]],
+    lo: usize,
+    out: Option<(&mut [T], &T)>,
+) {
+    if const { T::NATIVE } {
+        anticausal_simd(z, buf, lo, out)
+    } else {
+        anticausal_plain(z, buf, lo, out)
+    }
+}
+
+/// [`anticausal`] compiled for the CPU's vector units.
 #[multiversion(targets(
     "x86_64+avx512f+avx512dq+avx512vl+avx2+fma",
     "x86_64+avx2+fma",
     "aarch64+neon"
 ))]
-fn anticausal<T: Real, const V: usize>(
+fn anticausal_simd<T: Real, const V: usize>(
     z: &[T],
     buf: &mut [[T; V]],
     lo: usize,

@@ -57,6 +57,14 @@ pub trait Real:
     /// Significand precision in bits (53 for `f64`).
     const BITS: u32;
 
+    /// Whether this is a hardware float (`f64`, `f32`): the engine's
+    /// fixed-size and vector kernels serve only these. Branch on it as
+    /// `if const { T::NATIVE }` so that the compiler drops those kernels
+    /// from every MPFR instantiation before generating code: each MPFR
+    /// precision in the CLI's ladder and the checks' agreement ladder
+    /// otherwise compiles clones it never runs (issue 38: the first build).
+    const NATIVE: bool = false;
+
     /// Short name of the type for tables and JSON (`"f64"`, `"mp256"`).
     fn type_name() -> String;
 
@@ -136,6 +144,7 @@ pub fn decimal_string(x: &Float, digits: usize) -> String {
 
 impl Real for f64 {
     const BITS: u32 = 53;
+    const NATIVE: bool = true;
 
     fn type_name() -> String {
         "f64".into()
@@ -183,6 +192,7 @@ impl Real for f64 {
 
 impl Real for f32 {
     const BITS: u32 = 24;
+    const NATIVE: bool = true;
 
     fn type_name() -> String {
         "f32".into()

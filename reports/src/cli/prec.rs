@@ -14,11 +14,14 @@ use std::fmt;
 use std::str::FromStr;
 
 /// The one definition of the compiled MPFR precisions, increasing: calls
-/// `$crate::$m!{ $args ; 64, 96, … }`. [`LADDER`] and [`with_real!`](crate::with_real)
+/// `$crate::$m!{ $args ; 128, 256, … }`. [`LADDER`] and [`with_real!`](crate::with_real)
 /// are both generated from it, so they cannot disagree.
 ///
-/// Each step doubles the previous one, so a request runs at most 2× its
-/// bits (e.g. 1025 → 2048; 1024 → 1024). Each entry instantiates every
+/// Each step doubles the previous one, so a request above 128 bits runs
+/// at most 2× its bits (e.g. 1025 → 2048; 1024 → 1024). Requests of 16 to
+/// 128 bits run at 128: one or two limbs cost about the same (a degree-5
+/// `prefilter` of 700² samples: 0.35 CPU-s at 64 bits, 0.42 at 128), and
+/// an entry at 64 cost the first build 6–7 s on 2 cores (issue 38). Each entry instantiates every
 /// command's numerics once more: the reports crate's build grows by about
 /// 13 CPU-seconds per entry (measured: 70 s with one entry, 135 s with
 /// these six, 194 s with eleven steps of 1.5×), and the first build is what
@@ -30,7 +33,7 @@ use std::str::FromStr;
 #[macro_export]
 macro_rules! precision_ladder {
     ($m:ident { $($args:tt)* }) => {
-        $crate::$m! { $($args)* ; 64, 128, 256, 512, 1024, 2048 }
+        $crate::$m! { $($args)* ; 128, 256, 512, 1024, 2048 }
     };
 }
 
@@ -195,14 +198,14 @@ mod tests {
         assert!(Prec::Bits(128).digits() >= 30);
     }
 
-    /// Every accepted request runs at most 2× its bits (64 for the
+    /// Every accepted request runs at most 2× its bits (128 for the
     /// smallest), on an entry that `with_real!` dispatches.
     #[test]
     fn working_precision_is_at_most_twice_the_request() {
         assert!(LADDER.windows(2).all(|w| w[0] < w[1]));
         for b in MIN_BITS..=MAX_BITS {
             let w = Prec::Bits(b).working_bits();
-            assert!(w >= b && (w <= 64 || w < 2 * b), "{b} -> {w}");
+            assert!(w >= b && (w <= 128 || w < 2 * b), "{b} -> {w}");
             let dispatched = crate::with_real!(Prec::Bits(b), T => <T as Real>::BITS);
             assert_eq!(dispatched, w);
         }

@@ -14,15 +14,13 @@ use splinelab::scalar::{Mp, Real};
 /// `2^−40` ulps of what is reported.
 pub const AGREEMENT_GUARD_BITS: i32 = 40;
 
-/// The precision pairs tried, lowest first.
-pub const LADDER: [(u32, u32); 6] = [
-    (128, 192),
-    (192, 256),
-    (256, 320),
-    (384, 448),
-    (512, 576),
-    (1024, 1088),
-];
+/// The precision pairs tried, lowest first. Each pair compiles every
+/// reference computation twice more (the precision is the type
+/// [`Mp<BITS>`](Mp)), a tenth of this crate's code (`cargo llvm-lines`:
+/// 2.23 million lines with a pair at 384, 2.01 without). So there is
+/// none at 384: the pair at 512 does its work at about 1.3× the cost
+/// (issue 38, the first build).
+pub const LADDER: [(u32, u32); 5] = [(128, 192), (192, 256), (256, 320), (512, 576), (1024, 1088)];
 
 /// A computation that can be run in any [`Real`] precision.
 pub trait Reference: Sync {
@@ -57,7 +55,6 @@ pub fn certify<R: Reference>(
             128 => pair::<R, Mp<128>, Mp<192>>(r)?,
             192 => pair::<R, Mp<192>, Mp<256>>(r)?,
             256 => pair::<R, Mp<256>, Mp<320>>(r)?,
-            384 => pair::<R, Mp<384>, Mp<448>>(r)?,
             512 => pair::<R, Mp<512>, Mp<576>>(r)?,
             _ => pair::<R, Mp<1024>, Mp<1088>>(r)?,
         };

@@ -261,7 +261,7 @@ impl<T: Real + Send + Sync> Interpolant<T> {
 
     /// The points `start..start + out.len()` of `src` on the general path,
     /// sequentially, in batches.
-    fn eval_chunk<S: PointSource>(
+    pub(super) fn eval_chunk<S: PointSource>(
         &self,
         src: &S,
         start: usize,

@@ -175,7 +175,7 @@ impl<T: Real + Send + Sync> Interpolant<T> {
     /// Whether a fixed-size kernel serves this interpolant: `f64`/`f32`
     /// precision, 1 to 3 dimensions, degree 1 to 5.
     pub(super) fn has_kernel(&self) -> bool {
-        T::BITS <= 53 && (1..=3).contains(&self.ndim()) && (2..=6).contains(&self.order)
+        T::NATIVE && (1..=3).contains(&self.ndim()) && (2..=6).contains(&self.order)
     }
 
     /// The points `start..start + out.len()` of `src` into `out` by the
@@ -187,6 +187,11 @@ impl<T: Real + Send + Sync> Interpolant<T> {
         start: usize,
         out: &mut [T],
     ) -> Result<(), NdimageError> {
+        if const { !T::NATIVE } {
+            // Never taken (`has_kernel`): keeps the 15 fixed-size clones
+            // out of MPFR builds (`Real::NATIVE`).
+            return self.eval_chunk(src, start, out);
+        }
         macro_rules! by_order {
             ($d:literal) => {
                 match self.order {
