@@ -6,6 +6,8 @@ import numbers
 
 import numpy as np
 
+from . import _splinelab as _ext
+
 MAX_DEGREE = 199
 
 
@@ -92,8 +94,8 @@ def _real_array(input, what="input"):
 NAN_POLICIES = ("propagate", "raise", "local")
 
 # nan_policy="local" uses this tolerance unless ``tol`` is given: the
-# certified half-width of 1e-12 (``nan_reach(order, 1e-12)``).
-LOCAL_TOL = 1e-12
+# engine's constant (1e-12), which the CLI's --nan-policy local reads too.
+LOCAL_TOL = _ext.LOCAL_TOL
 
 
 def _nan_policy(value):
@@ -112,7 +114,7 @@ class _DefaultTol:
     stays None (and is refused by 'local', which needs a finite reach)."""
 
     def __repr__(self):
-        return "<None; 1e-12 with nan_policy='local'>"
+        return f"<None; {LOCAL_TOL:g} with nan_policy='local'>"
 
 
 DEFAULT_TOL = _DefaultTol()
@@ -129,6 +131,6 @@ def _tol_for(tol, nan_policy, degree):
         raise ValueError(
             "nan_policy='local' needs a finite tol: with tol=None the exact recursive prefilter carries a "
             "missing sample along its whole line (every axis), so no output has a finite reach; give tol "
-            "(the default under 'local' is 1e-12) or use nan_policy='propagate'"
+            f"(the default under 'local' is {LOCAL_TOL:g}) or use nan_policy='propagate'"
         )
     return tol

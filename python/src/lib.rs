@@ -26,6 +26,8 @@ fn _splinelab(m: &Bound<'_, PyModule>) -> PyResult<()> {
         "NonFiniteCoordinateError",
         m.py().get_type::<error::NonFiniteCoordinateError>(),
     )?;
+    // `nan_policy="local"`'s default tolerance: the engine's, as the CLI's.
+    m.add("LOCAL_TOL", splinelab::prelude::LOCAL_TOL)?;
     m.add_function(wrap_pyfunction!(filter::nan_reach, m)?)?;
     m.add_function(wrap_pyfunction!(filter::filter_f64, m)?)?;
     m.add_function(wrap_pyfunction!(filter::filter_f32, m)?)?;

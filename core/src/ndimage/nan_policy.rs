@@ -70,6 +70,15 @@ pub enum NanPolicy {
 
 crate::named_enum!(NanPolicy, "nan_policy");
 
+/// The prefilter tolerance of [`NanPolicy::Local`] when the caller names
+/// none: the CLI's `--nan-policy local` without `--tol` and the Python
+/// package's `nan_policy="local"` default both read it, so the same call
+/// gives the same NaN pattern and values from either. `local` needs a
+/// finite reach, which the exact prefilter has not, so it always runs
+/// truncated; at 1e-12 the truncation is below f64's rounding of
+/// coefficients of order 1 and a cubic's reach is 24 ([`nan_reach`]).
+pub const LOCAL_TOL: f64 = 1e-12;
+
 /// How many samples along each axis a missing sample reaches under
 /// [`NanPolicy::Local`] for a spline of `degree` and the prefilter's
 /// tolerance `tol`: `r = n + ⌊d/2⌋ + 1`, with `n` the half-width certified

@@ -29,12 +29,9 @@ use splinelab::scalar::Real;
 use splinelab_verify::check::UserFormat;
 use std::path::{Path, PathBuf};
 
-/// The tolerance of `--nan-policy local` without `--tol`: the Python
-/// package's default under `nan_policy="local"` (`LOCAL_TOL` in
-/// python/splinelab/_validate.py), so that the same call gives the same
-/// NaN pattern and values from both. The exact prefilter has no finite
-/// reach (`NdimageError::LocalNeedsTol`), so `local` always runs truncated.
-pub const LOCAL_TOL: f64 = 1e-12;
+/// The tolerance of `--nan-policy local` without `--tol`: the engine's,
+/// which the Python package's default reads too.
+pub use splinelab::ndimage::nan_policy::LOCAL_TOL;
 
 /// The `--nan-policy` parser: the engine's names ([`NanPolicy::all`]),
 /// which clap lists in the help and in its refusal of any other word.
