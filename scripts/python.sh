@@ -34,6 +34,9 @@ fi
 
 [ -f "$HOME/.cargo/env" ] && . "$HOME/.cargo/env"
 read -r -a features <<<"$(bash scripts/gmp_features.sh)"
+# An extension left by a build before the abi3 wheel (issue 38) would be
+# imported before the new one: Python prefers the version-tagged name.
+rm -f python/splinelab/_splinelab.cpython-*.so
 # The extension is built by maturin, not linked as a test binary.
 VIRTUAL_ENV="$PWD/.venv" PATH="$PWD/.venv/bin:$PATH" \
   .venv/bin/maturin develop --release --quiet -m python/Cargo.toml "${features[@]+"${features[@]}"}" >&2

@@ -12,7 +12,7 @@ use super::nan_policy::{
     NanPolicy, dilate, fill_missing, first_non_finite, max_finite, missing, spread, write_nan,
 };
 use crate::scalar::Real;
-use ndarray::{ArrayBase, Data, DataMut, Dimension};
+use ndarray::{ArrayBase, ArrayD, Data, DataMut, Dimension};
 
 /// The bound of [`NanPolicy::Local`] per unit of `max|finite sample|`
 /// outside the reach, over `axes` filtered axes: `(A + b)^k − (A − b)^k`
@@ -74,20 +74,55 @@ where
     S2: DataMut<Elem = T>,
     D: Dimension,
 {
-    let policy = filter.nan_policy();
-    if policy == NanPolicy::Raise {
-        return first_non_finite(src);
-    }
-    filter.check_magnitude(max_finite(src), axes.len())?;
-    let mask = missing(src);
-    fill_missing(src, out);
+    let mask = fill(src, out, axes.len(), filter)?;
     run(out)?;
-    let nan = match (policy, filter.half_width()) {
-        (NanPolicy::Local, Some(n)) => {
-            dilate(&mask, axes, n, filter.mode(), cval_missing(filter), 0)
-        }
-        _ => spread(&mask, axes),
-    };
-    write_nan(out, &nan);
+    write_nan(out, &pattern(&mask, axes, filter, 0));
     Ok(())
+}
+
+/// The first half of [`fill_filter_mark`]: refused by
+/// [`NanPolicy::Raise`] (naming the first missing sample), the finite
+/// samples' magnitude checked for `axes` filtered axes, then `src` into
+/// `out` with its missing samples 0; returns their mask.
+pub(crate) fn fill<T, S1, S2, D>(
+    src: &ArrayBase<S1, D>,
+    out: &mut ArrayBase<S2, D>,
+    axes: usize,
+    filter: &LineFilter<T>,
+) -> Result<ArrayD<bool>, NdimageError>
+where
+    T: Real + Send + Sync,
+    S1: Data<Elem = T>,
+    S2: DataMut<Elem = T>,
+    D: Dimension,
+{
+    if filter.nan_policy() == NanPolicy::Raise {
+        first_non_finite(src)?;
+    }
+    filter.check_magnitude(max_finite(src), axes)?;
+    fill_missing(src, out);
+    Ok(missing(src))
+}
+
+/// The second half: where the coefficients along `axes` of samples whose
+/// missing ones are `mask` are NaN by the filter's policy, on the layout
+/// grown by `pad` beyond each end of every axis in `axes` (0: the grid;
+/// more: [`padded_coefficients`](super::nd_prefilter::padded_coefficients),
+/// which filters every axis). [`NanPolicy::Local`]: `mask` dilated by the
+/// certified half-width, folded by the mode ([`dilate`]); otherwise
+/// scipy's lines ([`spread`]), which are constant along `axes`, so a
+/// padded layout extends them by their edges.
+pub(crate) fn pattern<T: Real>(
+    mask: &ArrayD<bool>,
+    axes: &[usize],
+    filter: &LineFilter<T>,
+    pad: usize,
+) -> ArrayD<bool> {
+    match (filter.nan_policy(), filter.half_width()) {
+        (NanPolicy::Local, Some(n)) => {
+            dilate(mask, axes, n, filter.mode(), cval_missing(filter), pad)
+        }
+        _ if pad == 0 => spread(mask, axes),
+        _ => dilate(&spread(mask, axes), axes, 0, Mode::Nearest, false, pad),
+    }
 }

@@ -58,15 +58,13 @@ use super::NdimageError;
 use super::block_filter::BlockPrefilter;
 use super::lanes;
 use super::line_filter::{LineFilter, RowCheck};
-use super::missing::{cval_missing, fill_filter_mark};
+use super::missing::{fill, fill_filter_mark, pattern};
 use super::mode::Mode;
-use super::nan_policy::{
-    NanPolicy, dilate, fill_missing, first_non_finite, max_finite, missing, write_nan,
-};
+use super::nan_policy::{first_non_finite, write_nan};
 use super::stash::Stash;
 use crate::scalar::Real;
 use ndarray::{
-    Array, ArrayBase, ArrayD, ArrayView3, ArrayViewMut3, Axis, Data, DataMut, Dimension, IxDyn, Zip,
+    Array, ArrayBase, ArrayView, ArrayView3, ArrayViewMut3, Axis, Data, DataMut, Dimension, Zip,
 };
 use rayon::prelude::*;
 
@@ -873,31 +871,21 @@ where
     S: Data<Elem = T>,
     D: Dimension,
 {
-    let run = |a: &ArrayBase<S, D>| {
-        pad_lanes(a, pad, |buf| filter.apply_padded(buf, pad, &mut Vec::new()))
+    let run = |a: ArrayView<'_, T, D>| {
+        pad_lanes(&a, pad, |buf| {
+            filter.apply_padded(buf, pad, &mut Vec::new())
+        })
     };
     if scan_samples(a, filter, a.ndim())? {
-        return Ok(run(a));
+        return Ok(run(a.view()));
     }
-    if filter.nan_policy() == NanPolicy::Raise {
-        first_non_finite(a)?;
-    }
-    filter.check_magnitude(max_finite(a), a.ndim())?;
-    let mask = missing(a);
+    // The missing-sample path of every route (`missing`), on the padded
+    // layout: the output grows by `pad`, so it is filled into a copy.
     let mut filled = a.to_owned();
-    fill_missing(a, &mut filled);
-    let mut c = pad_lanes(&filled, pad, |buf| {
-        filter.apply_padded(buf, pad, &mut Vec::new())
-    });
+    let mask = fill(a, &mut filled, a.ndim(), filter)?;
+    let mut c = run(filled.view());
     let axes: Vec<usize> = (0..a.ndim()).collect();
-    let nan = match (filter.nan_policy(), filter.half_width()) {
-        (NanPolicy::Local, Some(n)) => {
-            dilate(&mask, &axes, n, filter.mode(), cval_missing(filter), pad)
-        }
-        // Every axis filtered: one missing sample reaches everything.
-        _ => ArrayD::from_elem(IxDyn(c.shape()), true),
-    };
-    write_nan(&mut c, &nan);
+    write_nan(&mut c, &pattern(&mask, &axes, filter, pad));
     Ok(c)
 }
 
@@ -975,6 +963,7 @@ mod tests {
     //! with the one-line filter (an independent order of operations).
     use super::*;
     use crate::ndimage::line_filter::Route;
+    use crate::ndimage::nan_policy::NanPolicy;
     use crate::scalar::Mp;
     use crate::sspline::SplineFamily;
     use crate::validation::NonFiniteValue;
