@@ -275,3 +275,34 @@ fn raise_names_the_sample_and_local_needs_a_tolerance() {
     let e = spline_filter(&mut a, &f).unwrap_err();
     assert_eq!(e.to_string(), "sample 6 is not finite (-inf)");
 }
+
+/// Degree 1 has no prefilter: its coefficients are the samples (scipy's
+/// `spline_filter` copies for `order < 2`), so a missing sample stays where
+/// it is under every policy and every other value is the sample, bit for
+/// bit, in every mode.
+#[test]
+fn degree_one_keeps_a_missing_sample_where_it_is() {
+    let clean = ArrayD::from_shape_vec(IxDyn(&[6, 9]), values(54, 7)).unwrap();
+    let mut a = clean.clone();
+    a[[2, 5]] = f64::NAN;
+    for mode in Mode::ALL {
+        for route in [Route::Exact, Route::Truncated { tol: 1e-12 }] {
+            for policy in [NanPolicy::Propagate, NanPolicy::Local] {
+                let Ok(f) = LineFilter::<f64>::new(&SplineFamily::Order(2), mode, 0.0, route)
+                    .unwrap()
+                    .with_nan_policy(policy)
+                else {
+                    continue; // Local needs the truncated route
+                };
+                let mut got = a.clone();
+                spline_filter(&mut got, &f).unwrap();
+                for (i, (&g, &s)) in got.iter().zip(&a).enumerate() {
+                    assert!(
+                        g.to_bits() == s.to_bits() || (g.is_nan() && s.is_nan()),
+                        "{mode:?} {route:?} {policy:?}: element {i} is {g}, the sample {s}"
+                    );
+                }
+            }
+        }
+    }
+}
