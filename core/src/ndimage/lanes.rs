@@ -266,7 +266,7 @@ pub(crate) const STREAM_BYTES: usize = 32 << 20;
 /// on another thread.
 pub(crate) fn stream_row<T: Real>(dst: &mut [T], src: &[T]) {
     #[cfg(target_arch = "x86_64")]
-    if const { T::NATIVE } && x86::stream(dst, src) {
+    if const { T::FITS_F64 } && x86::stream(dst, src) {
         return;
     }
     dst.clone_from_slice(src);
@@ -300,8 +300,8 @@ pub(crate) fn load_strip<T: Real, const G: usize, S: AsRef<[T]>>(
     srcs: &[S],
     gain: &T,
 ) {
-    if const { !T::NATIVE } {
-        // MPFR: no tile clones compiled (`Real::NATIVE`).
+    if const { !T::FITS_F64 } {
+        // Wider than f64 (MPFR): no tile clones compiled (`Real::FITS_F64`).
         return load_plain(rows, lo, srcs, gain);
     }
     match tile_side::<T>() {
@@ -406,7 +406,7 @@ pub(crate) fn store_strip<T: Real, const G: usize>(
     rows: &[[T; G]],
     lo: usize,
 ) {
-    if const { !T::NATIVE } {
+    if const { !T::FITS_F64 } {
         return store_plain(outs, rows, lo);
     }
     match tile_side::<T>() {

@@ -221,7 +221,7 @@ impl Scan {
     /// Takes in the values of `s`.
     #[inline(always)]
     pub(crate) fn add<T: Real>(&mut self, s: &[T]) {
-        if const { !T::NATIVE } {
+        if const { !T::FITS_F64 } {
             self.ok[0] &= s.iter().all(|x| x.is_finite());
             return;
         }

@@ -156,8 +156,8 @@ impl<T: Real> WindowRecursion<T> {
         buf: &mut Vec<T>,
         ahead: Ahead<T>,
     ) -> (f64, bool) {
-        // `const`: MPFR compiles one width only (`Real::NATIVE`).
-        if const { T::NATIVE } && lanes::<T>() == 16 {
+        // `const`: wider MPFR compiles one width only (`Real::FITS_F64`).
+        if const { T::FITS_F64 } && lanes::<T>() == 16 {
             self.window_in::<16>(src, tail, lo, out, buf, ahead)
         } else {
             self.window_in::<8>(src, tail, lo, out, buf, ahead)
@@ -208,9 +208,10 @@ pub(crate) type Ahead<T> = Option<(*const T, *const T)>;
 
 /// The causal pass of the pole of powers `z` down `buf`, reading `src`
 /// (then zeros) when given, else `buf` itself; `max|src|` ([`magnitude`];
-/// 0 without `src`). Hardware floats take the vector clones
-/// ([`causal_simd`]); MPFR the plain loop, whose clones would be the same
-/// library calls (`Real::NATIVE`: none are compiled for it).
+/// 0 without `src`). Scalars up to f64's precision take the vector clones
+/// ([`causal_simd`], whose register kernels serve f64 and f32); wider MPFR
+/// the plain loop, whose clones would be the same library calls
+/// (`Real::FITS_F64`: none are compiled for it).
 #[inline(always)]
 fn causal<T: Real, const V: usize>(
     z: &[T],
@@ -218,7 +219,7 @@ fn causal<T: Real, const V: usize>(
     buf: &mut [[T; V]],
     ahead: Ahead<T>,
 ) -> f64 {
-    if const { T::NATIVE } {
+    if const { T::FITS_F64 } {
         causal_simd(z, src, buf, ahead)
     } else {
         causal_plain(z, src, buf)
@@ -267,7 +268,7 @@ fn anticausal<T: Real, const V: usize>(
     lo: usize,
     out: Option<(&mut [T], &T)>,
 ) {
-    if const { T::NATIVE } {
+    if const { T::FITS_F64 } {
         anticausal_simd(z, buf, lo, out)
     } else {
         anticausal_plain(z, buf, lo, out)

@@ -57,13 +57,15 @@ pub trait Real:
     /// Significand precision in bits (53 for `f64`).
     const BITS: u32;
 
-    /// Whether this is a hardware float (`f64`, `f32`): the engine's
-    /// fixed-size and vector kernels serve only these. Branch on it as
-    /// `if const { T::NATIVE }` so that the compiler drops those kernels
-    /// from every MPFR instantiation before generating code: each MPFR
+    /// Whether the precision is at most f64's (`BITS ≤ 53`: f64, f32 and
+    /// narrow MPFR types): the engine's fixed-size kernels serve only these
+    /// (its vector and tile kernels further only f64 and f32, chosen by
+    /// type). Derived from [`Real::BITS`]; branch on it as
+    /// `if const { T::FITS_F64 }` so that the compiler drops those kernels
+    /// from every wider instantiation before generating code: each MPFR
     /// precision in the CLI's ladder and the checks' agreement ladder
     /// otherwise compiles clones it never runs (issue 38: the first build).
-    const NATIVE: bool = false;
+    const FITS_F64: bool = Self::BITS <= 53;
 
     /// Short name of the type for tables and JSON (`"f64"`, `"mp256"`).
     fn type_name() -> String;
@@ -144,7 +146,6 @@ pub fn decimal_string(x: &Float, digits: usize) -> String {
 
 impl Real for f64 {
     const BITS: u32 = 53;
-    const NATIVE: bool = true;
 
     fn type_name() -> String {
         "f64".into()
@@ -192,7 +193,6 @@ impl Real for f64 {
 
 impl Real for f32 {
     const BITS: u32 = 24;
-    const NATIVE: bool = true;
 
     fn type_name() -> String {
         "f32".into()

@@ -21,8 +21,9 @@ use std::str::FromStr;
 /// at most 2× its bits (e.g. 1025 → 2048; 1024 → 1024). Requests of 16 to
 /// 128 bits run at 128: one or two limbs cost about the same (a degree-5
 /// `prefilter` of 700² samples: 0.35 CPU-s at 64 bits, 0.42 at 128), and
-/// an entry at 64 cost the first build 6–7 s on 2 cores (issue 38). Each entry instantiates every
-/// command's numerics once more: the reports crate's build grows by about
+/// an entry at 64 cost the first build 6–7 s on 2 cores (issue 38). Each
+/// entry instantiates every command's numerics once more: the reports
+/// crate's build grows by about
 /// 13 CPU-seconds per entry (measured: 70 s with one entry, 135 s with
 /// these six, 194 s with eleven steps of 1.5×), and the first build is what
 /// a new user waits for; doubling keeps the cost of a request within 2× of

@@ -77,8 +77,8 @@ impl<T: Real + Copy + Send + Sync> Interpolant<T> {
             return Err(NdimageError::NonFiniteCoordinate(i));
         }
         let src = self.affine_points(matrix, offset, out_shape, shift, rule);
-        // `const`: MPFR builds compile no run kernels (`Real::NATIVE`).
-        if const { T::NATIVE } && self.has_run_kernel(rule) {
+        // `const`: wider MPFR builds compile no run kernels (`Real::FITS_F64`).
+        if const { T::FITS_F64 } && self.has_run_kernel(rule) {
             self.eval_affine_runs(&src, out)
         } else {
             self.eval_source(&src, out)

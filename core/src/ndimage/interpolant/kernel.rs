@@ -175,7 +175,7 @@ impl<T: Real + Send + Sync> Interpolant<T> {
     /// Whether a fixed-size kernel serves this interpolant: `f64`/`f32`
     /// precision, 1 to 3 dimensions, degree 1 to 5.
     pub(super) fn has_kernel(&self) -> bool {
-        T::NATIVE && (1..=3).contains(&self.ndim()) && (2..=6).contains(&self.order)
+        T::FITS_F64 && (1..=3).contains(&self.ndim()) && (2..=6).contains(&self.order)
     }
 
     /// The points `start..start + out.len()` of `src` into `out` by the
@@ -187,9 +187,9 @@ impl<T: Real + Send + Sync> Interpolant<T> {
         start: usize,
         out: &mut [T],
     ) -> Result<(), NdimageError> {
-        if const { !T::NATIVE } {
+        if const { !T::FITS_F64 } {
             // Never taken (`has_kernel`): keeps the 15 fixed-size clones
-            // out of MPFR builds (`Real::NATIVE`).
+            // out of wider MPFR builds (`Real::FITS_F64`).
             return self.eval_chunk(src, start, out);
         }
         macro_rules! by_order {
