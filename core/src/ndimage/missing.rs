@@ -108,9 +108,10 @@ where
 /// missing ones are `mask` are NaN by the filter's policy, on the layout
 /// grown by `pad` beyond each end of every axis in `axes` (0: the grid;
 /// more: [`padded_coefficients`](super::nd_prefilter::padded_coefficients),
-/// which filters every axis). Without poles (degrees 0 and 1): `mask`
-/// itself. [`NanPolicy::Local`]: `mask` dilated by the
-/// certified half-width, folded by the mode ([`dilate`]); otherwise
+/// which filters every axis). Where a missing sample's reach is finite,
+/// `mask` dilated by it, folded by the mode ([`dilate`]): 0 without poles
+/// (degrees 0 and 1: the coefficients are the samples, as scipy copies
+/// them), the certified half-width under [`NanPolicy::Local`]. Otherwise
 /// scipy's lines ([`spread`]), which are constant along `axes`, so a
 /// padded layout extends them by their edges.
 pub(crate) fn pattern<T: Real>(
@@ -119,20 +120,15 @@ pub(crate) fn pattern<T: Real>(
     filter: &LineFilter<T>,
     pad: usize,
 ) -> ArrayD<bool> {
-    if filter.recursive().poles().is_empty() {
-        // Degrees 0 and 1: the coefficients are the samples (scipy copies
-        // them), so a missing sample stays where it is, on the padded
-        // layout wherever the mode extends it.
-        return match pad {
-            0 => mask.clone(),
-            _ => dilate(mask, axes, 0, filter.mode(), cval_missing(filter), pad),
-        };
-    }
-    match (filter.nan_policy(), filter.half_width()) {
-        (NanPolicy::Local, Some(n)) => {
-            dilate(mask, axes, n, filter.mode(), cval_missing(filter), pad)
-        }
-        _ if pad == 0 => spread(mask, axes),
-        _ => dilate(&spread(mask, axes), axes, 0, Mode::Nearest, false, pad),
+    let reach = match filter.nan_policy() {
+        _ if filter.recursive().poles().is_empty() => Some(0),
+        NanPolicy::Local => filter.half_width(),
+        _ => None,
+    };
+    match reach {
+        Some(0) if pad == 0 => mask.clone(),
+        Some(n) => dilate(mask, axes, n, filter.mode(), cval_missing(filter), pad),
+        None if pad == 0 => spread(mask, axes),
+        None => dilate(&spread(mask, axes), axes, 0, Mode::Nearest, false, pad),
     }
 }
