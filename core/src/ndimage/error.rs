@@ -79,6 +79,26 @@ pub enum NdimageError {
         /// Dimensions of the array.
         ndim: usize,
     },
+    /// A box of samples asked of a [`SampleSource`](super::samples::SampleSource)
+    /// that does not lie inside the array.
+    #[error("the box {lo:?}..{hi:?} is not inside an array of shape {shape:?}")]
+    BoxOutside {
+        /// First index of the box on each axis.
+        lo: Vec<usize>,
+        /// One past the last index on each axis.
+        hi: Vec<usize>,
+        /// The array's shape.
+        shape: Vec<usize>,
+    },
+    /// A work array or a result that cannot be allocated (the allocator
+    /// refused, or its size overflows): Python's `MemoryError`.
+    #[error("cannot allocate {bytes} bytes for {what}")]
+    OutOfMemory {
+        /// The bytes asked for (`usize::MAX` where the size overflows).
+        bytes: usize,
+        /// What the memory was for.
+        what: &'static str,
+    },
     /// A degree outside `1..=199`.
     #[error("degree {0} is outside the supported range 1..=199")]
     Degree(u32),

@@ -25,6 +25,10 @@
 //!   scipy's propagation, refusal, or a certified local reach;
 //! - [`missing`]: the prefilter's path where samples are missing (fill,
 //!   filter, mark) and `local`'s bound;
+//! - [`samples`]: the element types samples are read from and results
+//!   stored into (widened into the compute type, rounded once on the way
+//!   out), and sources read a box at a time;
+//! - [`alloc`]: work arrays allocated fallibly ([`NdimageError::OutOfMemory`]);
 //! - [`error`]: [`NdimageError`], why a request was refused.
 //!
 //! ```
@@ -41,6 +45,7 @@
 //! assert!((v - vm.to_f64()).abs() < 1e-14);
 //! ```
 
+pub mod alloc;
 pub mod block_filter;
 pub mod error;
 pub mod interpolant;
@@ -50,6 +55,7 @@ pub mod missing;
 pub mod mode;
 pub mod nan_policy;
 pub mod nd_prefilter;
+pub mod samples;
 mod stash;
 mod window_recursion;
 

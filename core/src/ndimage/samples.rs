@@ -1,0 +1,200 @@
+//! How the engine reads samples and stores results, whatever the element
+//! types of the caller's arrays: the one place where the data's type (what
+//! the user holds: float32 images, integers, float64) meets the compute
+//! type `T` (what the engine does arithmetic in).
+//!
+//! scipy.ndimage computes every float32, float16 and integer input in
+//! float64 and rounds once when it stores the result; the engine does the
+//! same by reading samples through [`Sample`] (an exact widening into `T`,
+//! done as the samples are read, so no widened copy of the input is made)
+//! and writing results through [`Stored`] (one rounding, as they are
+//! written). A compute type narrower than the data (`f32` arithmetic on
+//! `f32` data) is the caller's explicit choice, never a default.
+//!
+//! [`SampleSource`] is what a route that reads only part of the array
+//! needs: the samples of one box, converted into the compute type. The
+//! global route reads every sample once; the local route reads the boxes
+//! its points' windows cover (an `ndarray` view of a memory map reads only
+//! those pages).
+
+use super::NdimageError;
+use crate::scalar::Real;
+use ndarray::{ArrayBase, Data, Dimension, IxDyn, SliceInfoElem};
+
+/// An element type the engine reads samples of, widened into the compute
+/// type `T` by [`Sample::widen`]: exactly (`f32 → f64`, `f32 → f32`,
+/// `f64 → f64`, integers of up to 32 bits → `f64`), or as numpy's `astype`
+/// rounds (64-bit integers → `f64`, to nearest).
+pub trait Sample<T>: Copy + Send + Sync + 'static {
+    /// The sample as a value of the compute type.
+    fn widen(self) -> T;
+}
+
+/// An element type the engine stores results into from the compute type
+/// `T` by [`Stored::store`]: `T` itself (no rounding), or `f32` from `f64`
+/// (rounded to nearest once, as numpy's `astype` and scipy's C cast do).
+pub trait Stored<T>: Copy + Send + Sync + 'static {
+    /// The result as stored.
+    fn store(value: &T) -> Self;
+}
+
+impl<T: Real + Copy + 'static> Sample<T> for T {
+    #[inline(always)]
+    fn widen(self) -> T {
+        self
+    }
+}
+
+impl<T: Real + Copy + 'static> Stored<T> for T {
+    #[inline(always)]
+    fn store(value: &T) -> Self {
+        *value
+    }
+}
+
+impl Sample<f64> for f32 {
+    #[inline(always)]
+    fn widen(self) -> f64 {
+        f64::from(self)
+    }
+}
+
+impl Stored<f64> for f32 {
+    #[inline(always)]
+    fn store(value: &f64) -> Self {
+        *value as f32
+    }
+}
+
+/// Integers as float64 samples: exact up to 32 bits (`From`), rounded to
+/// nearest for 64 bits (`as`, numpy's `astype(float64)`).
+macro_rules! integer_samples {
+    (exact: $($t:ty),*; rounded: $($r:ty),*) => {
+        $(impl Sample<f64> for $t {
+            #[inline(always)]
+            fn widen(self) -> f64 {
+                f64::from(self)
+            }
+        })*
+        $(impl Sample<f64> for $r {
+            #[inline(always)]
+            fn widen(self) -> f64 {
+                self as f64
+            }
+        })*
+    };
+}
+integer_samples!(exact: i8, u8, i16, u16, i32, u32; rounded: i64, u64);
+
+/// Samples read a box at a time, converted into the compute type `T`: an
+/// in-memory array (any element type [`Sample<T>`], any strides: an
+/// `ndarray` view of a memory-mapped file touches only the pages of the
+/// boxes read), or blocks a caller fetched from an array that is not in
+/// memory.
+pub trait SampleSource<T>: Sync {
+    /// The shape of the whole array.
+    fn shape(&self) -> &[usize];
+
+    /// The samples of the box `lo[a]..hi[a]` on every axis `a` (inside the
+    /// array: `lo[a] < hi[a] ≤ shape[a]`) into `out` in C order
+    /// (`out.len()` the box's size), widened into `T`.
+    fn read_box(&self, lo: &[usize], hi: &[usize], out: &mut [T]) -> Result<(), NdimageError>;
+}
+
+impl<T, E, S, D> SampleSource<T> for ArrayBase<S, D>
+where
+    E: Sample<T>,
+    S: Data<Elem = E> + Sync,
+    D: Dimension,
+{
+    fn shape(&self) -> &[usize] {
+        ArrayBase::shape(self)
+    }
+
+    fn read_box(&self, lo: &[usize], hi: &[usize], out: &mut [T]) -> Result<(), NdimageError> {
+        let ndim = self.ndim();
+        let inside = lo.len() == ndim
+            && hi.len() == ndim
+            && (0..ndim).all(|a| lo[a] < hi[a] && hi[a] <= self.shape()[a]);
+        if !inside {
+            return Err(NdimageError::BoxOutside {
+                lo: lo.to_vec(),
+                hi: hi.to_vec(),
+                shape: self.shape().to_vec(),
+            });
+        }
+        let size: usize = lo.iter().zip(hi).map(|(l, h)| h - l).product();
+        if out.len() != size {
+            return Err(NdimageError::BufferLength {
+                expected: size,
+                got: out.len(),
+            });
+        }
+        let info: Vec<SliceInfoElem> = lo
+            .iter()
+            .zip(hi)
+            .map(|(&l, &h)| SliceInfoElem::from(l..h))
+            .collect();
+        let view = self.view().into_dyn();
+        let window = view.slice(info.as_slice());
+        debug_assert_eq!(
+            window.raw_dim(),
+            IxDyn(&hi.iter().zip(lo).map(|(h, l)| h - l).collect::<Vec<_>>())
+        );
+        for (o, s) in out.iter_mut().zip(window.iter()) {
+            *o = s.widen();
+        }
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use ndarray::Array2;
+
+    #[test]
+    fn float32_samples_widen_exactly_and_store_rounded_once() {
+        // 1 + 2^-23 is a float32; widened it keeps every bit.
+        let x = 1.0f32 + f32::EPSILON;
+        assert_eq!(Sample::<f64>::widen(x), 1.0 + 2f64.powi(-23));
+        // 1 + 2^-24 + 2^-30 rounds up to 1 + 2^-23 (nearest), not down.
+        let v = 1.0 + 2f64.powi(-24) + 2f64.powi(-30);
+        assert_eq!(<f32 as Stored<f64>>::store(&v), 1.0 + f32::EPSILON);
+        // 2^53 + 1 as an i64 rounds to 2^53 (ties to even), as numpy's astype.
+        assert_eq!(Sample::<f64>::widen((1i64 << 53) + 1), 2f64.powi(53));
+        assert_eq!(Sample::<f64>::widen(u32::MAX), 4294967295.0);
+    }
+
+    #[test]
+    fn a_box_reads_the_samples_it_covers_in_c_order() {
+        let a = Array2::from_shape_fn((4, 5), |(i, j)| (10 * i + j) as f32);
+        let mut out = [0.0f64; 6];
+        a.read_box(&[1, 2], &[3, 5], &mut out).unwrap();
+        assert_eq!(out, [12.0, 13.0, 14.0, 22.0, 23.0, 24.0]);
+        // Strided views read the same samples.
+        let t = a.t();
+        let mut out_t = [0.0f64; 2];
+        t.read_box(&[3, 1], &[4, 3], &mut out_t).unwrap();
+        assert_eq!(out_t, [13.0, 23.0]);
+    }
+
+    #[test]
+    fn a_box_outside_the_array_is_refused() {
+        let a = Array2::<f64>::zeros((3, 3));
+        let mut out = [0.0f64; 4];
+        let e = a.read_box(&[2, 0], &[4, 2], &mut out).unwrap_err();
+        assert!(matches!(e, NdimageError::BoxOutside { .. }), "{e}");
+        let e = a.read_box(&[0, 0], &[1, 1], &mut out).unwrap_err();
+        assert!(
+            matches!(
+                e,
+                NdimageError::BufferLength {
+                    expected: 1,
+                    got: 4
+                }
+            ),
+            "{e}"
+        );
+    }
+}
