@@ -37,7 +37,7 @@ extensions = [
 
 source_suffix = {".rst": "restructuredtext", ".md": "markdown"}
 root_doc = "index"
-exclude_patterns = ["_build", "_generated", "_intersphinx", "examples", "**/README.md", "_templates",
+exclude_patterns = ["_build", "_generated", "_intersphinx", "examples", "README.md", "**/README.md", "_templates",
                     "auto_examples/*.ipynb", "auto_examples/*.py", "auto_examples/*.zip"]
 templates_path = ["_templates"]
 # The pages the faults branch adds are included where they exist (see
@@ -104,7 +104,7 @@ html_css_files = ["splinelab.css"]
 html_theme_options = {
     "navigation_with_keys": False,
     "show_prev_next": True,
-    "header_links_before_dropdown": 8,
+    "header_links_before_dropdown": 5,
     "secondary_sidebar_items": ["page-toc"],
     "footer_start": ["copyright"],
     "footer_end": ["sphinx-version"],

@@ -4,7 +4,7 @@
 # builds it into .venv; pytest runs python/tests and the docstring examples),
 # then scripts/downstream.sh (reproject's, nibabel's, sunpy's and scipy's own
 # interpolation tests with splinelab swapped in for scipy.ndimage's functions),
-# then the documentation (scripts/docs.sh --quick: warnings as errors, every
+# then the documentation (scripts/docs.sh: warnings as errors, every
 # gallery example and the pages' doctests run, every local link resolves,
 # every page opens in headless Chromium).
 # Tests run in the release profile and with the same features as the report
@@ -21,5 +21,5 @@ bash scripts/python.sh
 .venv/bin/python -m pytest -q -p no:cacheprovider --doctest-modules python/splinelab python/tests
 # Downstream libraries' own tests (and scipy's) with splinelab swapped in.
 bash scripts/downstream.sh
-# The documentation site, with the gallery's quick profile.
-bash scripts/docs.sh --quick
+# The documentation site (its gallery at full size: about 10 s of examples).
+bash scripts/docs.sh

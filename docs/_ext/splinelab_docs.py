@@ -61,14 +61,19 @@ def fmt(value: float) -> str:
     return f"{value:.4g}"
 
 
-def provenance_text() -> str:
+def provenance() -> nodes.paragraph:
+    """Where the baseline's figures come from: file, profile, commit, date, machine, command."""
     p = baseline()["provenance"]
-    return (
-        f"From the committed report baseline reports/baseline/summary.json "
-        f"(profile {baseline()['profile']}, splinelab {p['version']}, commit {p['git_commit']}, "
-        f"{p['date']}, {p['cpu']}, {p['threads']} threads, {p['rustc']}); "
-        f"regenerate with {p['regenerate']}."
+    para = nodes.paragraph(classes=["baseline-provenance"])
+    para += nodes.Text("From the committed report baseline ")
+    para += nodes.literal("", "reports/baseline/summary.json")
+    para += nodes.Text(
+        f" (profile {baseline()['profile']}, splinelab {p['version']}, commit {p['git_commit']}, "
+        f"{p['date']}, {p['cpu']}, {p['threads']} threads, {p['rustc']}); regenerate with "
     )
+    para += nodes.literal("", p["regenerate"])
+    para += nodes.Text(". CI fails a change that moves a gated figure past its tolerance (splinelab compare).")
+    return para
 
 
 class BaselineFigures(SphinxDirective):
@@ -92,11 +97,11 @@ class BaselineFigures(SphinxDirective):
         if self.options.get("chart", "none") != "none":
             out.append(self._chart(found, strip))
         out.append(self._table(found, strip))
-        out.append(nodes.paragraph("", "", nodes.emphasis("", provenance_text())))
+        out.append(provenance())
         return out
 
     def _table(self, found, strip):
-        head = ["figure", "value", "unit", "kind", "gate (tolerance)", "better"]
+        head = ["figure", "value", "unit", "tolerance"]
         table = nodes.table(classes=["baseline-figures"])
         group = nodes.tgroup(cols=len(head))
         table += group
@@ -109,9 +114,10 @@ class BaselineFigures(SphinxDirective):
         group += body
         for f in found:
             name = f["name"][len(strip):] if strip and f["name"].startswith(strip) else f["name"]
-            body += self._row([name, fmt(f["value"]), f.get("unit", ""), f.get("kind", ""),
-                               fmt(f["tolerance"]) if f.get("tolerance") is not None else "-",
-                               f.get("better", "")], literal_first=True)
+            tolerance = fmt(f["tolerance"]) if f.get("tolerance") is not None else "-"
+            if f.get("better"):
+                tolerance += f" ({f['better']} is better)"
+            body += self._row([name, fmt(f["value"]), f.get("unit", ""), tolerance], literal_first=True)
         if "caption" in self.options:
             title = nodes.title("", self.options["caption"])
             table.insert(0, title)
