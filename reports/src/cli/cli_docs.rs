@@ -75,11 +75,13 @@ fn collect(
     words: Vec<String>,
     out: &mut Vec<Page>,
 ) -> Result<(), CliError> {
-    let help = cmd.render_long_help().to_string();
+    let help = help_of(&words).unwrap_or_else(|| cmd.render_long_help().to_string());
     let mut man = Vec::new();
     // After `build`, a subcommand's display name is `splinelab-check-…` and
     // its usage name `splinelab check …`: the man page's NAME and SYNOPSIS.
     clap_mangen::Man::new(cmd.clone())
+        .source(format!("splinelab {}", env!("CARGO_PKG_VERSION")))
+        .manual("splinelab manual")
         .render(&mut man)
         .map_err(|source| CliError::Output {
             path: PathBuf::from(format!("{}.1", words.join("-"))),
@@ -99,6 +101,18 @@ fn collect(
         collect(sub, next, out)?;
     }
     Ok(())
+}
+
+/// What `WORDS --help` prints: clap renders its long form only where some
+/// option has a long help, so the page asks clap itself, as the program
+/// does (`None` if clap did not answer with a help text).
+fn help_of(words: &[String]) -> Option<String> {
+    let mut args: Vec<&str> = words.iter().map(String::as_str).collect();
+    args.push("--help");
+    match Cli::command().try_get_matches_from(args) {
+        Err(e) if e.kind() == clap::error::ErrorKind::DisplayHelp => Some(e.render().to_string()),
+        _ => None,
+    }
 }
 
 /// The reference page: one section per command, its `--help` verbatim.
