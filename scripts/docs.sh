@@ -53,8 +53,18 @@ mkdir -p "$gen/extra"
 if [ "$rustdoc" = 1 ]; then
   [ -f "$HOME/.cargo/env" ] && . "$HOME/.cargo/env"
   read -r -a features <<<"$(bash scripts/gmp_features.sh)"
-  "${lock[@]+"${lock[@]}"}" cargo doc --release --no-deps --workspace --quiet "${features[@]+"${features[@]}"}" >&2
+  "${lock[@]+"${lock[@]}"}" cargo doc --release --no-deps --workspace --lib --quiet "${features[@]+"${features[@]}"}" >&2
   cp -r "${CARGO_TARGET_DIR:-target}/doc" "$gen/extra/rust"
+  # rustdoc of a workspace has no root page (its help and settings pages
+  # link one): the list of the crates.
+  {
+    echo '<!DOCTYPE html><html lang="en"><head><meta charset="utf-8"><title>splinelab: Rust API</title></head><body>'
+    echo '<h1>splinelab: the Rust crates</h1><ul>'
+    for crate in splinelab splinelab_verify splinelab_reports splinelab_benches _splinelab; do
+      [ -f "$gen/extra/rust/$crate/index.html" ] && echo "<li><a href=\"$crate/index.html\">$crate</a></li>"
+    done
+    echo '</ul><p><a href="../index.html">Back to the documentation</a></p></body></html>'
+  } >"$gen/extra/rust/index.html"
   took "Rust API (cargo doc --no-deps --workspace)"
 else
   mkdir -p "$gen/extra/rust"
@@ -65,6 +75,8 @@ else
 fi
 
 .venv/bin/python -m splinelab report --quick --quiet --out "$gen/extra/report" >&2
+# The site's icon at its root, where browsers ask for it (the report's page names none).
+cp docs/_static/favicon.ico "$gen/extra/favicon.ico"
 took "quick report"
 
 SPLINELAB_GALLERY=$profile .venv/bin/python -m sphinx -W --keep-going -n -q -b html docs docs/_build/html
