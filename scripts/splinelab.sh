@@ -15,7 +15,7 @@ if [ ! -x "$bin" ]; then
   else
     gmp="and GMP/MPFR from source first unless ~/.cache/gmp-mpfr-sys has them"
   fi
-  echo "splinelab: first build of the release binary (about 3 min on 2 cores, 4 with GMP/MPFR from source, see the README; $gmp); later runs rebuild in seconds" >&2
+  echo "splinelab: first build of the release binary (about 3 min on 2 cores, 4 with GMP/MPFR from source, see docs/getting_started.md; $gmp); later runs rebuild in seconds" >&2
 fi
 cargo build --release "${quiet[@]+"${quiet[@]}"}" --manifest-path "$root/Cargo.toml" -p splinelab-reports \
   --bin splinelab "${features[@]+"${features[@]}"}" >&2

@@ -4,6 +4,7 @@
 pub mod bezier_eval;
 pub mod check;
 pub mod check_out;
+pub mod cli_docs;
 pub mod coeffs;
 pub mod compare;
 pub mod cond;
@@ -65,6 +66,10 @@ pub enum Command {
     Interpolate(interpolate::InterpolateArgs),
     /// scipy's zoom, shift, rotate and affine_transform of an N-D array (.npy in and out).
     Resample(resample::ResampleArgs),
+    /// The command line's reference: man pages and a Markdown page of every
+    /// `--help` (for the documentation site).
+    #[command(hide = true)]
+    CliDocs(cli_docs::CliDocsArgs),
 }
 
 /// The environment and exit statuses, shown under `--help`.
@@ -180,5 +185,6 @@ pub fn run(command: &Command) -> Result<ExitCode, CliError> {
         Command::Prefilter(a) => done(prefilter::run(a)),
         Command::Interpolate(a) => done(interpolate::run(a)),
         Command::Resample(a) => done(resample::run(a)),
+        Command::CliDocs(a) => done(cli_docs::run(a)),
     }
 }

@@ -8,6 +8,7 @@ mod bad_input;
 mod cli_bezier_eval;
 mod cli_check;
 mod cli_cond;
+mod cli_docs;
 mod cli_engine;
 mod cli_flatten;
 mod cli_nan_policy;

@@ -16,7 +16,7 @@ pub const AGREEMENT_GUARD_BITS: i32 = 40;
 
 /// The precision pairs tried, lowest first. Each pair compiles every
 /// reference computation twice more (the precision is the type
-/// [`Mp<BITS>`](Mp)), a tenth of this crate's code (`cargo llvm-lines`:
+/// [`Mp<BITS>`](splinelab::scalar::Mp)), a tenth of this crate's code (`cargo llvm-lines`:
 /// 2.23 million lines with a pair at 384, 2.01 without). So there is
 /// none at 384: the pair at 512 does its work at less than 1.5× the cost
 /// (a degree-5 MPFR prefilter of 500² samples: 0.28 CPU-s at 256 bits,

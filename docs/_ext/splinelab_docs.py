@@ -1,0 +1,294 @@
+"""Sphinx extension of splinelab's documentation: figures from the report, never typed by hand.
+
+- ``baseline-figures`` (directive): a table of the committed report
+  baseline's figures (``reports/baseline/summary.json``) whose names match
+  ``:match:`` (a regular expression), with the baseline's provenance
+  (profile, commit, date, machine, command) under it, and optionally
+  (``:chart: log`` or ``linear``) a bar chart of the same values drawn at
+  build time. A pattern that matches nothing is a build error, so a renamed
+  figure cannot leave an empty table behind.
+- ``baseline`` (role): one figure's value and unit inline,
+  ``{baseline}`engine.scipy.map_coordinates.worst_ulps``` → ``68.91 ulps``.
+- ``report-chart`` (directive): a chart of the quick report that
+  scripts/docs.sh ran for this build (``_generated/extra/report/NAME.svg``),
+  shown with its caption; a missing chart is a build error.
+- ``cli-man-pages`` (directive): links to the man pages this build wrote.
+
+At ``builder-inited`` it runs the command line's hidden ``cli-docs``
+subcommand (through the Python package's entry point) to write
+``_generated/cli.md`` (every ``--help``) and ``_generated/extra/man/*.1``.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import pathlib
+import re
+
+from docutils import nodes
+from docutils.parsers.rst import directives
+from sphinx.util.docutils import SphinxDirective, SphinxRole
+
+HERE = pathlib.Path(__file__).resolve().parent.parent
+ROOT = HERE.parent
+BASELINE = ROOT / "reports" / "baseline" / "summary.json"
+GENERATED = HERE / "_generated"
+EXTRA = GENERATED / "extra"
+
+_cache: dict = {}
+
+
+def baseline() -> dict:
+    """The committed baseline, read once per build."""
+    if "baseline" not in _cache:
+        _cache["baseline"] = json.loads(BASELINE.read_text(encoding="utf-8"))
+    return _cache["baseline"]
+
+
+def figures(pattern: str) -> list[dict]:
+    """The baseline's figures whose names match ``pattern`` (in file order)."""
+    rx = re.compile(pattern)
+    return [f for f in baseline()["figures"] if rx.search(f["name"])]
+
+
+def fmt(value: float) -> str:
+    """A figure's value as the report prints it: 4 significant digits."""
+    if value == 0:
+        return "0"
+    if abs(value) >= 1e5 or abs(value) < 1e-3:
+        return f"{value:.3e}"
+    return f"{value:.4g}"
+
+
+def provenance() -> nodes.paragraph:
+    """Where the baseline's figures come from: file, profile, commit, date, machine, command."""
+    p = baseline()["provenance"]
+    para = nodes.paragraph(classes=["baseline-provenance"])
+    para += nodes.Text("From the committed report baseline ")
+    para += nodes.literal("", "reports/baseline/summary.json")
+    para += nodes.Text(
+        f" (profile {baseline()['profile']}, splinelab {p['version']}, commit {p['git_commit']}, "
+        f"{p['date']}, {p['cpu']}, {p['threads']} threads, {p['rustc']}); regenerate with "
+    )
+    para += nodes.literal("", p["regenerate"])
+    para += nodes.Text(". CI fails a change that moves a gated figure past its tolerance (splinelab compare).")
+    return para
+
+
+class BaselineFigures(SphinxDirective):
+    """The table (and chart) of the baseline figures matching ``:match:``."""
+
+    option_spec = {
+        "match": directives.unchanged_required,
+        "chart": lambda a: directives.choice(a, ("log", "linear", "none")),
+        "caption": directives.unchanged,
+        "strip": directives.unchanged,
+    }
+
+    def run(self):
+        self.env.note_dependency(str(BASELINE))
+        pattern = self.options["match"]
+        found = figures(pattern)
+        if not found:
+            raise self.error(f"baseline-figures: no figure of {BASELINE.name} matches {pattern!r}")
+        strip = self.options.get("strip", "")
+        out = []
+        if self.options.get("chart", "none") != "none":
+            out.append(self._chart(found, strip))
+        out.append(self._table(found, strip))
+        out.append(provenance())
+        return out
+
+    def _table(self, found, strip):
+        head = ["figure", "value", "unit", "tolerance"]
+        table = nodes.table(classes=["baseline-figures"])
+        group = nodes.tgroup(cols=len(head))
+        table += group
+        for _ in head:
+            group += nodes.colspec(colwidth=1)
+        thead = nodes.thead()
+        group += thead
+        thead += self._row(head)
+        body = nodes.tbody()
+        group += body
+        for f in found:
+            name = f["name"][len(strip):] if strip and f["name"].startswith(strip) else f["name"]
+            tolerance = fmt(f["tolerance"]) if f.get("tolerance") is not None else "-"
+            if f.get("better"):
+                tolerance += f" ({f['better']} is better)"
+            body += self._row([name, fmt(f["value"]), f.get("unit", ""), tolerance], literal_first=True)
+        if "caption" in self.options:
+            title = nodes.title("", self.options["caption"])
+            table.insert(0, title)
+        return table
+
+    @staticmethod
+    def _row(cells, literal_first=False):
+        row = nodes.row()
+        for i, text in enumerate(cells):
+            entry = nodes.entry()
+            para = nodes.paragraph()
+            para += nodes.literal(text, text) if literal_first and i == 0 else nodes.Text(str(text))
+            entry += para
+            row += entry
+        return row
+
+    def _chart(self, found, strip):
+        import matplotlib
+
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+
+        names = [f["name"][len(strip):] if strip and f["name"].startswith(strip) else f["name"] for f in found]
+        values = [f["value"] for f in found]
+        unit = found[0].get("unit", "")
+        log = self.options["chart"] == "log"
+        key = hashlib.sha256(json.dumps([self.options["match"], log, values]).encode()).hexdigest()[:16]
+        target = GENERATED / "baseline" / f"{key}.png"
+        target.parent.mkdir(parents=True, exist_ok=True)
+        height = 0.9 + 0.28 * len(names)
+        fig, ax = plt.subplots(figsize=(8.0, height), dpi=110, layout="constrained")
+        shown = [max(v, 1e-300) for v in values] if log else values
+        ax.barh(range(len(names)), shown, color="#3465a4")
+        ax.set_yticks(range(len(names)), names, fontsize=8)
+        ax.invert_yaxis()
+        if log:
+            ax.set_xscale("log")
+        ax.set_xlabel(unit)
+        ax.grid(axis="x", alpha=0.3)
+        fig.savefig(target)
+        plt.close(fig)
+        # A "/"-rooted uri is relative to the source folder: Sphinx copies it.
+        image = nodes.image(uri="/" + str(target.relative_to(HERE)), alt=self.options.get("caption", "baseline figures"))
+        figure = nodes.figure("", image)
+        figure += nodes.caption("", self.options.get("caption", "") + " (bars: the table below).")
+        return figure
+
+
+class BaselineRole(SphinxRole):
+    """``{baseline}`NAME``` → the value and unit of figure NAME."""
+
+    def run(self):
+        self.env.note_dependency(str(BASELINE))
+        exact = [f for f in baseline()["figures"] if f["name"] == self.text]
+        if len(exact) != 1:
+            msg = self.inliner.reporter.error(f"baseline: no figure named {self.text!r}", line=self.lineno)
+            return [self.inliner.problematic(self.rawtext, self.rawtext, msg)], [msg]
+        f = exact[0]
+        text = f"{fmt(f['value'])} {f.get('unit', '')}".strip()
+        return [nodes.inline(self.rawtext, text, classes=["baseline-value"], ids=[])], []
+
+
+class ReportChart(SphinxDirective):
+    """A chart of this build's quick report, with a caption."""
+
+    required_arguments = 1
+    option_spec = {"caption": directives.unchanged_required}
+
+    def run(self):
+        name = self.arguments[0]
+        path = EXTRA / "report" / name
+        if not path.is_file():
+            raise self.error(f"report-chart: {path} is missing (scripts/docs.sh writes the quick report there)")
+        uri = "/" + str(path.relative_to(HERE))
+        image = nodes.image(uri=uri, alt=self.options["caption"])
+        figure = nodes.figure("", image)
+        figure += nodes.caption(
+            "", self.options["caption"] + " (from this build's quick report: "
+            "python -m splinelab report --quick)."
+        )
+        return [figure]
+
+
+class ManPages(SphinxDirective):
+    """A list of links to the man pages this build wrote."""
+
+    def run(self):
+        pages = sorted((EXTRA / "man").glob("*.1"))
+        if not pages:
+            raise self.error("cli-man-pages: no man page was generated")
+        depth = self.env.docname.count("/")
+        up = "../" * depth
+        items = nodes.bullet_list()
+        for p in pages:
+            ref = nodes.reference("", p.name, refuri=f"{up}man/{p.name}", internal=False)
+            items += nodes.list_item("", nodes.paragraph("", "", ref))
+        return [items]
+
+
+class PytestPluginOptions(SphinxDirective):
+    """The pytest plugin's options, as its ``pytest_addoption`` registers them."""
+
+    def run(self):
+        from splinelab import pytest_plugin
+
+        recorded = []
+
+        class Group:
+            def addoption(self, *names, **kw):
+                recorded.append((names, kw))
+
+        class Parser:
+            def getgroup(self, name, description=""):
+                return Group()
+
+            def addoption(self, *names, **kw):
+                recorded.append((names, kw))
+
+        pytest_plugin.pytest_addoption(Parser())
+        if not recorded:
+            raise self.error("the pytest plugin registers no option")
+        out = nodes.definition_list()
+        for names, kw in recorded:
+            meta = kw.get("metavar")
+            term = ", ".join(f"{n} {meta}" if meta else n for n in names)
+            default = kw.get("default")
+            text = kw.get("help", "") + (f" Default: {default}." if default is not None else " Default: off.")
+            item = nodes.definition_list_item()
+            item += nodes.term("", "", nodes.literal(term, term))
+            item += nodes.definition("", nodes.paragraph("", text))
+            out += item
+        return [out]
+
+
+class ScipyDifferences(SphinxDirective):
+    """A link to ``scipy_differences.md`` (every difference from scipy,
+    written with the exception-class work) where this tree has it; the
+    index's toctree takes it by a glob, so the site builds either way."""
+
+    def run(self):
+        from sphinx import addnodes
+
+        if not (HERE / "scipy_differences.md").is_file():
+            return [nodes.paragraph("", "The page listing every difference from scipy one by one "
+                                        "(docs/scipy_differences.md) is not part of this build.")]
+        ref = addnodes.pending_xref("", refdomain="std", reftype="doc", reftarget="/scipy_differences",
+                                    refexplicit=False, refwarn=True, refdoc=self.env.docname)
+        ref += nodes.inline("", "")
+        para = nodes.paragraph("", "Every difference from scipy, one by one, with the exception each "
+                                   "bad argument raises: ")
+        para += ref
+        para += nodes.Text(".")
+        return [para]
+
+
+def generate_cli_docs(app):
+    """``splinelab cli-docs``: the --help page and the man pages."""
+    from splinelab.__main__ import main
+
+    (EXTRA / "man").mkdir(parents=True, exist_ok=True)
+    status = main(["cli-docs", "--man", str(EXTRA / "man"), "--markdown", str(GENERATED / "cli.md")])
+    if status != 0:
+        raise RuntimeError(f"splinelab cli-docs exited {status}")
+
+
+def setup(app):
+    app.add_directive("baseline-figures", BaselineFigures)
+    app.add_directive("report-chart", ReportChart)
+    app.add_directive("cli-man-pages", ManPages)
+    app.add_directive("pytest-plugin-options", PytestPluginOptions)
+    app.add_directive("scipy-differences", ScipyDifferences)
+    app.add_role("baseline", BaselineRole())
+    app.connect("builder-inited", generate_cli_docs)
+    return {"version": "1", "parallel_read_safe": True, "parallel_write_safe": True}

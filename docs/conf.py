@@ -1,0 +1,166 @@
+"""Sphinx configuration of splinelab's documentation (built by scripts/docs.sh).
+
+Everything the build reads is in the repository: the package's own
+docstrings (autodoc/autosummary, numpydoc), the gallery scripts in
+``examples/`` (sphinx-gallery, executed at build time), the committed report
+baseline ``reports/baseline/summary.json`` (the ``baseline-figures``
+directive of ``_ext/splinelab_docs.py``) and intersphinx inventories bundled
+in ``_intersphinx/`` (no network at build time). Warnings are errors
+(``-W --keep-going -n`` in scripts/docs.sh).
+"""
+
+import os
+import pathlib
+import sys
+
+HERE = pathlib.Path(__file__).resolve().parent
+ROOT = HERE.parent
+sys.path.insert(0, str(HERE / "_ext"))
+
+import splinelab  # noqa: E402  (the built extension in .venv: scripts/python.sh)
+
+project = "splinelab"
+author = "the splinelab developers"
+copyright = "the splinelab developers"
+release = version = splinelab.__version__
+
+extensions = [
+    "sphinx.ext.autodoc",
+    "sphinx.ext.autosummary",
+    "sphinx.ext.intersphinx",
+    "sphinx.ext.mathjax",
+    "numpydoc",
+    "sphinx_gallery.gen_gallery",
+    "myst_parser",
+    "splinelab_docs",
+]
+
+source_suffix = {".rst": "restructuredtext", ".md": "markdown"}
+root_doc = "index"
+exclude_patterns = ["_build", "_generated", "_intersphinx", "examples", "README.md", "**/README.md", "_templates",
+                    "auto_examples/*.ipynb", "auto_examples/*.py", "auto_examples/*.zip"]
+templates_path = ["_templates"]
+# The pages the faults branch adds are included where they exist (see
+# coming_from_scipy.md); nothing else is optional.
+nitpicky = True
+
+# -- MyST (Markdown pages) ---------------------------------------------------
+myst_enable_extensions = ["colon_fence", "dollarmath", "deflist"]
+myst_heading_anchors = 4
+
+# -- autodoc / autosummary / numpydoc ----------------------------------------
+autosummary_generate = True
+autodoc_default_options = {"members": False}
+autodoc_typehints = "none"  # the docstrings state the types (numpydoc)
+numpydoc_show_class_members = False
+numpydoc_xref_param_type = False
+# Phase 1 renders the docstrings as they are; numpydoc's validation (GL01,
+# PR01, ...) is switched on in phase 2 with the numpydoc rewrite.
+numpydoc_validation_checks = set()
+
+# -- intersphinx: inventories bundled in the repository ----------------------
+# Provenance of each file: docs/_intersphinx/README.md.
+_INV = HERE / "_intersphinx"
+intersphinx_mapping = {
+    "python": ("https://docs.python.org/3", str(_INV / "python.inv")),
+    "numpy": ("https://numpy.org/doc/stable", str(_INV / "numpy.inv")),
+    "scipy": ("https://docs.scipy.org/doc/scipy", str(_INV / "scipy.inv")),
+    "dask": ("https://docs.dask.org/en/stable", str(_INV / "dask.inv")),
+}
+intersphinx_timeout = 1
+
+# -- sphinx-gallery -----------------------------------------------------------
+# SPLINELAB_GALLERY=quick (CI) runs every example with its small sizes
+# (each script reads the variable); the full profile the same scripts at
+# their documented sizes.
+_gallery_profile = os.environ.get("SPLINELAB_GALLERY", "full")
+sphinx_gallery_conf = {
+    "examples_dirs": str(HERE / "examples"),
+    "gallery_dirs": "auto_examples",
+    "filename_pattern": r"/plot_",
+    "abort_on_example_error": True,
+    "only_warn_on_example_error": False,
+    "download_all_examples": False,
+    "show_memory": False,
+    "remove_config_comments": True,
+    "within_subsection_order": "FileNameSortKey",
+    "reference_url": {"splinelab": None},
+    "doc_module": ("splinelab",),
+    "backreferences_dir": "_generated/backreferences",
+    "matplotlib_animations": False,
+    "image_scrapers": ("matplotlib",),
+    "run_stale_examples": True,
+    # Each example's page shows its own run time; the summary page of all
+    # run times loads its table script from a CDN, which this offline site
+    # does not reach.
+    "write_computation_times": False,
+}
+
+# -- HTML -----------------------------------------------------------------------
+html_theme = "pydata_sphinx_theme"
+html_title = f"splinelab {release}"
+html_static_path = ["_static"]
+html_css_files = ["splinelab.css"]
+html_theme_options = {
+    "navigation_with_keys": False,
+    "show_prev_next": True,
+    "header_links_before_dropdown": 5,
+    "secondary_sidebar_items": ["page-toc"],
+    "footer_start": ["copyright"],
+    "footer_end": ["sphinx-version"],
+}
+html_sidebars = {"index": [], "search": []}
+html_favicon = "_static/favicon.svg"
+# The theme's light/dark switch starts from this mode (without it the theme
+# logs "Got invalid theme mode" on a first visit).
+html_context = {"default_mode": "auto"}
+html_show_sourcelink = False
+html_copy_source = False
+html_last_updated_fmt = None
+
+# Generated reference material (scripts/docs.sh writes it before the build):
+# the command line's --help page and man pages, the Rust API (cargo doc) and
+# the quick report, copied beside the site and linked from it.
+# scripts/docs.sh puts the quick report and the rustdoc there; the
+# extension writes the man pages at builder-inited.
+(HERE / "_generated" / "extra").mkdir(parents=True, exist_ok=True)
+html_extra_path = ["_generated/extra"]
+
+# -- Phase-1 tolerances: what the docstrings of the engine's modules say today ----
+# Those docstrings are rewritten to numpydoc in phase 2 (after the branches that
+# change those files merge); until then these exact, known issues are not errors.
+# Each is listed in docs/README.md with its fix.
+nitpick_ignore = [
+    # _ndimage.map_coordinates refers to the private module that rounds results.
+    ("py:mod", "splinelab._dtypes"),
+]
+_TOLERATED = []
+# scipy_differences.md comes from the exception-class work; the index's toctree
+# takes it by a glob, which matches nothing on a branch without it.
+if not (HERE / "scipy_differences.md").is_file():
+    _TOLERATED.append("toctree glob pattern 'scipy_differences*' didn't match any documents")
+
+
+class _Phase1Tolerance:
+    """Drops the known warnings of _TOLERATED (by their exact text)."""
+
+    def filter(self, record):
+        message = record.getMessage()
+        return not any(m in message for m in _TOLERATED)
+
+
+def _phase1_docstrings(app, what, name, obj, options, lines):
+    """autosummary looks for the first sentence of a summary at ". ", and
+    coefficients()'s first line has one inside a literal (``c_0 .. c_{count-1}``):
+    shown as ``c_0, ..., c_{count-1}`` until the phase-2 docstring says so."""
+    if name == "splinelab.coefficients" and lines:
+        lines[0] = lines[0].replace("``c_0 .. c_{count-1}``", "``c_0, ..., c_{count-1}``")
+
+
+def setup(app):
+    import logging
+
+    app.connect("autodoc-process-docstring", _phase1_docstrings, priority=400)
+
+    for handler in logging.getLogger("sphinx").handlers:
+        handler.filters.insert(0, _Phase1Tolerance())
