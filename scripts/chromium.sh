@@ -1,24 +1,26 @@
 #!/usr/bin/env bash
-# Installs headless Chromium for page checks: Debian's `chromium` and
-# `chromium-driver` (the WebDriver server of the same build), and fonts.
-# Safe to rerun: installs only what is missing. Prints the browser's version.
-#
-# Interface (kept small; docs/browser_check.py is the Python side):
-#   scripts/chromium.sh            # install if missing; exit 0 when
-#                                  # /usr/bin/chromium and /usr/bin/chromedriver run
-#   CHROMIUM=/path CHROMEDRIVER=/path   # use other binaries (nothing installed)
-# Then docs/browser_check.py opens pages with them (see its docstring).
+# Installs the headless browser the page checks use: Debian's `chromium`,
+# `chromium-driver` (the WebDriver server of the same build, for
+# docs/browser_check.py) and a font, through apt (never a browser download of
+# its own), unless they are already there. Prints the browser's path on
+# stdout. Safe to rerun: a no-op once installed. Needs root or sudo the first
+# time.
+#   scripts/chromium.sh                       # -> /usr/bin/chromium
+#   CHROMIUM=/path CHROMEDRIVER=/path scripts/chromium.sh   # use those, install nothing
+# Python sides: scripts/pagecheck.py (DevTools pipe, standard library only:
+# the CI pages and the report) and docs/browser_check.py (the documentation site).
 set -euo pipefail
 
-browser="${CHROMIUM:-/usr/bin/chromium}"
-driver="${CHROMEDRIVER:-/usr/bin/chromedriver}"
-if [ ! -x "$browser" ] || [ ! -x "$driver" ]; then
+browser="${CHROMIUM:-}"
+[ -n "$browser" ] || browser=$(command -v chromium || command -v chromium-browser || true)
+driver="${CHROMEDRIVER:-$(command -v chromedriver || true)}"
+if [ -z "$browser" ] || [ -z "$driver" ]; then
   if [ -n "${CHROMIUM:-}${CHROMEDRIVER:-}" ]; then
-    echo "error: CHROMIUM/CHROMEDRIVER set but not executable: $browser $driver" >&2
+    echo "error: CHROMIUM/CHROMEDRIVER set but not both usable: '${CHROMIUM:-}' '${CHROMEDRIVER:-}'" >&2
     exit 1
   fi
   if ! command -v apt-get >/dev/null 2>&1; then
-    echo "error: chromium and chromedriver missing and no apt-get to install them (Debian: apt-get install chromium chromium-driver)" >&2
+    echo "error: no Chromium and no apt-get: install chromium and chromium-driver with your package manager, or set CHROMIUM and CHROMEDRIVER" >&2
     exit 1
   fi
   sudo=""
@@ -27,11 +29,12 @@ if [ ! -x "$browser" ] || [ ! -x "$driver" ]; then
     echo "error: need root or sudo to install chromium chromium-driver" >&2
     exit 1
   fi
-  echo "splinelab chromium: installing chromium chromium-driver fonts-dejavu-core (Debian packages)" >&2
   pkgs=(chromium chromium-driver fonts-dejavu-core)
-  if ! DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq "${pkgs[@]}" >/dev/null 2>&1; then
+  echo "splinelab: installing ${pkgs[*]} (Debian packages, for the headless page checks)" >&2
+  if ! DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${pkgs[@]}" >&2 2>/dev/null; then
     $sudo apt-get update -qq >&2
-    DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq "${pkgs[@]}" >&2
+    DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${pkgs[@]}" >&2
   fi
+  browser=$(command -v chromium)
 fi
-"$browser" --headless=new --no-sandbox --version
+echo "$browser"

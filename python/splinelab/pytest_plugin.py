@@ -8,7 +8,8 @@ command line's ``splinelab check --out``: HTML, SVG charts, per-element
 ``-3``, ... for further checks in one test; ``name=`` overrides it). At the
 end of the session ``DIR/summary.json`` gathers every check's figures, each
 renamed ``LABEL.check.KIND.FIGURE`` with its tolerance unchanged, and
-``DIR/index.html`` links the pages. ``DIR/checks`` is emptied when the
+``DIR/index.html`` leads with a chart of each check's worst error against
+what its verdict allows (the failures marked) and links every page. ``DIR/checks`` is emptied when the
 session starts, so a removed test does not linger.
 
 Two runs (main and a branch, yesterday's CI and today's) then compare with
@@ -23,7 +24,6 @@ summary.
 
 from __future__ import annotations
 
-import html
 import json
 import os
 import pathlib
@@ -107,10 +107,15 @@ def _atomic(path, text):
 
 def write_summary(root):
     """Gathers ``root/checks/*/summary.json`` into ``root/summary.json`` and
-    ``root/index.html``; returns (checks, failed)."""
+    the session page ``root/index.html`` (a chart of each check's worst
+    error against what its verdict allows, then the table of checks, drawn
+    by the extension with the report's chart code and stylesheet); returns
+    (checks, failed)."""
+    from . import _splinelab
+
     root = pathlib.Path(root)
     folders = sorted(p for p in (root / "checks").iterdir() if p.is_dir() and not p.name.startswith("."))
-    checks, figures = [], []
+    checks, figures, pages = [], [], []
     for d in folders:
         page = json.loads((d / "summary.json").read_text(encoding="utf-8"))
         c = page["check"]
@@ -123,25 +128,10 @@ def write_summary(root):
             "digits_lost": c.get("digits_lost"),
             "page": f"checks/{d.name}/index.html",
         })
+        pages.append({"label": d.name, "page": f"checks/{d.name}/index.html", "check": c})
         figures += [{**f, "name": f"{d.name}.{f['name']}"} for f in page["figures"]]
     summary = {"source": "splinelab pytest plugin (--splinelab-report)", "checks": checks, "figures": figures}
     _atomic(root / "summary.json", json.dumps(summary, indent=1))
-    _atomic(root / "index.html", _index(checks))
+    for name, text in _splinelab.session_page(json.dumps(pages)):
+        _atomic(root / name, text)
     return len(checks), sum(c["verdict"] != "pass" for c in checks)
-
-
-def _index(checks):
-    rows = "".join(
-        f"<tr><td style=\"text-align:left\"><a href=\"{html.escape(c['page'])}\">{html.escape(c['label'])}</a></td>"
-        f"<td>{html.escape(str(c['kind']))}</td><td>{html.escape(str(c['verdict']))}</td><td>{c['n']}</td>"
-        f"<td>{c['worst_ulps']}</td><td>{c['digits_lost']}</td></tr>\n"
-        for c in checks
-    )
-    return (
-        "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>splinelab checks</title></head><body>\n"
-        f"<h1>splinelab checks of this test session ({len(checks)})</h1>\n"
-        "<p>Machine-readable: <a href=\"summary.json\">summary.json</a> "
-        "(<code>splinelab compare --baseline OLD/summary.json --current summary.json --out DIR</code>).</p>\n"
-        "<table><tr><th>check</th><th>kind</th><th>verdict</th><th>elements</th><th>worst ulps</th>"
-        f"<th>digits lost</th></tr>\n{rows}</table></body></html>\n"
-    )

@@ -12,6 +12,7 @@ mod cli;
 mod error;
 mod filter;
 mod interp;
+mod pages;
 mod pool;
 mod resample;
 mod width;
@@ -49,5 +50,8 @@ fn _splinelab(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(check::check_interp, m)?)?;
     m.add_function(wrap_pyfunction!(check::check_cond, m)?)?;
     m.add_function(wrap_pyfunction!(cli::cli_main, m)?)?;
+    // The pages a CI run leaves (report, check, compare, session) share it.
+    m.add("REPORT_CSS", splinelab_reports::page::STYLE)?;
+    m.add_function(wrap_pyfunction!(pages::session_page, m)?)?;
     Ok(())
 }

@@ -62,15 +62,31 @@ pub struct Series {
     pub points: Vec<(f64, f64)>,
     /// How to draw it.
     pub style: Style,
+    /// Its colour (`0xRRGGBB`); `None`: the palette's colour for its place.
+    pub color: Option<u32>,
 }
 
+/// The colour of a failure or a regression.
+pub const RED: u32 = 0xd62728;
+/// The colour of a pass.
+pub const GREEN: u32 = 0x2ca02c;
+/// The colour of a limit drawn for reference.
+pub const GREY: u32 = 0x7f7f7f;
+
 impl Series {
+    /// The same series in a colour of its own (a verdict's, [`RED`],
+    /// [`GREEN`]), whatever its place among the series.
+    pub fn with_color(mut self, rgb: u32) -> Self {
+        self.color = Some(rgb);
+        self
+    }
     /// A series drawn as a line.
     pub fn line(name: impl Into<String>, points: Vec<(f64, f64)>) -> Self {
         Series {
             name: name.into(),
             points,
             style: Style::Line,
+            color: None,
         }
     }
     /// A series drawn as markers.
@@ -79,6 +95,7 @@ impl Series {
             name: name.into(),
             points,
             style: Style::Points,
+            color: None,
         }
     }
     /// Shaded x intervals `(start, end)` (see [`Style::Band`]).
@@ -87,6 +104,7 @@ impl Series {
             name: name.into(),
             points: intervals,
             style: Style::Band,
+            color: None,
         }
     }
     /// A series drawn as a line with markers.
@@ -95,6 +113,7 @@ impl Series {
             name: name.into(),
             points,
             style: Style::LinePoints,
+            color: None,
         }
     }
 }
@@ -180,10 +199,15 @@ const PALETTE: [u32; 12] = [
     0x17becf, 0x000000, 0x783c00,
 ];
 
+/// `0xRRGGBB` as a plotters colour.
+fn rgb(c: u32) -> RGBColor {
+    let [_, r, g, b] = c.to_be_bytes();
+    RGBColor(r, g, b)
+}
+
 /// The `k`-th palette colour (cycling).
 fn palette(k: usize) -> RGBColor {
-    let [_, r, g, b] = PALETTE[k % PALETTE.len()].to_be_bytes();
-    RGBColor(r, g, b)
+    rgb(PALETTE[k % PALETTE.len()])
 }
 
 fn transform(v: f64, log: bool, name: &str) -> Result<f64, ChartError> {
@@ -387,7 +411,7 @@ impl Chart {
             })
             .draw()?;
         for (k, (s, pts)) in self.series.iter().zip(data).enumerate() {
-            let color = palette(k);
+            let color = s.color.map_or_else(|| palette(k), rgb);
             if s.style == Style::Band {
                 let shade = color.mix(0.15);
                 chart.draw_series(

@@ -15,6 +15,8 @@ pub mod input;
 pub mod interrupt;
 pub mod npy_layout;
 pub mod output;
+pub mod page;
 pub mod path_text;
 pub mod report;
+pub mod session;
 pub mod threads;

@@ -9,7 +9,9 @@ use crate::array_io::write_npy_f64;
 use crate::check_charts::{bound_chart, cond_chart, error_chart};
 use crate::error::CliError;
 use crate::html::{escape, num, paragraph, table};
+use crate::page::{figure, machine_readable, page, verdict_class};
 use crate::report::Figure;
+use crate::report::provenance::{provenance_html, run_provenance};
 use serde_json::{Value, json};
 use splinelab_verify::check::{CheckSummary, ElementError, Outcome, Region};
 use std::path::{Path, PathBuf};
@@ -181,14 +183,14 @@ fn body(o: &Outcome) -> String {
                     w.index,
                     num(s.digits_lost.unwrap_or(0.0)),
                     s.over_bound,
-                    num(s.bound_factor.unwrap_or(1.0))
+                    s.bound_factor.unwrap_or(1.0)
                 ),
                 (None, Some(why)) => format!(" No stable-bound verdict: {why}."),
                 (None, None) => String::new(),
             };
             paragraph(&format!(
-                "Verdict: {}. Reference: {}. {worst}Correct digits ≥ {:.2}; {} non-finite values; {} elements over --max-ulps.{basis} Per element: reference.npy, error.npy, bound.npy.",
-                s.verdict, s.reference, s.digits_min, s.non_finite, s.failed
+                "Reference: {}. {worst}Correct digits ≥ {:.2}; {} non-finite values; {} elements over --max-ulps.{basis}",
+                s.reference, s.digits_min, s.non_finite, s.failed
             )) + &table(
                 &format!("Errors in ulps of {}", s.format.name()),
                 &["region", "elements", "max ulps", "median ulps"],
@@ -196,6 +198,42 @@ fn body(o: &Outcome) -> String {
             )
         }
     }
+}
+
+/// The verdict line at the top of the page, in its colour: the command
+/// line's first line (`check prefilter: pass (8 elements, f64 ulps)`).
+fn headline(o: &Outcome) -> String {
+    let (kind, verdict, what) = match o {
+        Outcome::Elements(s) => (
+            s.kind.as_str(),
+            s.verdict.as_str(),
+            format!("{} elements, {} ulps", s.n, s.format.name()),
+        ),
+        Outcome::Insertion(s) => ("knot-insertion", s.verdict.as_str(), "one curve".into()),
+    };
+    format!(
+        "<p class=\"{}\">check {}: {} ({})</p>\n",
+        verdict_class(verdict),
+        escape(kind),
+        escape(verdict),
+        escape(&what)
+    )
+}
+
+/// The machine-readable files of the folder, with what each holds.
+fn data_files(o: &Outcome) -> Vec<(&'static str, &'static str)> {
+    let mut files = vec![(
+        "summary.json",
+        "the check and its figures, for splinelab compare",
+    )];
+    if let Outcome::Elements(_) = o {
+        files.extend([
+            ("reference.npy", "the reference per element"),
+            ("error.npy", "|value − reference|"),
+            ("bound.npy", "the stable bound, NaN without one"),
+        ]);
+    }
+    files
 }
 
 /// Renders the page and the files of the directory, in memory.
@@ -215,22 +253,20 @@ fn files(o: &Outcome, json: &Value) -> Result<Vec<(String, Vec<u8>)>, CliError> 
             .into_iter()
             .filter(|c| c.series.iter().any(|x| !x.points.is_empty()))
         {
-            let svg = chart
-                .render_svg()
-                .map_err(|e| CliError::Chart(chart.id.clone(), e.to_string()))?;
-            html.push_str(&format!(
-                "<figure>{svg}<figcaption>{} (<a href=\"{}.svg\">SVG</a>)</figcaption></figure>\n",
-                escape(&chart.caption),
-                chart.id
-            ));
+            let (figure, svg) = figure(&chart)?;
+            html.push_str(&figure);
             out.push((format!("{}.svg", chart.id), svg.into_bytes()));
         }
     }
     let kind = json.get("kind").and_then(Value::as_str).unwrap_or("check");
-    let page = format!(
-        "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>splinelab check {k}</title></head>\
-         <body>\n<h1>splinelab check {k}</h1>\n{html}<p>Machine-readable: <a href=\"summary.json\">summary.json</a>.</p></body></html>\n",
-        k = escape(kind)
+    let page = page(
+        &format!("splinelab check {kind}"),
+        &format!(
+            "{}{html}{}{}",
+            headline(o),
+            machine_readable(&data_files(o)),
+            provenance_html(&run_provenance())
+        ),
     );
     out.push(("index.html".into(), page.into_bytes()));
     let summary = json!({"check": json, "figures": figures(o)});

@@ -282,9 +282,7 @@ pub fn section(profile: &Profile) -> Result<Section, ReportError> {
     html.push_str(&limitation(&d));
     html.push_str(&format!(
         "<p class=\"meta\">{}</p>\n",
-        escape(
-            "Costs are measured by criterion: cargo bench -p splinelab-benches --bench bezier_eval."
-        )
+        escape("Costs are measured by criterion: scripts/bench.sh --bench bezier_eval.")
     ));
     let mut charts = near_root_charts(&d);
     charts.extend(degree_charts(&d));

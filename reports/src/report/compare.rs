@@ -15,6 +15,7 @@ use crate::chart::{Chart, Series};
 use crate::error::CliError;
 use crate::html::{escape, num};
 use crate::input::read_json;
+use crate::page::verdict;
 use serde_json::Value;
 use std::collections::BTreeMap;
 use std::path::Path;
@@ -269,6 +270,9 @@ pub fn compare(
     Ok(out)
 }
 
+/// The compare charts' ratios are drawn within `[1/RATIO_EDGE, RATIO_EDGE]`.
+const RATIO_EDGE: f64 = 1e6;
+
 fn study(name: &str) -> &str {
     name.split('.').next().unwrap_or(name)
 }
@@ -288,12 +292,14 @@ fn charts(rows: &[Comparison]) -> Vec<Chart> {
     by_study
         .into_iter()
         .filter_map(|(study, rs)| {
+            // A zero on one side (a count of failures going from 0 to 1)
+            // is drawn at the edge of the range, not at 1e300.
             let ratio = |r: &Comparison| {
                 let (b, c) = (
                     r.baseline.value.abs().max(1e-300),
                     r.current.abs().max(1e-300),
                 );
-                c / b
+                (c / b).clamp(1.0 / RATIO_EDGE, RATIO_EDGE)
             };
             let pts = |want: Verdict, gated: bool| -> Vec<(f64, f64)> {
                 rs.iter()
@@ -317,6 +323,7 @@ fn charts(rows: &[Comparison]) -> Vec<Chart> {
                             format!("REGRESSED #{i} {}", r.baseline.name),
                             vec![(*i as f64, ratio(r))],
                         )
+                        .with_color(crate::chart::RED)
                     }),
             );
             series.retain(|s| !s.points.is_empty());
@@ -329,45 +336,123 @@ fn charts(rows: &[Comparison]) -> Vec<Chart> {
                 y_log: true,
                 series,
                 caption: format!(
-                    "Study {study}: each figure's current value over its baseline value, by its # in the table."
+                    "Study {study}: each figure's current value over its baseline value, by its # in the table \
+                     (a ratio beyond {RATIO_EDGE:e} either way, such as a zero on one side, drawn at that edge)."
                 ),
             })
         })
         .collect()
 }
 
-fn table(rows: &[Comparison]) -> String {
+/// The verdict word of a row, as the table and `compare.json` say it.
+fn verdict_word(r: &Comparison) -> &'static str {
+    match (r.verdict, r.gated) {
+        (Verdict::Ok, _) => "ok",
+        (Verdict::Improved, _) => "improved",
+        (Verdict::Regressed, true) => "regressed",
+        (_, false) if !r.comparable => "not gated: measured over other cases",
+        (Verdict::Regressed, false) => "slower (timing, not gated; --timings gates it)",
+    }
+}
+
+/// A table of `(#, row)`: each figure's baseline, current value, change,
+/// tolerance and verdict (in colour).
+fn table(rows: &[(usize, &Comparison)]) -> String {
     let mut s = String::from(
         "<div class=\"scroll\"><table><tr><th>#</th><th>figure</th><th>kind</th><th>unit</th><th>baseline</th>\
          <th>current</th><th>delta</th><th>tolerance</th><th>verdict</th></tr>\n",
     );
-    for (i, r) in rows.iter().enumerate() {
+    for (i, r) in rows {
         let b = &r.baseline;
-        let (class, word) = match (r.verdict, r.gated) {
-            (Verdict::Ok, _) => ("", "ok"),
-            (Verdict::Improved, _) => ("improved", "improved"),
-            (Verdict::Regressed, true) => ("regressed", "REGRESSED"),
-            (_, false) if !r.comparable => ("", "not gated: measured over other cases"),
-            (Verdict::Regressed, false) => ("", "slower (timing, not gated; --timings gates it)"),
+        let word = verdict_word(r);
+        let class = match (r.verdict, r.gated) {
+            (Verdict::Improved, _) => "improved",
+            (Verdict::Regressed, true) => "regressed",
+            _ => "",
         };
         let tol = match b.kind {
             Kind::Accuracy => format!("± {}", num(b.tolerance)),
             Kind::Cost => format!("× {}", num(b.tolerance)),
         };
         s.push_str(&format!(
-            "<tr class=\"{class}\"><td>{}</td><td style=\"text-align:left\">{}</td><td>{:?}</td><td>{}</td>\
-             <td>{}</td><td>{}</td><td>{}</td><td>{tol}</td><td>{word}</td></tr>\n",
-            i + 1,
+            "<tr class=\"{class}\"><td>{i}</td><td class=\"name\">{}</td><td>{:?}</td><td>{}</td>\
+             <td>{}</td><td>{}</td><td>{}</td><td>{tol}</td><td>{}</td></tr>\n",
             escape(&b.name),
             b.kind,
             escape(&b.unit),
             num(b.value),
             num(r.current),
             num(r.current - b.value),
+            verdict(word),
         ));
     }
     s.push_str("</table></div>\n");
     s
+}
+
+/// The figures that moved beyond their tolerance, numbered as in the full
+/// table: gated regressions first, then improvements, then the timings
+/// that got slower without gating.
+fn moved(rows: &[Comparison]) -> Vec<(usize, &Comparison)> {
+    let rank = |r: &Comparison| match (r.verdict, r.gated) {
+        (Verdict::Regressed, true) => Some(0),
+        (Verdict::Improved, _) => Some(1),
+        (Verdict::Regressed, false) => Some(2),
+        (Verdict::Ok, _) => None,
+    };
+    let mut m: Vec<(u8, usize, &Comparison)> = rows
+        .iter()
+        .enumerate()
+        .filter_map(|(i, r)| Some((rank(r)?, i + 1, r)))
+        .collect();
+    m.sort_by_key(|(rank, i, _)| (*rank, *i));
+    m.into_iter().map(|(_, i, r)| (i, r)).collect()
+}
+
+/// `compare.json`: everything the page shows, for a machine (the action's
+/// step summary reads it).
+fn compare_json(outcome: &Outcome, inputs: (&Path, &Path)) -> serde_json::Value {
+    let rows: Vec<serde_json::Value> = outcome
+        .rows
+        .iter()
+        .map(|r| {
+            serde_json::json!({
+                "name": r.baseline.name,
+                "kind": r.baseline.kind,
+                "unit": r.baseline.unit,
+                "better": r.baseline.better,
+                "tolerance": r.baseline.tolerance,
+                "baseline": r.baseline.value,
+                "current": r.current,
+                "verdict": verdict_word(r),
+                "gated": r.gated,
+            })
+        })
+        .collect();
+    let names = |v: &[&Comparison]| {
+        v.iter()
+            .map(|r| r.baseline.name.clone())
+            .collect::<Vec<_>>()
+    };
+    let improved: Vec<&Comparison> = outcome
+        .rows
+        .iter()
+        .filter(|r| r.verdict == Verdict::Improved)
+        .collect();
+    serde_json::json!({
+        "baseline": inputs.0.display().to_string(),
+        "current": inputs.1.display().to_string(),
+        "failed": outcome.failed(),
+        "regressed": names(&outcome.regressed()),
+        "missing": outcome.missing,
+        "improved": names(&improved),
+        "only_baseline": outcome.only_baseline,
+        "only_current": outcome.only_current,
+        "changed": outcome.changed,
+        "incomparable": outcome.incomparable,
+        "profiles": [outcome.profiles.0, outcome.profiles.1],
+        "rows": rows,
+    })
 }
 
 /// A titled list of figure names (nothing when empty).
@@ -405,9 +490,7 @@ pub fn write_compare(
         .collect();
     let mut body = String::new();
     for chart in charts(rows) {
-        let svg = chart
-            .render_svg()
-            .map_err(|e| CliError::Chart(chart.title.clone(), e.to_string()))?;
+        let (figure, svg) = crate::page::figure(&chart)?;
         let file = dir.join(format!("{}.svg", chart.id));
         if file.exists() {
             // Two study names that differ only in characters made safe.
@@ -417,10 +500,7 @@ pub fn write_compare(
             ));
         }
         crate::output::write_atomic(&file, svg.as_bytes())?;
-        body.push_str(&format!(
-            "<figure>{svg}<figcaption>{}</figcaption></figure>\n",
-            escape(&chart.caption)
-        ));
+        body.push_str(&figure);
     }
     let mut headline = if regressed.is_empty() {
         "<p class=\"okay\">No gated figure regressed beyond its tolerance.</p>".to_string()
@@ -455,24 +535,41 @@ pub fn write_compare(
         "Measured over other cases (shown, not gated)",
         &outcome.incomparable,
     );
-    let page = format!(
-        "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\
-         <meta name=\"viewport\" content=\"width=device-width, initial-scale=1\"><title>splinelab compare</title>\
-         <style>body{{font-family:sans-serif;max-width:1100px;margin:2em auto;padding:0 8px}}td,th{{border:1px solid #bbb;\
-         padding:2px 6px;text-align:right}}table{{border-collapse:collapse;font-size:85%}}\
-         .scroll{{overflow-x:auto}}svg{{max-width:100%;height:auto}}\
-         .regressed{{background:#fbb;font-weight:bold}}.improved{{background:#bfb}}.note{{background:#ffd}}</style></head><body>\
-         <h1>splinelab regression compare</h1><p>Baseline: {}<br>Current: {}<br>Compared: {} figures \
-         (wall-clock timings {}).</p>{headline}{lists}{body}{}</body></html>\n",
-        escape(&inputs.0.display().to_string()),
-        escape(&inputs.1.display().to_string()),
-        rows.len(),
-        if rows.iter().all(|r| r.gated) {
-            "gated"
-        } else {
-            "shown, not gated"
-        },
-        table(rows)
+    let moved = moved(rows);
+    let moved_html = if moved.is_empty() {
+        "<h2>Figures that moved</h2><p>None moved beyond its tolerance.</p>\n".to_string()
+    } else {
+        format!(
+            "<h2>Figures that moved ({})</h2>\n{}",
+            moved.len(),
+            table(&moved)
+        )
+    };
+    let all: Vec<(usize, &Comparison)> = rows.iter().enumerate().map(|(i, r)| (i + 1, r)).collect();
+    let json = serde_json::to_string_pretty(&compare_json(outcome, inputs))
+        .map_err(CliError::numerical)?;
+    crate::output::write_atomic(&dir.join("compare.json"), json.as_bytes())?;
+    let page = crate::page::page(
+        "splinelab regression compare",
+        &format!(
+            "<p>Baseline: <code>{}</code><br>Current: <code>{}</code><br>Compared: {} figures \
+             (wall-clock timings {}).</p>{headline}{moved_html}{lists}<h2>Each study: current ÷ baseline</h2>\n\
+             {body}<h2>Every figure</h2>\n{}{}{}",
+            escape(&inputs.0.display().to_string()),
+            escape(&inputs.1.display().to_string()),
+            rows.len(),
+            if rows.iter().all(|r| r.gated) {
+                "gated"
+            } else {
+                "shown, not gated"
+            },
+            table(&all),
+            crate::page::machine_readable(&[(
+                "compare.json",
+                "every compared figure with its verdict"
+            )]),
+            super::provenance::provenance_html(&super::provenance::run_provenance()),
+        ),
     );
     crate::output::write_atomic(&dir.join("index.html"), page.as_bytes())?;
     Ok((staged, regressed))

@@ -81,14 +81,6 @@ pub type ReportError = CliError;
 /// A function that runs one study and presents it.
 pub type SectionFn = fn(&Profile) -> Result<Section, ReportError>;
 
-const STYLE: &str = "body{font-family:sans-serif;max-width:1000px;margin:2em auto;padding:0 1em;color:#222}\
-table{border-collapse:collapse;margin:1em 0;font-size:90%}td,th{border:1px solid #bbb;padding:3px 8px;text-align:right}\
-caption{font-weight:bold;margin-bottom:.3em}figure{margin:1.5em 0}figcaption{font-size:90%;color:#444}\
-nav li{margin:.2em 0}.meta{color:#666;font-size:90%}\
-.scroll,table{overflow-x:auto;max-width:100%}table{display:block}td{white-space:nowrap}\
-svg{max-width:100%;height:auto}.summary{background:#f4f7fb;border:1px solid #bcd;padding:.3em 1em;margin:1em 0}\
-.summary code{word-break:break-all}.prov th{text-align:left}.prov td{text-align:left;white-space:normal;word-break:break-word}";
-
 fn render_section(s: &Section, seconds: f64, dir: &Path) -> Result<String, CliError> {
     let mut html = format!(
         "<section id=\"{}\">\n<h2>{}</h2>\n{}",
@@ -97,15 +89,9 @@ fn render_section(s: &Section, seconds: f64, dir: &Path) -> Result<String, CliEr
         s.html
     );
     for chart in &s.charts {
-        let svg = chart
-            .render_svg()
-            .map_err(|e| CliError::Chart(chart.id.clone(), e.to_string()))?;
+        let (figure, svg) = crate::page::figure(chart)?;
         write_atomic(&dir.join(format!("{}.svg", chart.id)), svg.as_bytes())?;
-        html.push_str(&format!(
-            "<figure>{svg}<figcaption>{} (<a href=\"{}.svg\">SVG</a>)</figcaption></figure>\n",
-            escape(&chart.caption),
-            chart.id
-        ));
+        html.push_str(&figure);
     }
     html.push_str(&format!(
         "<p class=\"meta\">Section computed in {seconds:.2} s.</p>\n</section>\n"
@@ -320,16 +306,17 @@ pub fn write_report(
         "report".into(),
         json!({"profile": profile.name(), "seconds": total, "section_seconds": timings}),
     );
-    let page = format!(
-        "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\
-         <meta name=\"viewport\" content=\"width=device-width, initial-scale=1\"><title>splinelab report</title>\
-         <style>{STYLE}</style></head><body>\n<h1>splinelab report</h1>\n<p class=\"meta\">Profile: {}; \
-         computed in {total:.1} s. Machine-readable figures: <a href=\"summary.json\">summary.json</a>.</p>\n\
-         {}{}<nav><ul>{toc}<li><a href=\"#references\">References</a></li></ul></nav>\n{body}{}</body></html>\n",
-        profile.name(),
-        summary_box(&figures, &headlines, profile),
-        provenance::provenance_html(&prov),
-        provenance::references_html()
+    let page = crate::page::page(
+        "splinelab report",
+        &format!(
+            "<p class=\"meta\">Profile: {}; computed in {total:.1} s. Machine-readable figures: \
+             <a href=\"summary.json\">summary.json</a>.</p>\n{}{}<nav><ul>{toc}<li><a href=\"#references\">\
+             References</a></li></ul></nav>\n{body}{}",
+            profile.name(),
+            summary_box(&figures, &headlines, profile),
+            provenance::provenance_html(&prov),
+            provenance::references_html()
+        ),
     );
     summary.insert(
         "figures".into(),

@@ -56,38 +56,67 @@ fn utc_now() -> String {
     )
 }
 
-/// The provenance of this run, as `summary.json` records it.
-pub fn provenance(quick: bool) -> Value {
+/// Where any splinelab page comes from: the version, the commit of the
+/// working directory's repository, the date, the machine and the command
+/// line of this process (a check's page, the compare page, the pytest
+/// plugin's session page; the report adds its own fields, [`provenance`]).
+pub fn run_provenance() -> Value {
     let threads = std::thread::available_parallelism().map_or(0, |n| n.get());
-    let command = std::env::args().collect::<Vec<_>>().join(" ");
+    // args_os: a path that is not UTF-8 (`--out out\xFF`) is shown, not a panic.
+    let command = std::env::args_os()
+        .map(|a| a.to_string_lossy().into_owned())
+        .collect::<Vec<_>>()
+        .join(" ");
     json!({
         "version": env!("CARGO_PKG_VERSION"),
         "git_commit": first_line("git", &["rev-parse", "--short=12", "HEAD"]),
         "date": utc_now(),
-        "rustc": first_line("rustc", &["--version"]),
         "cpu": cpu_model(),
         "threads": threads,
-        "profile": if quick { "quick" } else { "full" },
         "command": command,
-        "regenerate": if quick { "scripts/report.sh --quick" } else { "scripts/report.sh" },
     })
 }
 
-/// The provenance block of the page.
+/// The provenance of this report, as `summary.json` records it:
+/// [`run_provenance`] with the toolchain, the profile and the command that
+/// regenerates it.
+pub fn provenance(quick: bool) -> Value {
+    let mut p = run_provenance();
+    p["rustc"] = json!(first_line("rustc", &["--version"]));
+    p["profile"] = json!(if quick { "quick" } else { "full" });
+    p["regenerate"] = json!(if quick {
+        "scripts/report.sh --quick"
+    } else {
+        "scripts/report.sh"
+    });
+    p
+}
+
+/// The provenance block of a page: a row for each field `p` has.
 pub fn provenance_html(p: &Value) -> String {
-    let row = |k: &str, v: String| format!("<tr><th>{}</th><td>{}</td></tr>", escape(k), v);
-    let s = |k: &str| escape(p[k].as_str().unwrap_or("unknown"));
-    let rows = [
-        row("splinelab", s("version")),
-        row("git commit", s("git_commit")),
-        row("date", s("date")),
-        row("rustc (on PATH)", s("rustc")),
-        row("CPU", format!("{} ({} threads)", s("cpu"), p["threads"])),
-        row("profile", s("profile")),
-        row("this run", format!("<code>{}</code>", s("command"))),
-        row("regenerate", format!("<code>{}</code>", s("regenerate"))),
+    let text = |k: &str| p[k].as_str().map(escape);
+    let rows: String = [
+        ("splinelab", text("version")),
+        ("git commit", text("git_commit")),
+        ("date", text("date")),
+        ("rustc (on PATH)", text("rustc")),
+        (
+            "CPU",
+            text("cpu").map(|c| format!("{c} ({} threads)", p["threads"])),
+        ),
+        ("profile", text("profile")),
+        (
+            "this run",
+            text("command").map(|c| format!("<code>{c}</code>")),
+        ),
+        (
+            "regenerate",
+            text("regenerate").map(|c| format!("<code>{c}</code>")),
+        ),
     ]
-    .concat();
+    .into_iter()
+    .filter_map(|(k, v)| Some(format!("<tr><th>{}</th><td>{}</td></tr>", escape(k), v?)))
+    .collect();
     format!(
         "<details class=\"meta\" open><summary>Provenance</summary><div class=\"scroll\">\
          <table class=\"prov\">{rows}</table></div></details>\n"

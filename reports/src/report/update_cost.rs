@@ -271,7 +271,7 @@ fn text(d: &UpdateCostData) -> String {
          the control net; in place (`insert_knot_in_place`) it costs k − 1 affine combinations, two binary \
          searches and one move of the arrays' tail. Timings are in-process medians of {} repeats on this \
          machine; the rigorous figures are the criterion benches: \
-         `cargo bench -p splinelab-benches --bench update_cost`, `--bench knot_insertion` (against scipy's \
+         `scripts/bench.sh --bench update_cost`, `--bench knot_insertion` (against scipy's \
          `BSpline.insert_knot` by `benches/scipy/insert_knot.py`) and `--bench full_build`.",
         d.half_width, d.params.tol, d.params.repeats
     ));

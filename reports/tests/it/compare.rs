@@ -187,7 +187,7 @@ fn the_regressed_figure_is_named_in_its_chart_and_numbered_globally() {
     assert_eq!(code, 1);
     // One global numbering: the second figure is #2 although it is the first of its study.
     assert!(
-        html.contains("<td>2</td><td style=\"text-align:left\">bezier.max_rel_error"),
+        html.contains("<td>2</td><td class=\"name\">bezier.max_rel_error"),
         "{html}"
     );
     let svg = std::fs::read_to_string(dir.join("out/compare_bezier.svg")).unwrap();
