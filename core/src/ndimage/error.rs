@@ -90,6 +90,15 @@ pub enum NdimageError {
         /// The array's shape.
         shape: Vec<usize>,
     },
+    /// A box of samples that no fetched block holds
+    /// ([`Blocks`](super::samples::Blocks)).
+    #[error("the box {lo:?}..{hi:?} was not fetched")]
+    NotFetched {
+        /// First index of the box on each axis.
+        lo: Vec<usize>,
+        /// One past the last index on each axis.
+        hi: Vec<usize>,
+    },
     /// A work array or a result that cannot be allocated (the allocator
     /// refused, or its size overflows): Python's `MemoryError`.
     #[error("cannot allocate {bytes} bytes for {what}")]
