@@ -179,14 +179,24 @@ impl<T: Real> LocalSpec<T> {
         }
         let read = samples.len();
         self.check_samples(&mut samples, &lists)?;
-        let gstrides = strides(&lists.iter().map(Vec::len).collect::<Vec<_>>());
-        let offs: Vec<Vec<Option<usize>>> = pos
+        // Away from the edges every extended sample is its own source
+        // sample, once, in order: the samples read are the extended ones.
+        let direct = maps
             .iter()
-            .zip(&gstrides)
-            .map(|(p, &s)| offsets(p, s))
-            .collect();
+            .zip(&lists)
+            .all(|(m, l)| m.len() == l.len() && m.iter().zip(l).all(|(s, &i)| *s == Some(i)));
         let mut ext = Vec::new();
-        spread_into(&samples, &offs, &self.cval, &mut ext);
+        if direct {
+            ext = samples;
+        } else {
+            let gstrides = strides(&lists.iter().map(Vec::len).collect::<Vec<_>>());
+            let offs: Vec<Vec<Option<usize>>> = pos
+                .iter()
+                .zip(&gstrides)
+                .map(|(p, &s)| offsets(p, s))
+                .collect();
+            spread_into(&samples, &offs, &self.cval, &mut ext);
+        }
         let mut shape: Vec<usize> = maps.iter().map(Vec::len).collect();
         if let Some(conv) = self.filter.as_ref().and_then(|f| f.convolution()) {
             let mut next = Vec::new();

@@ -82,8 +82,14 @@ where
     if total == 0 {
         return Ok(());
     }
-    let dst_strides = strides(&shape);
     let axis_runs: Vec<Vec<(usize, usize, usize)>> = lists.iter().map(|l| runs(l)).collect();
+    if axis_runs.iter().all(|r| r.len() == 1) {
+        // One box: read straight into `out`.
+        let lo: Vec<usize> = axis_runs.iter().map(|r| r[0].1).collect();
+        let hi: Vec<usize> = axis_runs.iter().map(|r| r[0].1 + r[0].2).collect();
+        return source.read_box(&lo, &hi, out);
+    }
+    let dst_strides = strides(&shape);
     let counts: Vec<usize> = axis_runs.iter().map(Vec::len).collect();
     let mut block = Vec::new();
     let mut result = Ok(());

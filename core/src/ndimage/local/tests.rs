@@ -315,3 +315,88 @@ fn a_missing_sample_reaches_only_the_windows_that_read_it() {
         other => panic!("{other:?}"),
     }
 }
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(48))]
+
+    /// After a random sequence of updates (single samples and boxes,
+    /// repeated indices, non-finite values), evaluations with the tiles
+    /// cached before the updates equal a fresh interpolant of the changed
+    /// samples bit for bit; the caller's array is not written; a small
+    /// cache (one tile) gives the same bits.
+    #[test]
+    fn updates_agree_with_a_rebuild(
+        degree in prop_oneof![2u32..=5, Just(9u32), 0u32..=1],
+        mode in prop::sample::select(Mode::ALL.to_vec()),
+        steps in prop::collection::vec((0usize..40, 0usize..36, 1usize..4, -3.0f64..3.0), 1..6),
+        seed in any::<u64>(),
+        coords in prop::collection::vec(-3.0f64..42.0, 40),
+    ) {
+        let shape = [40usize, 36];
+        let data = data_of::<f64>(&shape, seed);
+        let points = Array2::from_shape_vec((20, 2), coords).unwrap();
+        let opts = LocalOptions::new(degree, mode);
+        let mut f = LocalInterpolant::<f64>::new(&shape, opts, 1 << 24).unwrap();
+        let mut out = vec![0.0; 20];
+        f.eval_many(&data, points.view(), PointRule::Fold, None, &mut out).unwrap();
+        let mut changed = data.clone();
+        for (i, j, w, v) in steps {
+            let mut idx = Vec::new();
+            let mut vals = Vec::new();
+            for a in i..(i + w).min(40) {
+                for b in j..(j + w).min(36) {
+                    idx.extend([a, b]);
+                    let value = if v > 2.9 { f64::NAN } else { v * (a + b) as f64 };
+                    vals.push(value);
+                    changed[[a, b]] = value;
+                }
+            }
+            f.update(&data, &idx, &vals).unwrap();
+            let fresh = LocalInterpolant::<f64>::new(&shape, opts, 1 << 24).unwrap();
+            let one_tile = (32 + degree as usize).pow(2) * 8;
+            let tiny = LocalInterpolant::<f64>::new(&shape, opts, one_tile).unwrap();
+            let (mut got, mut want, mut small) = (vec![0.0; 20], vec![0.0; 20], vec![0.0; 20]);
+            f.eval_many(&data, points.view(), PointRule::Fold, None, &mut got).unwrap();
+            fresh.eval_many(&changed, points.view(), PointRule::Fold, None, &mut want).unwrap();
+            tiny.eval_many(&changed, points.view(), PointRule::Fold, None, &mut small).unwrap();
+            for ((g, w), s) in got.iter().zip(&want).zip(&small) {
+                prop_assert_eq!(g.to_bits(), w.to_bits());
+                prop_assert_eq!(s.to_bits(), w.to_bits());
+            }
+        }
+        prop_assert!(data.iter().zip(data_of::<f64>(&shape, seed).iter()).all(|(a, b)| a.to_bits() == b.to_bits()));
+    }
+}
+
+/// Updates refused change nothing: an index outside, a NaN under `raise`.
+#[test]
+fn refused_updates_change_nothing() {
+    let data = data_of::<f64>(&[30, 30], 9);
+    let opts = LocalOptions {
+        nan_policy: crate::ndimage::nan_policy::NanPolicy::Raise,
+        ..LocalOptions::new(3, Mode::Mirror)
+    };
+    let mut f = LocalInterpolant::<f64>::new(&[30, 30], opts, 1 << 24).unwrap();
+    let at = Array2::from_shape_vec((1, 2), vec![5.5, 6.5]).unwrap();
+    let mut before = [0.0];
+    f.eval_many(&data, at.view(), PointRule::Fold, None, &mut before)
+        .unwrap();
+    let e = f.update(&data, &[5, 6, 30, 0], &[1.0, 2.0]).unwrap_err();
+    assert_eq!(
+        e.to_string(),
+        "index 30 is out of bounds for axis 0 with size 30"
+    );
+    let e = f
+        .update(&data, &[5, 6, 7, 7], &[1.0, f64::NAN])
+        .unwrap_err();
+    assert_eq!(e.to_string(), "sample 217 is not finite (nan)");
+    let mut after = [0.0];
+    f.eval_many(&data, at.view(), PointRule::Fold, None, &mut after)
+        .unwrap();
+    assert_eq!(before[0].to_bits(), after[0].to_bits());
+    assert!(!f.is_changed());
+    match LocalInterpolant::<f64>::new(&[30, 30], opts, 100) {
+        Err(NdimageError::CacheTooSmall { smallest, .. }) => assert_eq!(smallest, 35 * 35 * 8),
+        other => panic!("{:?}", other.map(|_| ())),
+    }
+}
