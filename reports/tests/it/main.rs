@@ -10,6 +10,7 @@ mod cli_check;
 mod cli_cond;
 mod cli_engine;
 mod cli_flatten;
+mod cli_local;
 mod cli_nan_policy;
 mod compare;
 mod fault_sweep;
