@@ -38,9 +38,10 @@ use crate::sspline::SplineFamily;
 use crate::sspline::prefilter::RecursivePrefilter;
 
 /// Nanoseconds per convolution tap (a multiply and two adds) on the local route.
-pub const C_TAP: f64 = 0.45;
-/// Nanoseconds per sample read and extended into a tile's work array.
-pub const C_READ: f64 = 4.0;
+pub const C_TAP: f64 = 1.0;
+/// Nanoseconds per sample read and extended into a tile's work array (a
+/// memory map's page faults included: a tile's rows lie on pages of their own).
+pub const C_READ: f64 = 20.0;
 /// Nanoseconds per sample and axis of the global route's prefilter.
 pub const C_GLOBAL: f64 = 4.0;
 /// Nanoseconds per sample of the global route's copy (padding, conversion).

@@ -16,7 +16,6 @@ use crate::scalar::Real;
 use crate::validation::NonFiniteValue;
 use ndarray::ArrayView2;
 use rayon::prelude::*;
-use std::collections::HashMap;
 use std::sync::Arc;
 
 /// A spline over one array on the local route (module documentation).
@@ -56,6 +55,8 @@ use std::sync::Arc;
 pub struct LocalInterpolant<T> {
     spec: LocalSpec<T>,
     tile: usize,
+    /// Tiles sized by cost per call, none cached (a single call's use).
+    adaptive: bool,
     cache: TileCache<T>,
     overlay: Overlay<T>,
 }
@@ -112,8 +113,22 @@ impl<T: Real + Send + Sync> LocalInterpolant<T> {
             overlay: Overlay::new(shape),
             spec,
             tile,
+            adaptive: false,
             cache: TileCache::new(cache_bytes),
         })
+    }
+
+    /// The interpolant for one call: tiles sized by cost for its points
+    /// (as [`map_coordinates_local`](super::map_coordinates_local)), none
+    /// kept. What an array-like's `map_coordinates` uses.
+    pub fn for_one_call(mut self) -> Self {
+        self.adaptive = true;
+        self
+    }
+
+    /// The tile edge of a plan (`None`: by cost).
+    fn tile_edge(&self) -> Option<usize> {
+        (!self.adaptive).then_some(self.tile)
     }
 
     /// The bytes of one tile's coefficients.
@@ -164,12 +179,12 @@ impl<T: Real + Send + Sync> LocalInterpolant<T> {
         out: &mut [T],
     ) -> Result<LocalStats, NdimageError> {
         self.check_source(source)?;
-        let plan = LocalPlan::new(&self.spec, points, rule, Some(self.tile))?;
+        let plan = LocalPlan::new(&self.spec, points, rule, self.tile_edge())?;
         let src = Overlaid {
             base: source,
             overlay: &self.overlay,
         };
-        let cached = self.spec.filter.is_some();
+        let cached = self.spec.filter.is_some() && !self.adaptive;
         plan.evaluate_with(&self.spec, deriv, out, |g| {
             if cached && let Some(t) = self.cache.get(&g.lo) {
                 return Ok(t);
@@ -289,34 +304,36 @@ impl<T: Real + Send + Sync> LocalInterpolant<T> {
         hit: &[&[usize]],
     ) -> Option<(Vec<usize>, Vec<i64>, Vec<usize>)> {
         let n = self.spec.half_width() as i64;
-        // Per axis, the box positions whose convolution reads each source index.
-        let reads: Vec<HashMap<usize, (usize, usize)>> = (0..self.spec.ndim())
+        // Per axis, the box's coefficient indices and their range.
+        let coefs: Vec<Vec<Option<i64>>> = (0..self.spec.ndim())
             .map(|a| {
                 let ax = &self.spec.axes[a];
-                let mut m: HashMap<usize, (usize, usize)> = HashMap::new();
-                for p in 0..tile.len[a] {
-                    let Some(c) = ax.coefficient(tile.lo[a] + p as i64) else {
-                        continue;
-                    };
-                    for e in c - n..=c + n {
-                        if let Some(s) = ax.sample(e) {
-                            let r = m.entry(s).or_insert((p, p));
-                            r.0 = r.0.min(p);
-                            r.1 = r.1.max(p);
-                        }
-                    }
-                }
-                m
+                (0..tile.len[a] as i64)
+                    .map(|p| ax.coefficient(tile.lo[a] + p))
+                    .collect()
             })
             .collect();
+        // The box positions along axis `a` whose convolution reads source
+        // index `s`: those within `n` of an extended index that `s` fills.
+        let span = |a: usize, s: usize| -> Option<(usize, usize)> {
+            let ax = &self.spec.axes[a];
+            let c = &coefs[a];
+            let lo = *c.iter().flatten().min()?;
+            let hi = *c.iter().flatten().max()?;
+            let images: Vec<i64> = (lo - n..=hi + n)
+                .filter(|&e| ax.sample(e) == Some(s))
+                .collect();
+            let reads =
+                |k: &Option<i64>| k.is_some_and(|k| images.iter().any(|e| (k - e).abs() <= n));
+            let first = c.iter().position(reads)?;
+            let last = c.iter().rposition(reads)?;
+            Some((first, last))
+        };
         let mut lo = vec![usize::MAX; self.spec.ndim()];
         let mut hi = vec![0usize; self.spec.ndim()];
         for idx in hit {
-            let spans: Option<Vec<(usize, usize)>> = idx
-                .iter()
-                .enumerate()
-                .map(|(a, i)| reads[a].get(i).copied())
-                .collect();
+            let spans: Option<Vec<(usize, usize)>> =
+                idx.iter().enumerate().map(|(a, &i)| span(a, i)).collect();
             if let Some(spans) = spans {
                 for (a, (f, l)) in spans.into_iter().enumerate() {
                     lo[a] = lo[a].min(f);
@@ -369,8 +386,8 @@ impl<T: Real + Send + Sync> LocalInterpolant<T> {
         points: ArrayView2<'_, f64>,
         rule: PointRule,
     ) -> Result<Boxes, NdimageError> {
-        let plan = LocalPlan::new(&self.spec, points, rule, Some(self.tile))?;
-        let cached = self.spec.filter.is_some();
+        let plan = LocalPlan::new(&self.spec, points, rule, self.tile_edge())?;
+        let cached = self.spec.filter.is_some() && !self.adaptive;
         let mut out: Vec<(Vec<usize>, Vec<usize>)> = plan
             .groups
             .iter()
