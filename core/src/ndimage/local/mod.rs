@@ -59,7 +59,7 @@ mod tile_cache;
 pub use plan::{LocalPlan, LocalStats};
 pub use route::{RouteCost, default_tol};
 pub use spec::{LocalOptions, LocalSpec};
-pub use spline::{Boxes, LocalInterpolant, UpdateStats};
+pub use spline::{Boxes, EAGER_TILES, LocalInterpolant, UpdateStats};
 
 use super::NdimageError;
 use super::interpolant::PointRule;

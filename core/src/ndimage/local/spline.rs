@@ -78,7 +78,15 @@ pub struct UpdateStats {
     pub tiles: usize,
     /// Coefficients recomputed.
     pub coefficients: usize,
+    /// Cached tiles within reach dropped instead (more than
+    /// [`EAGER_TILES`]): recomputed when a point next needs them.
+    pub dropped: usize,
 }
+
+/// The most cached tiles an update recomputes at once; beyond, the tiles
+/// within reach are dropped and recomputed when next needed (an update of
+/// many scattered samples would otherwise recompute most of the cache).
+pub const EAGER_TILES: usize = 16;
 
 /// The tile edge of a [`LocalInterpolant`] of `ndim` axes (a box of about
 /// `2^10` to `2^12` cells).
@@ -200,7 +208,8 @@ impl<T: Real + Send + Sync> LocalInterpolant<T> {
     /// Sets the samples at `indices` (`ndim` per sample, C order of the
     /// axes) to `values`, in order (a repeated index keeps the last value,
     /// as numpy's assignment), and recomputes the coefficients within reach
-    /// in the cached tiles. Refused, changing nothing: an index outside the
+    /// in the cached tiles (where more than [`EAGER_TILES`] tiles are
+    /// within reach, drops them instead: recomputed when next needed). Refused, changing nothing: an index outside the
     /// array ([`NdimageError::IndexOutside`]), a non-finite value under
     /// [`NanPolicy::Raise`], a length mismatch.
     pub fn update<S: SampleSource<T> + ?Sized>(
@@ -244,9 +253,20 @@ impl<T: Real + Send + Sync> LocalInterpolant<T> {
             base: source,
             overlay: &next,
         };
-        let redone = self.recompute(&src, indices)?;
-        self.overlay = next;
+        let hits = self.hit_tiles(indices);
         let mut stats = UpdateStats::default();
+        if hits.len() > EAGER_TILES {
+            // Many tiles within reach: recomputed when next needed (by the
+            // same operations), not now.
+            for (key, _, _) in &hits {
+                self.cache.remove(key);
+            }
+            stats.dropped = hits.len();
+            self.overlay = next;
+            return Ok(stats);
+        }
+        let redone = self.recompute(&src, &hits)?;
+        self.overlay = next;
         for (key, tile, count) in redone {
             stats.tiles += 1;
             stats.coefficients += count;
@@ -261,10 +281,9 @@ impl<T: Real + Send + Sync> LocalInterpolant<T> {
     fn recompute<S: SampleSource<T> + ?Sized>(
         &self,
         src: &S,
-        indices: &[usize],
+        hits: &[Hit<'_, T>],
     ) -> Result<Vec<Redone<T>>, NdimageError> {
-        self.hit_tiles(indices)
-            .par_iter()
+        hits.par_iter()
             .map(|(key, tile, hit)| self.redo_tile(src, key, tile, hit))
             .filter_map(Result::transpose)
             .collect()

@@ -115,6 +115,15 @@ impl<T> TileCache<T> {
         }
     }
 
+    /// Drops the tile at `key`, if held.
+    pub(crate) fn remove(&self, key: &[i64]) {
+        let mut t = self.lock();
+        if let Some(e) = t.map.remove(key) {
+            t.order.remove(&e.used);
+            t.bytes -= e.tile.data.len() * std::mem::size_of::<T>();
+        }
+    }
+
     /// Drops every tile.
     pub(crate) fn clear(&self) {
         let mut t = self.lock();
