@@ -52,6 +52,12 @@ pub fn try_run(args: &InterpolateArgs) -> Result<bool, CliError> {
         .map_err(|err| input_error(&e.input, err.to_string()))?
         .len()
         > max_input_bytes()?;
+    // `raise` names the first missing sample of the whole file (the
+    // global route's reader does, before the points are read): the local
+    // route only where it must.
+    if e.nan_policy == NanPolicy::Raise && !over_limit {
+        return Ok(false);
+    }
     // SAFETY: the map is read-only and lives only for this call. Another
     // process changing the file while it is mapped changes what is read
     // (any bytes are valid f64/f32 values); truncating it under the map
@@ -149,10 +155,7 @@ where
     let points = read_points(&args.at, shape.len())?;
     let plan = LocalPlan::new(&spec, points.view(), PointRule::Fold, None)
         .map_err(|err| input_error(&args.at, err.to_string()))?;
-    // `raise` names the first missing sample of the whole file (the
-    // global route's reader does): the local route only where it must.
-    let cheaper = plan.cost().prefer_local() && e.nan_policy != NanPolicy::Raise;
-    if !cheaper && !over_limit {
+    if !plan.cost().prefer_local() && !over_limit {
         return Ok(false);
     }
     let mut out = vec![T::zero(); points.nrows()];

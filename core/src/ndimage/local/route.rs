@@ -16,7 +16,7 @@
 //! half-width certified for `tol = u·A/4` (at most 1/2), so its truncation
 //! error, below `tol · max|s|` per axis, is under a quarter of that floor:
 //! the answer is as accurate as the global route's. (Cubic, f64: `A = 3`,
-//! `tol = 8.3e-17`, half-width 29; quintic `A = 7.5`, half-width 44.)
+//! `tol = 8.3e-17`, half-width 29; quintic `A = 7.5`, `tol = 2.1e-16`, half-width 45.)
 //!
 //! **The route by cost** ([`RouteCost`]). The local route computes, for each
 //! tile of `t^D` cells that holds points, the coefficients of its box
