@@ -42,6 +42,7 @@ from __future__ import annotations
 
 from . import _splinelab as _ext
 from ._check import check
+from ._interpolant import Interpolant
 from ._ndimage import map_coordinates, spline_filter, spline_filter1d, spline_gradient
 from ._resample import affine_transform, geometric_transform, rotate, shift, zoom
 from ._sspline import coefficients, filter_bound, nan_reach, truncation_width
@@ -59,6 +60,7 @@ __all__ = [
     "rotate",
     "affine_transform",
     "geometric_transform",
+    "Interpolant",
     "truncation_width",
     "coefficients",
     "check",

@@ -9,6 +9,7 @@ import numpy as np
 
 from . import _splinelab as _ext
 from . import _dtypes as _dt
+from . import _local
 from ._validate import DEFAULT_TOL, _degree, _int, _mode, _nan_policy, _opt_float, _real_array, _threads, _tol_for
 
 _SCIPY_FILTER_RULE = {
@@ -311,12 +312,34 @@ def map_coordinates(
     tol, threads = _tol_for(tol, nan_policy, d if prefilter else 0), _threads(threads)
     deriv = _derivative(derivative, at.shape[0])
     sign = _reflection_sign(flat, np.shape(input), mode, deriv) if deriv else None
+    if _local.is_array_like(input):
+        # Not in memory (zarr, h5py, dask): read only the windows' boxes.
+        return _map_array_like(input, flat, shape, output, d, mode, cval, prefilter, tol, threads, exact_edges,
+                               deriv, nan_policy, sign)
 
     def evaluate(a, cv):
         values = _map_real(a, flat, d, mode, cv, prefilter, tol, threads, exact_edges, deriv, nan_policy)
         return values if sign is None else values * sign.astype(values.dtype)
 
     return _interpolate(input, output, shape, cval, evaluate, coordinates)
+
+
+def _map_array_like(src, flat, shape, output, d, mode, cval, prefilter, tol, threads, exact_edges, deriv,
+                    nan_policy, sign):
+    """map_coordinates of an array-like that is not in memory, on the local
+    route: the boxes the windows need fetched (:func:`splinelab._local.fetch`)
+    and evaluated; the dtype rules of :func:`_interpolate` (real input)."""
+    src = _local.source(src)
+    dtype, target = _dt.output_dtype(output, src.dtype, _dt.default_output(src.dtype, False), False)
+    _dt.check_output_shape(target, shape)
+    work = _dt.compute_dtype(_dt.real_dtype(dtype))
+    values = _local.evaluate_array_like(src, flat, d, mode, _cval(cval, False), prefilter, tol, threads, exact_edges,
+                                        deriv, nan_policy, work)
+    if sign is not None:
+        values = values * sign.astype(values.dtype)
+    result = values.reshape(shape)
+    result = result if result.dtype == dtype else _dt.store_rounded(result, dtype)
+    return _dt.deliver(result, target, shape)
 
 
 def _derivative(derivative, ndim):
@@ -602,7 +625,12 @@ def _map_real(a, flat, d, mode, cv, prefilter, tol, threads, exact_edges, deriv=
 
 
 def _map_points(a, points, d, mode, cv, prefilter, tol, threads, exact_edges, deriv, nan_policy):
-    """:func:`_map_real` at finite points."""
+    """:func:`_map_real` at finite points: on the local route where it
+    reads less than the global one (:mod:`splinelab._local`)."""
+    if type(points) is _Points:
+        local = _local.try_map(a, points.flat, d, mode, cv, prefilter, tol, threads, exact_edges, deriv, nan_policy)
+        if local is not None:
+            return local
     if prefilter and 1 < d <= 5 and mode in _EXACT_EDGES and not exact_edges:
         # scipy's route (_prepad_for_spline_filter): pad 12, filter with
         # its rule, evaluate the coefficients at x + 12 (rounded as scipy).

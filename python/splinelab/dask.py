@@ -409,11 +409,35 @@ def map_coordinates(input, coordinates, order=3, mode="constant", cval=0.0, tol=
     if at.ndim < 1 or at.shape[0] != darr.ndim:
         raise ValueError(f"coordinates must have shape ({darr.ndim}, ...), got {at.shape}")
     dtype = _work_dtype(darr, output)
-    plan = _Plan(darr.astype(dtype), order, mode, cval, tol, route, threads, nan_policy)
     flat = at.reshape(at.shape[0], -1).rechunk({0: -1}).astype(np.float64)
     parts = dask.compute(*flat.to_delayed().ravel())  # each chunk's points, to find its region
+    local = _local_points(darr, parts, at, order, mode, cval, tol, threads, nan_policy, dtype)
+    if local is not None:
+        return local
+    plan = _Plan(darr.astype(dtype), order, mode, cval, tol, route, threads, nan_policy)
     pieces = [_chunk(plan, np.asarray(p), dtype) for p in parts]
     return da.concatenate(pieces).reshape(at.shape[1:])
+
+
+def _local_points(darr, parts, at, order, mode, cval, tol, threads, nan_policy, dtype):
+    """:func:`map_coordinates` on the local route where it reads less than
+    the chunked prefilter (issue 45): one graph computing only the chunks
+    under the points' windows; the same bits as ``splinelab.map_coordinates``
+    of the same data in memory. None where the chunked route is cheaper."""
+    from splinelab import _local
+    from splinelab._ndimage import _cval, _degree, _interp_mode
+    from splinelab._validate import _nan_policy, _tol_for
+
+    d, mode = _degree(order), _interp_mode(mode)
+    pts = np.concatenate([np.asarray(p, dtype=np.float64) for p in parts], axis=1)
+    nan_policy = _nan_policy(nan_policy)
+    tol = _tol_for(tol, nan_policy, d)
+    if darr.dtype.kind not in "biuf" or not np.isfinite(pts).all() or not _local.cheaper(darr.shape, pts, d, mode,
+                                                                                          True, tol):
+        return None
+    values = _local.evaluate_array_like(darr, pts, d, mode, _cval(cval, False), True, tol, threads, False, None,
+                                        nan_policy, dtype)
+    return da.from_array(values.reshape(at.shape[1:]), chunks=at.chunks[1:])
 
 
 def zoom(input, zoom, order=3, mode="constant", cval=0.0, *, grid_mode=False, tol=DEFAULT_TOL, output=None,

@@ -47,6 +47,16 @@ where
     Ok(result)
 }
 
+/// A point rule by the Python layer's name.
+pub(crate) fn point_rule(rule: &str) -> PyResult<PointRule> {
+    Ok(match rule {
+        "fold" => PointRule::Fold,
+        "cval-outside" => PointRule::CvalOutside,
+        "wrap" => PointRule::WrapPeriodNMinus1,
+        other => return Err(value_error(format!("unknown point rule {other:?}"))),
+    })
+}
+
 /// The float64 and float32 entry points, one generic body.
 macro_rules! resample_fn {
     ($name:ident, $t:ty, $doc:literal) => {
@@ -103,12 +113,7 @@ fn affine_generic<'py, T>(
 where
     T: Real + Copy + Element + Send + Sync,
 {
-    let rule = match rule {
-        "fold" => PointRule::Fold,
-        "cval-outside" => PointRule::CvalOutside,
-        "wrap" => PointRule::WrapPeriodNMinus1,
-        other => return Err(value_error(format!("unknown point rule {other:?}"))),
-    };
+    let rule = point_rule(rule)?;
     let data = input.as_array();
     let m = matrix.as_array();
     let m = m.as_standard_layout();

@@ -90,6 +90,15 @@ pub enum NdimageError {
         /// The array's shape.
         shape: Vec<usize>,
     },
+    /// A box of samples that no fetched block holds
+    /// ([`Blocks`](super::samples::Blocks)).
+    #[error("the box {lo:?}..{hi:?} was not fetched")]
+    NotFetched {
+        /// First index of the box on each axis.
+        lo: Vec<usize>,
+        /// One past the last index on each axis.
+        hi: Vec<usize>,
+    },
     /// A work array or a result that cannot be allocated (the allocator
     /// refused, or its size overflows): Python's `MemoryError`.
     #[error("cannot allocate {bytes} bytes for {what}")]
@@ -105,6 +114,35 @@ pub enum NdimageError {
     /// The 1-D prefilter failed (ill-conditioned scalar, end rule, poles).
     #[error(transparent)]
     Prefilter(PrefilterError),
+    /// A tile cache budget below one tile of coefficients
+    /// ([`LocalInterpolant`](super::local::LocalInterpolant)).
+    #[error(
+        "cache_bytes={budget} is too small for one tile of coefficients: the smallest that works is {smallest}"
+    )]
+    CacheTooSmall {
+        /// The budget asked for.
+        budget: usize,
+        /// One tile's bytes.
+        smallest: usize,
+    },
+    /// A sample source of another shape than the spline's.
+    #[error("the samples have shape {got:?}, the spline was built for {expected:?}")]
+    SourceShape {
+        /// The spline's shape.
+        expected: Vec<usize>,
+        /// The source's shape.
+        got: Vec<usize>,
+    },
+    /// An index outside the array (numpy's words).
+    #[error("index {index} is out of bounds for axis {axis} with size {len}")]
+    IndexOutside {
+        /// The index.
+        index: usize,
+        /// The axis.
+        axis: usize,
+        /// The axis' length.
+        len: usize,
+    },
 }
 
 impl From<PrefilterError> for NdimageError {

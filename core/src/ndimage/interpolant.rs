@@ -505,7 +505,7 @@ where
 /// form (`weights.rs`: Horner in `u`, within `1.8 · 2^−53` of the exact
 /// weight); derivatives, higher orders and MPFR by de Boor–Cox
 /// ([`cell_derivatives_into`], reversed). `O(m)` resp. `O(m²)`.
-fn cell_weights_into<T: Real>(m: u32, d: u32, u: f64, w: &mut [T]) {
+pub(crate) fn cell_weights_into<T: Real>(m: u32, d: u32, u: f64, w: &mut [T]) {
     if d == 0 && T::BITS <= 53 {
         let mut f = [0.0; 6];
         if weights::closed_form_into(m, u, &mut f) {

@@ -258,6 +258,12 @@ impl<T: Real> LineFilter<T> {
         self.convolution.is_some()
     }
 
+    /// The truncated convolution of [`Route::Convolution`] (`None` for the
+    /// other routes): the local route's per-axis pass.
+    pub(crate) fn convolution(&self) -> Option<&ConvolutionPrefilter<T>> {
+        self.convolution.as_ref()
+    }
+
     /// For the truncated and convolution routes, `Σ_{|j|>W} |c_j|` (0 for
     /// the exact route): `|D − D_exact| ≤ bound · max|s|` on one line.
     pub fn bound(&self) -> f64 {
@@ -1155,7 +1161,7 @@ fn anticausal_start_rows<T: Real>(
 /// The truncated convolution of every column: `ext` holds the extended
 /// rows `−n .. L + n`, `out` receives rows `0 .. L`; per value the
 /// operations of `ConvolutionPrefilter::apply_extended`.
-fn convolve_rows<T: Real>(taps: &[T], ext: &[T], out: &mut [T], w: usize) {
+pub(crate) fn convolve_rows<T: Real>(taps: &[T], ext: &[T], out: &mut [T], w: usize) {
     let n = taps.len() - 1;
     for (k, o) in out.chunks_mut(w).enumerate() {
         for (o, x) in o.iter_mut().zip(&ext[(k + n) * w..]) {

@@ -21,6 +21,9 @@
 //!   certified width;
 //! - [`interpolant`]: the interpolant built once and evaluated at points,
 //!   with derivatives, one point or many (`interpolant::batch`);
+//! - [`local`]: the local route, a few points of a large array from the
+//!   samples their windows need (tiles prefiltered by the certified
+//!   truncated convolution);
 //! - [`nan_policy`]: what non-finite samples (missing data) do —
 //!   scipy's propagation, refusal, or a certified local reach;
 //! - [`missing`]: the prefilter's path where samples are missing (fill,
@@ -51,6 +54,7 @@ pub mod error;
 pub mod interpolant;
 mod lanes;
 pub mod line_filter;
+pub mod local;
 pub mod missing;
 pub mod mode;
 pub mod nan_policy;

@@ -148,6 +148,68 @@ where
     }
 }
 
+/// Samples of an array that is not in memory (zarr, HDF5, dask, any
+/// array-like): the blocks a caller fetched, each an `ndarray` view of any
+/// [`Sample<T>`] element type placed at its first index. A box is read
+/// from a block that holds it whole (the boxes a route asks for are the
+/// boxes it planned, so the caller fetches exactly those); a box no block
+/// holds is [`NdimageError::NotFetched`].
+#[derive(Debug, Clone)]
+pub struct Blocks<'a, E> {
+    shape: Vec<usize>,
+    blocks: Vec<(Vec<usize>, ndarray::ArrayViewD<'a, E>)>,
+}
+
+impl<'a, E> Blocks<'a, E> {
+    /// The blocks `(first index, samples)` of an array of `shape`; each
+    /// must lie inside the array ([`NdimageError::BoxOutside`]).
+    pub fn new(
+        shape: &[usize],
+        blocks: Vec<(Vec<usize>, ndarray::ArrayViewD<'a, E>)>,
+    ) -> Result<Self, NdimageError> {
+        for (lo, b) in &blocks {
+            let hi: Vec<usize> = lo.iter().zip(b.shape()).map(|(l, n)| l + n).collect();
+            let inside = lo.len() == shape.len() && hi.iter().zip(shape).all(|(h, n)| h <= n);
+            if !inside {
+                return Err(NdimageError::BoxOutside {
+                    lo: lo.clone(),
+                    hi,
+                    shape: shape.to_vec(),
+                });
+            }
+        }
+        Ok(Blocks {
+            shape: shape.to_vec(),
+            blocks,
+        })
+    }
+}
+
+impl<T, E> SampleSource<T> for Blocks<'_, E>
+where
+    E: Sample<T>,
+{
+    fn shape(&self) -> &[usize] {
+        &self.shape
+    }
+
+    fn read_box(&self, lo: &[usize], hi: &[usize], out: &mut [T]) -> Result<(), NdimageError> {
+        let holder = self.blocks.iter().find(|(first, b)| {
+            lo.len() == first.len()
+                && (0..lo.len()).all(|a| first[a] <= lo[a] && hi[a] <= first[a] + b.shape()[a])
+        });
+        let Some((first, b)) = holder else {
+            return Err(NdimageError::NotFetched {
+                lo: lo.to_vec(),
+                hi: hi.to_vec(),
+            });
+        };
+        let l: Vec<usize> = lo.iter().zip(first).map(|(l, f)| l - f).collect();
+        let h: Vec<usize> = hi.iter().zip(first).map(|(h, f)| h - f).collect();
+        b.read_box(&l, &h, out)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -177,6 +239,20 @@ mod tests {
         let mut out_t = [0.0f64; 2];
         t.read_box(&[3, 1], &[4, 3], &mut out_t).unwrap();
         assert_eq!(out_t, [13.0, 23.0]);
+    }
+
+    #[test]
+    fn blocks_read_what_they_hold_and_name_what_they_do_not() {
+        let a = Array2::from_shape_fn((6, 8), |(i, j)| (10 * i + j) as f32);
+        let part = a.slice(ndarray::s![2..5, 3..8]).into_dyn();
+        let blocks = Blocks::new(&[6, 8], vec![(vec![2, 3], part)]).unwrap();
+        let mut out = [0.0f64; 4];
+        blocks.read_box(&[3, 5], &[5, 7], &mut out).unwrap();
+        assert_eq!(out, [35.0, 36.0, 45.0, 46.0]);
+        let e = blocks.read_box(&[0, 0], &[2, 2], &mut out).unwrap_err();
+        assert!(matches!(e, NdimageError::NotFetched { .. }), "{e}");
+        let part = a.slice(ndarray::s![2..5, 3..8]).into_dyn();
+        assert!(Blocks::new(&[4, 8], vec![(vec![2, 3], part)]).is_err());
     }
 
     #[test]

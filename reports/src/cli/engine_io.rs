@@ -353,7 +353,19 @@ pub fn write_result<T: Real>(
     values: &[T],
     header: serde_json::Value,
 ) -> Result<(), CliError> {
-    let bytes = match plan.output {
+    write_values(plan.output, plan.working, path, shape, values, header)
+}
+
+/// [`write_result`] by the output kind and working type alone.
+pub fn write_values<T: Real>(
+    output: OutputKind,
+    working: Working,
+    path: &Path,
+    shape: &[usize],
+    values: &[T],
+    header: serde_json::Value,
+) -> Result<(), CliError> {
+    let bytes = match output {
         OutputKind::Npy(UserFormat::F64) => {
             write_npy_f64(shape, values.iter().map(round_f64).collect())?
         }
@@ -361,11 +373,11 @@ pub fn write_result<T: Real>(
             write_npy_f32(shape, values.iter().map(round_f32).collect())?
         }
         OutputKind::Json => {
-            let strings: Vec<String> = values.iter().map(|x| decimal(plan.working, x)).collect();
+            let strings: Vec<String> = values.iter().map(|x| decimal(working, x)).collect();
             let mut doc = json!({
                 "shape": shape,
-                "prec": plan.working.name(),
-                "working_bits": plan.working.bits(),
+                "prec": working.name(),
+                "working_bits": working.bits(),
                 "values": strings,
             });
             if let (Some(d), serde_json::Value::Object(h)) = (doc.as_object_mut(), header) {

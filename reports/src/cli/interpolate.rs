@@ -48,6 +48,10 @@ pub struct InterpolateArgs {
 
 /// Runs `splinelab interpolate`.
 pub fn run(args: &InterpolateArgs) -> Result<(), CliError> {
+    // A memory-mapped .npy on the local route where it pays (issue 45).
+    if super::interpolate_local::try_run(args)? {
+        return Ok(());
+    }
     let plan = plan(&args.engine, 0)?;
     // The user's --tol (plan.route also carries local's default tolerance).
     if args.coeffs && args.engine.tol.is_some() {

@@ -13,6 +13,7 @@ pub mod engine_io;
 pub mod entry;
 pub mod flatten;
 pub mod interpolate;
+pub mod interpolate_local;
 pub mod nan_io;
 pub mod prec;
 pub mod prefilter;

@@ -19,6 +19,7 @@ pub mod qi;
 pub mod sections;
 pub mod sspline;
 pub mod update_cost;
+pub mod update_cost_engine;
 
 pub use figure::Figure;
 

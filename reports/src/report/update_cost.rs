@@ -10,6 +10,7 @@ use crate::chart::{Chart, Series, line_chart, xy};
 use crate::error::CliError;
 use crate::html::{num, paragraph, paragraph_with_code, table};
 use serde_json::json;
+use splinelab_verify::local_route::LocalRouteParams;
 use splinelab_verify::update_cost::{
     BuildAccuracy, BuildRow, EditRow, Polyline, UpdateCostData, UpdateCostParams, Wireframe,
     run_update_cost,
@@ -301,12 +302,19 @@ pub fn section(profile: &Profile) -> Result<Section, ReportError> {
     let d = run_update_cost(&params).map_err(CliError::numerical)?;
     let mut charts = vec![cost_chart(&d.edits), build_chart(&d.builds)];
     charts.extend(picture_charts(&d));
+    let local = profile.params(LocalRouteParams::quick, LocalRouteParams::full);
+    let (engine_html, engine_charts, engine_summary, engine_figures) =
+        super::update_cost_engine::part(local)?;
+    charts.extend(engine_charts);
+    let mut figures = figures(&d);
+    figures.extend(engine_figures);
     Ok(Section {
         id: "update_cost",
         title: "Local vs global update cost, and the full build".into(),
-        html: text(&d),
+        html: text(&d) + &engine_html,
         charts,
         summary: json!({
+            "engine": engine_summary,
             "n": d.edits.iter().map(|r| r.n).collect::<Vec<_>>(),
             "local_ns": d.edits.iter().map(|r| r.local_ns).collect::<Vec<_>>(),
             "global_ns": d.edits.iter().map(|r| r.global_ns).collect::<Vec<_>>(),
@@ -320,6 +328,6 @@ pub fn section(profile: &Profile) -> Result<Section, ReportError> {
             "shift_vs_rebuild_u": d.shift_vs_rebuild_u,
             "surface_changed_control_points": d.surface.changed_control_points,
         }),
-        figures: figures(&d),
+        figures,
     })
 }

@@ -11,6 +11,7 @@ mod cli_cond;
 mod cli_docs;
 mod cli_engine;
 mod cli_flatten;
+mod cli_local;
 mod cli_nan_policy;
 mod compare;
 mod fault_sweep;

@@ -17,7 +17,7 @@ pub enum PointRule {
 impl PointRule {
     /// The rule applied to point `x` of a grid of `shape`: whether it takes
     /// `cval` (moving it by whole periods for the `wrap` rule).
-    pub(super) fn apply(self, x: &mut [f64], shape: &[usize]) -> bool {
+    pub(crate) fn apply(self, x: &mut [f64], shape: &[usize]) -> bool {
         match self {
             PointRule::Fold => false,
             PointRule::CvalOutside => x

@@ -1,0 +1,106 @@
+//! Which route a call takes, and with which half-width.
+//!
+//! **The default tolerance** ([`default_tol`]). The global route's exact
+//! recursive prefilter first multiplies every sample by the gain `Λ`, one
+//! rounding each: it filters `Λ s_k (1 + δ_k)`, `|δ_k| ≤ u = 2^{−BITS}`.
+//! The rest of the filter is linear, and its ∞-norm over its input per unit
+//! gain is the amplification `A = Σ_j |c_j| = 1/|V(−1)|`
+//! ([`RecursivePrefilter::amplification`]), reached by a perturbation
+//! alternating in sign (frequency π). That first rounding alone can
+//! therefore move a coefficient by `u · A · max|s|` per axis, and every
+//! later operation of the recursion (each pass a stable first-order
+//! recursion that amplifies its own roundings by at most `1/(1 − |ξ|)`,
+//! [`LineFilter`](crate::ndimage::line_filter::LineFilter)'s analysis)
+//! adds to it: `u · A · max|s|` is a floor of the global route's a-priori
+//! rounding error per axis. With `tol=None` the local route takes the
+//! half-width certified for `tol = u·A/4` (at most 1/2), so its truncation
+//! error, below `tol · max|s|` per axis, is under a quarter of that floor:
+//! the answer is as accurate as the global route's. (Cubic, f64: `A = 3`,
+//! `tol = 8.3e-17`, half-width 29; quintic `A = 7.5`, `tol = 2.1e-16`, half-width 45.)
+//!
+//! **The route by cost** ([`RouteCost`]). The local route computes, for each
+//! tile of `t^D` cells that holds points, the coefficients of its box
+//! (`t + d` per axis) from the samples `n` further out, axis by axis; the
+//! global route prefilters all `N` samples along every axis once (and holds
+//! a coefficient array of the input's size). The estimate of each in
+//! nanoseconds: local `Σ_tiles (C_TAP (2n + 1) Σ_j e^{D−j} b^j + C_READ
+//! e^D)` with `b = t + d`, `e = b + 2n`, for the tile edge `t` (a power of
+//! two) that minimises it; global `N (C_GLOBAL D + C_COPY)`. Without a
+//! prefilter (degrees 0, 1, `prefilter=False`) the local route reads each
+//! point's `(d + 1)^D` support and the global route copies the array
+//! (`C_COPY` per sample). The constants were measured on the 2-core
+//! development machine (`python/bench/local_route.py`); the crossover they
+//! give is quoted in the README.
+
+use crate::ndimage::NdimageError;
+use crate::scalar::Real;
+use crate::sspline::SplineFamily;
+use crate::sspline::prefilter::RecursivePrefilter;
+
+/// Nanoseconds per convolution tap (a multiply and two adds) on the local route.
+pub const C_TAP: f64 = 1.0;
+/// Nanoseconds per sample read and extended into a tile's work array (a
+/// memory map's page faults included: a tile's rows lie on pages of their own).
+pub const C_READ: f64 = 20.0;
+/// Nanoseconds per sample and axis of the global route's prefilter.
+pub const C_GLOBAL: f64 = 4.0;
+/// Nanoseconds per sample of the global route's copy (padding, conversion).
+pub const C_COPY: f64 = 1.5;
+/// Nanoseconds per point of the local route's bookkeeping (cell, grouping).
+pub const C_POINT: f64 = 150.0;
+
+/// The tolerance of the local route under `tol=None` for a spline of
+/// `degree ≥ 2` computed in `T` (module documentation): `u · A / 4`, at
+/// most 1/2.
+///
+/// ```
+/// use splinelab::ndimage::local::default_tol;
+/// let t = default_tol::<f64>(3).unwrap();
+/// assert!((t - 0.75 * 2f64.powi(-53)).abs() < 1e-30);
+/// ```
+pub fn default_tol<T: Real>(degree: u32) -> Result<f64, NdimageError> {
+    let family = SplineFamily::order(degree + 1)?;
+    let a = RecursivePrefilter::<T>::new(&family)?.amplification();
+    let u = (-(T::BITS as f64)).exp2();
+    Ok((u * a / 4.0).min(0.5))
+}
+
+/// The estimated cost of each route for one call (module documentation).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RouteCost {
+    /// Local route, nanoseconds (estimate).
+    pub local_ns: f64,
+    /// Global route, nanoseconds (estimate).
+    pub global_ns: f64,
+    /// The tile edge the local route would use.
+    pub tile: usize,
+    /// Tiles it would compute.
+    pub tiles: usize,
+}
+
+impl RouteCost {
+    /// Whether the local route is the cheaper.
+    pub fn prefer_local(&self) -> bool {
+        self.local_ns < self.global_ns
+    }
+}
+
+/// The local cost of one tile of edge `t` (module documentation).
+pub(crate) fn tile_ns(ndim: usize, degree: u32, n: usize, t: usize) -> f64 {
+    let b = (t + degree as usize) as f64;
+    let e = b + 2.0 * n as f64;
+    let d = ndim as i32;
+    let outputs: f64 = (1..=d).map(|j| e.powi(d - j) * b.powi(j)).sum();
+    C_TAP * (2 * n + 1) as f64 * outputs + C_READ * e.powi(d)
+}
+
+/// The global route's cost on `samples` samples of `ndim` axes, with a
+/// prefilter or without.
+pub(crate) fn global_ns(samples: usize, ndim: usize, prefilter: bool) -> f64 {
+    let filter = if prefilter {
+        C_GLOBAL * ndim as f64
+    } else {
+        0.0
+    };
+    samples as f64 * (filter + C_COPY)
+}

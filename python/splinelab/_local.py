@@ -1,0 +1,123 @@
+"""The local route (issue 45): values at a few points of a large array from
+the samples their windows need, chosen by cost in :func:`map_coordinates`
+with no keyword, and the readers of arrays that are not in memory.
+
+The engine (``splinelab::ndimage::local``) groups the points into tiles,
+reads each tile's samples with a margin of the certified half-width ``n``
+(folded at the edges exactly as each mode extends the samples on the
+global route: scipy's 12-sample padding of 'nearest' / 'grid-constant' at
+degrees 2-5, 'wrap' as the mirror spline at the folded point, 'constant'
+as the mirror spline with ``cval`` outside), prefilters the tile by the
+truncated convolution and evaluates its points. With ``tol=None`` the
+half-width is certified for ``u * A / 4`` (``A`` the filter's
+amplification, ``u`` the unit roundoff): below the global route's own
+rounding error. Each coefficient is computed by the same operations
+whichever tile holds it, so an ndarray, a memory map, a zarr array, an
+HDF5 dataset and a dask array of any chunking give the same bits.
+
+On this route a missing (NaN) sample reaches only the points whose windows
+read it, also under ``nan_policy='propagate'`` (the global route makes every
+coefficient of every line through it NaN, as scipy); ``'raise'`` refuses
+only a missing sample that some window reads.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from . import _splinelab as _ext
+
+#: "auto" (the default): the route by cost; "local" / "global": forced
+#: (tests and benchmarks compare the two routes on the same call).
+ROUTE = "auto"
+
+_FLOATS = (np.dtype(np.float64), np.dtype(np.float32))
+
+
+def engine_args(mode, d, prefilter, exact_edges):
+    """scipy's ``mode`` as the local route's ``(engine mode, point rule,
+    pad)``, as :func:`splinelab.map_coordinates` maps it on the global route."""
+    if mode == "constant":
+        return "mirror", "cval-outside", 0
+    if mode == "wrap":
+        return "mirror", "wrap", 0
+    if mode in ("nearest", "grid-constant") and prefilter and 1 < d <= 5 and not exact_edges:
+        return mode, "fold", 12
+    return mode, "fold", 0
+
+
+def try_map(a, flat, d, mode, cv, prefilter, tol, threads, exact_edges, deriv, nan_policy):
+    """map_coordinates of the real float64/float32 array ``a`` at ``flat``
+    (``(ndim, k)``) on the local route, or None where the global route is
+    cheaper (or forced by :data:`ROUTE`)."""
+    if ROUTE == "global" or a.dtype not in _FLOATS or a.ndim == 0:
+        return None
+    engine_mode, rule, pad = engine_args(mode, d, prefilter, exact_edges)
+    run = _ext.local_map_f64 if a.dtype == np.float64 else _ext.local_map_f32
+    points = np.ascontiguousarray(np.asarray(flat, dtype=np.float64))
+    return run(a, points, d, engine_mode, cv, tol, prefilter, threads, deriv, rule, nan_policy, pad, ROUTE == "local")
+
+
+_NEEDS = "an array-like needs shape, dtype, ndim and basic-slice __getitem__ (numpy, zarr, h5py and dask arrays have them)"
+
+
+def is_array_like(x):
+    """Whether ``x`` is an array that is not a numpy array but can be read a
+    box at a time: it has ``shape``, ``dtype``, ``ndim`` and ``__getitem__``."""
+    return not isinstance(x, np.ndarray) and all(hasattr(x, k) for k in ("shape", "dtype", "ndim", "__getitem__"))
+
+
+def source(input):
+    """``input`` as what the local route reads: a numpy array (memory maps
+    included, read from their buffer), an array-like read a box at a time,
+    or a sequence converted by numpy. Anything else: TypeError naming what
+    is needed."""
+    if isinstance(input, np.ndarray):
+        return input
+    if is_array_like(input):
+        if np.dtype(input.dtype).kind not in "biuf":
+            raise TypeError(f"input must have a real (float, integer or bool) dtype, got {input.dtype}")
+        return input
+    if isinstance(input, (list, tuple)) or np.isscalar(input):
+        return np.asarray(input)
+    raise TypeError(f"input of type {type(input).__name__} cannot be read: {_NEEDS}")
+
+
+def _is_dask(x):
+    return type(x).__module__.split(".")[0] == "dask"
+
+
+def fetch(src, boxes, work):
+    """The blocks ``[(first index, samples)]`` of the boxes ``(lo, hi)``, in
+    ``work``'s dtype: one ``__getitem__`` per box; for a dask array one
+    graph (``dask.compute``) computing only the chunks under the boxes."""
+    keys = [tuple(slice(lo, hi) for lo, hi in zip(l, h)) for l, h in boxes]
+    if _is_dask(src):
+        import dask
+
+        parts = dask.compute(*[src[k] for k in keys]) if keys else []
+    else:
+        parts = [src[k] for k in keys]
+    return [(list(l), np.ascontiguousarray(np.asarray(p), dtype=work)) for (l, _), p in zip(boxes, parts)]
+
+
+def evaluate_array_like(src, flat, d, mode, cval, prefilter, tol, threads, exact_edges, deriv, nan_policy, work):
+    """map_coordinates of an array-like on the local route, computed in
+    ``work`` (float64 or float32): the boxes the windows need fetched
+    (:func:`fetch`) and evaluated; flat values (no reflection sign)."""
+    engine_mode, rule, pad = engine_args(mode, d, prefilter, exact_edges)
+    cls = _ext.LocalSplineF32 if np.dtype(work) == np.float32 else _ext.LocalSplineF64
+    engine = cls(list(src.shape), d, engine_mode, cval, tol, nan_policy, prefilter, pad, 2**62, True)
+    points = np.ascontiguousarray(flat, dtype=np.float64)
+    fetched = fetch(src, engine.boxes_for_eval(points, rule), work)
+    return engine.eval_blocks(list(src.shape), fetched, points, rule, deriv, threads)
+
+
+def cheaper(shape, flat, d, mode, prefilter, tol, exact_edges=False):
+    """Whether the local route costs less than the global one for the
+    points ``flat`` (``(ndim, k)``) on an array of ``shape`` (the engine's
+    estimate: samples read and convolved against the whole array's prefilter)."""
+    engine_mode, rule, pad = engine_args(mode, d, prefilter, exact_edges)
+    points = np.ascontiguousarray(flat, dtype=np.float64)
+    local_ns, global_ns, _, _ = _ext.local_route_cost(list(shape), points, d, engine_mode, tol, prefilter, rule, pad)
+    return local_ns < global_ns
