@@ -46,12 +46,9 @@ pub struct InterpolateArgs {
     pub coeffs: bool,
 }
 
-/// Runs `splinelab interpolate`.
+/// Runs `splinelab interpolate` on the global route (the caller offers the
+/// local route first, issue 45).
 pub fn run(args: &InterpolateArgs) -> Result<(), CliError> {
-    // A memory-mapped .npy on the local route where it pays (issue 45).
-    if super::interpolate_local::try_run(args)? {
-        return Ok(());
-    }
     let plan = plan(&args.engine, 0)?;
     // The user's --tol (plan.route also carries local's default tolerance).
     if args.coeffs && args.engine.tol.is_some() {

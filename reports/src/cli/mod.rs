@@ -184,8 +184,17 @@ pub fn run(command: &Command) -> Result<ExitCode, CliError> {
         Command::Flatten(a) => done(flatten::run(a)),
         Command::Check(a) => check::run(a),
         Command::Prefilter(a) => done(prefilter::run(a)),
-        Command::Interpolate(a) => done(interpolate::run(a)),
+        Command::Interpolate(a) => done(interpolate_any(a)),
         Command::Resample(a) => done(resample::run(a)),
         Command::CliDocs(a) => done(cli_docs::run(a)),
     }
+}
+
+/// `splinelab interpolate`: a memory-mapped .npy on the local route where it
+/// pays (issue 45), the global route otherwise.
+fn interpolate_any(args: &interpolate::InterpolateArgs) -> Result<(), CliError> {
+    if interpolate_local::try_run(args)? {
+        return Ok(());
+    }
+    interpolate::run(args)
 }
