@@ -51,6 +51,37 @@ pub fn try_zeros<T: Real>(n: usize, what: &'static str) -> Result<Vec<T>, Ndimag
     Ok(v)
 }
 
+/// The zeros of an array of `shape` grown by `pad` on both sides of every
+/// axis ([`try_zeros`]), and that padded shape; a size that overflows
+/// `usize` is [`NdimageError::OutOfMemory`] too.
+///
+/// ```
+/// use splinelab::ndimage::alloc::try_padded_zeros;
+/// let (shape, v) = try_padded_zeros::<f32>(&[3, 1], 2, "test").unwrap();
+/// assert_eq!((shape, v.len()), (vec![7, 5], 35));
+/// assert!(try_padded_zeros::<f64>(&[usize::MAX / 2, 3], 1, "test").is_err());
+/// ```
+pub fn try_padded_zeros<T: Real>(
+    shape: &[usize],
+    pad: usize,
+    what: &'static str,
+) -> Result<(Vec<usize>, Vec<T>), NdimageError> {
+    let too_large = NdimageError::OutOfMemory {
+        bytes: usize::MAX,
+        what,
+    };
+    let padded: Vec<usize> = shape
+        .iter()
+        .map(|n| n.checked_add(pad.saturating_mul(2)))
+        .collect::<Option<_>>()
+        .ok_or(too_large.clone())?;
+    let total = padded
+        .iter()
+        .try_fold(1usize, |t, &n| t.checked_mul(n))
+        .ok_or(too_large)?;
+    Ok((padded, try_zeros(total, what)?))
+}
+
 /// An empty vector with room for exactly `n` values, or the error.
 fn try_capacity<T>(n: usize, what: &'static str) -> Result<Vec<T>, NdimageError> {
     let mut v = Vec::new();

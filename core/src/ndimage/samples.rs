@@ -51,6 +51,12 @@ pub trait Sample<T>: Clone + Send + Sync + 'static {
 /// `T` by [`Stored::store`]: `T` itself (no rounding), or `f32` from `f64`
 /// (rounded to nearest once, as numpy's `astype` and scipy's C cast do).
 pub trait Stored<T>: Clone + Send + Sync + 'static {
+    /// The largest finite magnitude the stored type holds, where it is
+    /// below the compute type's (`f32::MAX` for `f32` results of `f64`
+    /// arithmetic), else ∞: what a check that the results stay finite
+    /// compares against.
+    const LARGEST: f64 = f64::INFINITY;
+
     /// The result as stored.
     fn store(value: &T) -> Self;
 
@@ -117,6 +123,8 @@ impl Sample<f64> for f32 {
 }
 
 impl Stored<f64> for f32 {
+    const LARGEST: f64 = f32::MAX as f64;
+
     #[inline(always)]
     fn store(value: &f64) -> Self {
         *value as f32

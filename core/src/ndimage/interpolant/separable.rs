@@ -26,6 +26,7 @@
 
 use super::Interpolant;
 use crate::ndimage::NdimageError;
+use crate::ndimage::samples::Stored;
 use crate::scalar::Real;
 use crate::sspline::bspline_uniform::centred_cell;
 use rayon::prelude::*;
@@ -56,6 +57,8 @@ impl<T: Real + Copy + Send + Sync> Interpolant<T> {
     /// tensor-product B-splines (de Boor, *A Practical Guide to Splines*, ch. XVII); scipy's
     /// `zoom`/`shift` conventions.
     ///
+    /// Results of another type than `T`: [`Self::resample_grid_as`].
+    ///
     /// ```
     /// use splinelab::prelude::*;
     /// let data = ndarray::array![[0.0, 1.0, 4.0], [1.0, 2.0, 5.0], [4.0, 5.0, 8.0]];
@@ -70,6 +73,21 @@ impl<T: Real + Copy + Send + Sync> Interpolant<T> {
         coordinates: &[&[f64]],
         deriv: &[u32],
         out: &mut [T],
+    ) -> Result<(), NdimageError> {
+        self.resample_grid_as(coordinates, deriv, out)
+    }
+
+    /// [`Self::resample_grid`] into results of any type `O` the compute
+    /// type stores into ([`Stored`]: `f32` results of an `f64`
+    /// interpolant): the last step (axis 0) computes each row of the output
+    /// in `T` and stores it rounded once (a row, or 2048 values of a 1-D
+    /// output, at a time; no `T` copy of `out`); the values of
+    /// [`Self::resample_grid`] rounded once.
+    pub fn resample_grid_as<O: Stored<T>>(
+        &self,
+        coordinates: &[&[f64]],
+        deriv: &[u32],
+        out: &mut [O],
     ) -> Result<(), NdimageError> {
         self.check_grid(coordinates, deriv, out.len())?;
         let plans: Vec<AxisPlan<T>> = coordinates
@@ -162,45 +180,88 @@ impl<T: Real + Copy + Send + Sync> Interpolant<T> {
 
     /// `B[o, k, i] = Σ_l w[k, l] · A[o, index[k, l], i]` (`cval` where the
     /// index is outside) for `A` of `shape` in C order, axis `a`, into
-    /// `dst` (every element written).
-    fn apply_axis(&self, src: &[T], shape: &[usize], a: usize, plan: &AxisPlan<T>, dst: &mut [T]) {
+    /// `dst` (every element written; stored through [`Stored`], a row or a
+    /// piece of [`GATHER`] values of one at a time, where `O` is not `T`).
+    fn apply_axis<O: Stored<T>>(
+        &self,
+        src: &[T],
+        shape: &[usize],
+        a: usize,
+        plan: &AxisPlan<T>,
+        dst: &mut [O],
+    ) {
         let len = shape[a];
         let inner: usize = shape[a + 1..].iter().product();
         let count = plan.index.len() / plan.m;
         let cval = self.cval;
         if inner == 1 {
-            dst.par_chunks_mut(count)
+            // Rows of `count` outputs, each in pieces of GATHER (a 1-D
+            // output is one row).
+            dst.par_chunks_mut(count.max(1))
                 .with_min_len(4)
                 .enumerate()
                 .for_each(|(o, row)| {
                     let line = &src[o * len..(o + 1) * len];
-                    gather_rows(line, plan, cval, row);
+                    row.par_chunks_mut(GATHER).enumerate().for_each_init(
+                        Vec::new,
+                        |buf, (p, piece)| {
+                            store_row(piece, buf, |r| gather_rows(line, plan, cval, p * GATHER, r));
+                        },
+                    );
                 });
             return;
         }
         dst.par_chunks_mut(inner)
             .with_min_len(64)
             .enumerate()
-            .for_each(|(r, row)| {
+            .for_each_init(Vec::new, |buf, (r, row)| {
                 let (o, k) = (r / count, r % count);
                 let block = &src[o * len * inner..(o + 1) * len * inner];
                 let w = &plan.weight[k * plan.m..(k + 1) * plan.m];
                 let idx = &plan.index[k * plan.m..(k + 1) * plan.m];
-                row.fill(T::zero());
-                for (wl, il) in w.iter().zip(idx) {
-                    match il {
-                        Some(i) => axpy(*wl, &block[i * inner..(i + 1) * inner], row),
-                        None => row.iter_mut().for_each(|y| *y += *wl * cval),
+                store_row(row, buf, |row| {
+                    row.fill(T::zero());
+                    for (wl, il) in w.iter().zip(idx) {
+                        match il {
+                            Some(i) => axpy(*wl, &block[i * inner..(i + 1) * inner], row),
+                            None => row.iter_mut().for_each(|y| *y += *wl * cval),
+                        }
                     }
-                }
+                });
             });
     }
 }
 
-/// The last axis: `row[k] = Σ_l w[k, l] · line[index[k, l]]`.
-fn gather_rows<T: Real + Copy>(line: &[T], plan: &AxisPlan<T>, cval: T, row: &mut [T]) {
+/// Output values of the last axis that one task gathers at a time.
+const GATHER: usize = 2048;
+
+/// `fill` computes the values of `out` in `T`: into `out` itself where `O`
+/// is `T`, else into `buf` (resized), then stored rounded once.
+fn store_row<T: Real + Copy, O: Stored<T>>(
+    out: &mut [O],
+    buf: &mut Vec<T>,
+    fill: impl FnOnce(&mut [T]),
+) {
+    if let Some(values) = O::as_compute_mut(out) {
+        return fill(values);
+    }
+    buf.resize(out.len(), T::zero());
+    fill(buf);
+    O::store_from(buf, out);
+}
+
+/// The last axis: `row[j] = Σ_l w[k, l] · line[index[k, l]]` for the
+/// output indices `k = first + j`.
+fn gather_rows<T: Real + Copy>(
+    line: &[T],
+    plan: &AxisPlan<T>,
+    cval: T,
+    first: usize,
+    row: &mut [T],
+) {
     let m = plan.m;
-    for (k, y) in row.iter_mut().enumerate() {
+    for (j, y) in row.iter_mut().enumerate() {
+        let k = first + j;
         let mut sum = T::zero();
         for l in 0..m {
             let v = plan.index[k * m + l].map_or(cval, |i| line[i]);
@@ -247,7 +308,7 @@ mod tests {
                     opts.cval = 0.375;
                     let f = Interpolant::<f64>::new(&data, opts).unwrap();
                     let count: usize = xs.iter().map(Vec::len).product();
-                    let mut grid = vec![0.0; count];
+                    let mut grid = vec![0.0f64; count];
                     f.resample_grid(&axes, &vec![0; ndim], &mut grid).unwrap();
                     let scale = grid.iter().fold(1.0f64, |m, v| m.max(v.abs()));
                     for (flat, g) in grid.iter().enumerate() {
