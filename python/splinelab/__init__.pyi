@@ -11,6 +11,8 @@ Mode = Literal["mirror", "reflect", "grid-mirror", "grid-wrap", "wrap", "nearest
 # Any numeric dtype scipy takes (a type, a dtype or its name), or an array of any dtype, byte order and strides.
 # What NaN / ±inf samples do (see splinelab.map_coordinates).
 NanPolicy = Literal["propagate", "raise", "local"]
+# The arithmetic: float64 (scipy's, the default) or the opt-in float32.
+Compute = Literal["float64", "float32"]
 Output = type[np.generic] | type[bool] | type[int] | type[float] | type[complex] | np.dtype[Any] | str | npt.NDArray[Any]
 
 def spline_filter1d(
@@ -24,6 +26,7 @@ def spline_filter1d(
     threads: int | None = None,
     exact_edges: bool = False,
     nan_policy: NanPolicy = "propagate",
+    compute: Compute = "float64",
 ) -> npt.NDArray[Any]: ...
 def spline_filter(
     input: npt.ArrayLike,
@@ -35,6 +38,7 @@ def spline_filter(
     threads: int | None = None,
     exact_edges: bool = False,
     nan_policy: NanPolicy = "propagate",
+    compute: Compute = "float64",
 ) -> npt.NDArray[Any]: ...
 def map_coordinates(
     input: npt.ArrayLike,
@@ -49,6 +53,7 @@ def map_coordinates(
     threads: int | None = None,
     exact_edges: bool = False,
     nan_policy: NanPolicy = "propagate",
+    compute: Compute = "float64",
     derivative: Sequence[int] | None = None,
 ) -> npt.NDArray[Any]: ...
 def spline_gradient(
@@ -63,6 +68,7 @@ def spline_gradient(
     threads: int | None = None,
     exact_edges: bool = False,
     nan_policy: NanPolicy = "propagate",
+    compute: Compute = "float64",
 ) -> npt.NDArray[Any]: ...
 def zoom(
     input: npt.ArrayLike,
@@ -78,6 +84,7 @@ def zoom(
     threads: int | None = None,
     exact_edges: bool = False,
     nan_policy: NanPolicy = "propagate",
+    compute: Compute = "float64",
 ) -> npt.NDArray[Any]: ...
 def shift(
     input: npt.ArrayLike,
@@ -92,6 +99,7 @@ def shift(
     threads: int | None = None,
     exact_edges: bool = False,
     nan_policy: NanPolicy = "propagate",
+    compute: Compute = "float64",
 ) -> npt.NDArray[Any]: ...
 def rotate(
     input: npt.ArrayLike,
@@ -108,6 +116,7 @@ def rotate(
     threads: int | None = None,
     exact_edges: bool = False,
     nan_policy: NanPolicy = "propagate",
+    compute: Compute = "float64",
 ) -> npt.NDArray[Any]: ...
 def affine_transform(
     input: npt.ArrayLike,
@@ -124,6 +133,7 @@ def affine_transform(
     threads: int | None = None,
     exact_edges: bool = False,
     nan_policy: NanPolicy = "propagate",
+    compute: Compute = "float64",
 ) -> npt.NDArray[Any]: ...
 class Interpolant:
     shape: tuple[int, ...]
@@ -153,6 +163,7 @@ def geometric_transform(
     threads: int | None = None,
     exact_edges: bool = False,
     nan_policy: NanPolicy = "propagate",
+    compute: Compute = "float64",
 ) -> npt.NDArray[Any]: ...
 def truncation_width(
     degree: int | None = None,

@@ -2,6 +2,12 @@
 what ``output`` means, the dtype the engine computes in, and how a float64
 result is stored into an integer, boolean or complex output.
 
+Every input is computed in float64 by default, as scipy computes it: the
+engine reads float64 and float32 arrays as they lie (widened exactly as it
+reads them, no converted copy) and writes float32 results rounded once
+from float64 (:class:`Work`). ``compute="float32"`` opts into float32
+arithmetic (float32 samples and results, the route before issue 42).
+
 scipy computes every value in float64 and stores it with a C conversion
 (``ni_interpolation.c``, ``CASE_INTERP_OUT_INT`` / ``_UINT``): the
 interpolation functions round half away from zero and saturate (``t + 0.5``
@@ -19,7 +25,49 @@ import warnings
 
 import numpy as np
 
-_F32 = (np.dtype(np.float32), np.dtype(np.complex64), np.dtype(np.float16))
+_NATIVE = (np.dtype(np.float64), np.dtype(np.float32))
+COMPUTE = ("float64", "float32")
+
+
+def compute_name(compute):
+    """``compute`` checked: 'float64' (the default: scipy's arithmetic) or
+    'float32' (the opt-in float32 arithmetic)."""
+    if compute not in COMPUTE:
+        raise ValueError(f"compute must be one of {COMPUTE}, got {compute!r}")
+    return compute
+
+
+def engine_samples(a, f32=False):
+    """The array the engine reads for samples ``a`` (real): in float64
+    arithmetic ``a`` itself where it is native float64 or float32 (read
+    where it lies, any strides), else a copy it reads exactly: float32 for
+    float16, non-native float32 and integers and booleans of at most 16 bits
+    (exact, half the bytes of float64), float64 for the others. In float32
+    arithmetic (``f32``) ``a`` as float32."""
+    if f32:
+        return a.astype(np.float32, copy=False)
+    if a.dtype in _NATIVE:
+        return a
+    exact32 = (a.dtype.kind == "f" and a.dtype.itemsize <= 4) or (a.dtype.kind in "biu" and a.dtype.itemsize <= 2)
+    return a.astype(np.float32 if exact32 else np.float64)
+
+
+class Work:
+    """How the engine computes one call: ``f32`` (float32 arithmetic, the
+    opt-in) or float64, and the dtype of the values it returns: float32
+    where the result part is float32 (each value rounded once from float64
+    by the engine) or the arithmetic is float32, float64 otherwise (then
+    stored into the result's dtype by :func:`store_rounded`: one rounding
+    for float16, scipy's for integers)."""
+
+    def __init__(self, compute, result_part):
+        self.f32 = compute_name(compute) == "float32"
+        self.out32 = self.f32 or np.dtype(result_part) == np.float32
+        self.dtype = np.dtype(np.float32 if self.out32 else np.float64)
+
+    def samples(self, a):
+        """The array the engine reads for ``a`` (:func:`engine_samples`)."""
+        return engine_samples(a, self.f32)
 
 
 def input_array(input, what="input"):
@@ -64,14 +112,6 @@ def default_output(input_dtype, complex_input):
     if complex_input:
         return np.promote_types(native, np.complex64)
     return native
-
-
-def compute_dtype(out):
-    """The dtype the engine computes in for a result of dtype ``out``:
-    float32 for float32 / complex64 (and float16) results, float64 for
-    everything else (integers and booleans are computed in float64 and
-    rounded, as in scipy)."""
-    return np.dtype(np.float32) if np.dtype(out) in _F32 else np.dtype(np.float64)
 
 
 def real_dtype(dtype):

@@ -103,14 +103,17 @@ def fetch(src, boxes, work):
 
 def evaluate_array_like(src, flat, d, mode, cval, prefilter, tol, threads, exact_edges, deriv, nan_policy, work):
     """map_coordinates of an array-like on the local route, computed in
-    ``work`` (float64 or float32): the boxes the windows need fetched
-    (:func:`fetch`) and evaluated; flat values (no reflection sign)."""
+    float64 and returned as ``work`` (float64, or float32 rounded once, as
+    the global route): the boxes the windows need fetched (:func:`fetch`:
+    float32 samples as they are, others as float64) and evaluated; flat
+    values (no reflection sign)."""
     engine_mode, rule, pad = engine_args(mode, d, prefilter, exact_edges)
-    cls = _ext.LocalSplineF32 if np.dtype(work) == np.float32 else _ext.LocalSplineF64
+    f32 = np.dtype(src.dtype) == np.float32 and np.dtype(work) == np.float32
+    cls, read = (_ext.LocalSplineF32, np.float32) if f32 else (_ext.LocalSplineF64, np.float64)
     engine = cls(list(src.shape), d, engine_mode, cval, tol, nan_policy, prefilter, pad, 2**62, True)
     points = np.ascontiguousarray(flat, dtype=np.float64)
-    fetched = fetch(src, engine.boxes_for_eval(points, rule), work)
-    return engine.eval_blocks(list(src.shape), fetched, points, rule, deriv, threads)
+    fetched = fetch(src, engine.boxes_for_eval(points, rule), read)
+    return engine.eval_blocks(list(src.shape), fetched, points, rule, deriv, threads).astype(work, copy=False)
 
 
 def cheaper(shape, flat, d, mode, prefilter, tol, exact_edges=False):

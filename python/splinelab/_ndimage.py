@@ -47,15 +47,19 @@ _FLOATS = (np.dtype(np.float64), np.dtype(np.float32))
 
 
 def _filter(input, axes, order, output, mode, tol, threads, exact_edges=False, convolution=False,
-            nan_policy="propagate"):
-    """scipy's spline_filter(1d) for every dtype it takes: float64/float32
-    results straight from the engine; integer and boolean results computed
-    in float64 and converted as scipy's filter converts them (truncated),
-    after each axis as scipy does (it filters axis by axis into ``output``);
+            nan_policy="propagate", compute="float64"):
+    """scipy's spline_filter(1d) for every dtype it takes, computed in
+    float64 (``compute="float32"``: in float32): float64/float32 results
+    straight from the engine (float32 rounded after every axis, as scipy
+    writes each axis into a float32 ``output``); integer and boolean
+    results converted as scipy's filter converts them (truncated), after
+    each axis as scipy does (it filters axis by axis into ``output``);
+    float16 results rounded once after every axis is filtered in float64;
     complex input filtered part by part (same filter). ``output=None``: the
     input's dtype. ``convolution``: with ``tol``, the local truncated
     convolution (what chunked filtering needs) instead of the fast route.
     ``nan_policy``: what non-finite samples do (:data:`NAN_POLICY_DOC`)."""
+    compute = _dt.compute_name(compute)
     a = _dt.input_array(input)
     cplx = a.dtype.kind == "c"
     dtype, target = _dt.output_dtype(output, a.dtype, _dt.default_output(a.dtype, cplx), cplx)
@@ -76,14 +80,17 @@ def _filter(input, axes, order, output, mode, tol, threads, exact_edges=False, c
     if cplx:
         part = _dt.real_dtype(dtype)
         out = np.empty(a.shape, dtype)
-        out.real = _filter_float(a.real, part, None, (axes, *spec))
-        out.imag = _filter_float(a.imag, part, None, (axes, *spec))
+        out.real = _filter_float(a.real, part, None, (axes, *spec), compute)
+        out.imag = _filter_float(a.imag, part, None, (axes, *spec), compute)
         return _dt.deliver(out, target, a.shape)
     if dtype in _FLOATS:
-        return _filter_float(a, dtype, target, (axes, *spec))
-    work = _dt.compute_dtype(dtype)
+        return _filter_float(a, dtype, target, (axes, *spec), compute)
+    work = np.dtype(np.float32 if compute == "float32" else np.float64)
+    if dtype.kind == "f":
+        # float16: every axis in the working dtype, then one rounding.
+        return _dt.deliver(_filter_float(a, work, None, (axes, *spec), compute).astype(dtype), target, a.shape)
     for axis in axes:
-        a = _dt.store_truncated(_filter_float(a, work, None, ([axis], *spec)), dtype)
+        a = _dt.store_truncated(_filter_float(a, work, None, ([axis], *spec), compute), dtype)
     return _dt.deliver(a, target, a.shape)
 
 
@@ -100,22 +107,29 @@ def _refuse_non_finite(a):
         raise ValueError(f"sample {k} is not finite ({'nan' if np.isnan(v) else 'inf' if v > 0 else '-inf'})")
 
 
-def _filter_float(a, dtype, target, args):
-    """The engine's filter into a float64/float32 result (`target` or new)."""
+def _filter_float(a, dtype, target, args, compute="float64"):
+    """The engine's filter into a float64/float32 result (`target` or new),
+    computed in float64 (``compute="float32"``: in float32, then converted
+    into ``dtype``)."""
+    if compute == "float32" and dtype != np.float32:
+        out = _filter_float(a, np.dtype(np.float32), None, args, compute).astype(dtype)
+        return out if target is None else _dt.deliver(out, target, a.shape)
     # The result is written straight into `output` when it is C-ordered and
     # writeable, else into a new C-ordered array (numpy's allocator, which
-    # asks for huge pages); the engine copies the input into it and filters
-    # it in place. A conversion or an overlap with `output` goes through
+    # asks for huge pages); the engine reads the input where it lies
+    # (float64 or float32, any strides: widened as its first pass reads
+    # it) and writes the result. Other input dtypes are read from a copy
+    # (`_dt.engine_samples`), and an overlap with `output` goes through
     # numpy's copy into it instead (still one copy).
-    direct = target is not None and target.flags.c_contiguous and target.flags.writeable
+    direct = (target is not None and target.flags.c_contiguous and target.flags.writeable
+              and target.dtype == dtype)
     out = target if direct else np.empty(a.shape, dtype)
-    src = a
-    if a.dtype != dtype or np.may_share_memory(a, out):
+    src = _dt.engine_samples(a, compute == "float32")
+    if np.may_share_memory(a, out):
         if not _same_layout(a, out):
             np.copyto(out, a, casting="unsafe")
         src = None
-    run = _ext.filter_f64 if dtype == np.float64 else _ext.filter_f32
-    run(src, out, *args)
+    _ext.filter(src, out, *args, f32=compute == "float32")
     if target is None or direct:
         return out
     target[...] = out
@@ -131,7 +145,7 @@ def _axis(axis, ndim):
 
 def spline_filter1d(
     input, order=3, axis=-1, output=np.float64, mode="mirror", *, tol=DEFAULT_TOL, threads=None, exact_edges=False,
-    nan_policy="propagate",
+    nan_policy="propagate", compute="float64",
 ):
     """Interpolation coefficients along one axis (``scipy.ndimage.spline_filter1d``).
 
@@ -152,11 +166,23 @@ def spline_filter1d(
     output : a dtype or dtype name (default float64; None: the input's
         dtype), or an array of any dtype, byte order and strides to write
         into (float64/float32 C-contiguous ones directly, others through a
-        temporary; ``output=input`` filters in place). Integer and boolean
-        results are computed in float64 and converted as scipy's filter
-        converts them (truncated toward zero, numpy's ``astype``).
-        float32 output is *computed* in float32 (scipy computes in float64
-        and rounds); relative error about ``amplification * 6e-8``.
+        temporary; ``output=input`` filters in place). Every input is
+        computed in float64, as scipy computes it: float64 and float32
+        input is read where it lies (any strides) and widened as it is
+        read. A float32 output is rounded after every axis, as scipy
+        rounds it (scipy filters each axis in float64 line buffers and
+        stores the result in the output): the same accuracy as scipy's,
+        and no float64 array of the output's size. Integer and boolean
+        results are converted as scipy's filter converts them (truncated
+        toward zero, numpy's ``astype``), after every axis; float16
+        results rounded once at the end (scipy refuses float16).
+    compute : 'float64' (default: scipy's arithmetic) or 'float32' (ours):
+        float32 arithmetic on float32 samples (other input converted to
+        float32 first), the result then converted into ``output``. Error
+        about ``amplification * 6e-8`` relative per axis (``A = 1.73`` for
+        cubics, 3.3 for quintics: :func:`filter_bound`), against float64's
+        rounding of scipy's float32 output; speed: python/bench/float32.py
+        (measured figures in the README).
     mode : scipy's names and scipy's filters: 'mirror', 'constant',
         'grid-constant' and 'wrap' filter with the mirror rule; 'reflect',
         'grid-mirror' and 'nearest' with the half-sample (reflect) rule;
@@ -207,18 +233,21 @@ def spline_filter1d(
     True
     """
     a = np.asarray(input)
-    return _filter(a, [_axis(axis, a.ndim)], order, output, mode, tol, threads, exact_edges, nan_policy=nan_policy)
+    return _filter(a, [_axis(axis, a.ndim)], order, output, mode, tol, threads, exact_edges, nan_policy=nan_policy,
+                   compute=compute)
 
 
 def spline_filter(input, order=3, output=np.float64, mode="mirror", *, tol=DEFAULT_TOL, threads=None, exact_edges=False,
-                  nan_policy="propagate"):
+                  nan_policy="propagate", compute="float64"):
     """Interpolation coefficients along every axis (``scipy.ndimage.spline_filter``).
 
     ``order`` is the spline **degree**, 0..199 (scipy: 2..5). Other
     arguments as :func:`spline_filter1d`. With ``tol`` the error compounds
     over the ``d`` axes to at most ``((A + b)**d - A**d) * max|input|``
     (``A`` the amplification, ``b`` the per-axis bound): :func:`filter_bound`.
-    ``nan_policy`` as :func:`spline_filter1d` (over every axis).
+    ``nan_policy`` and ``compute`` as :func:`spline_filter1d` (over every
+    axis). Memory: the output (the input is read where it lies; a float32
+    output holds the float32 coefficients only, as scipy's).
 
     >>> import numpy as np, splinelab
     >>> x = np.full((4, 5), 2.5)  # the B-splines sum to 1: constants are kept
@@ -226,7 +255,8 @@ def spline_filter(input, order=3, output=np.float64, mode="mirror", *, tol=DEFAU
     True
     """
     a = np.asarray(input)
-    return _filter(a, list(range(a.ndim)), order, output, mode, tol, threads, exact_edges, nan_policy=nan_policy)
+    return _filter(a, list(range(a.ndim)), order, output, mode, tol, threads, exact_edges, nan_policy=nan_policy,
+                   compute=compute)
 
 
 def map_coordinates(
@@ -243,6 +273,7 @@ def map_coordinates(
     exact_edges=False,
     derivative=None,
     nan_policy="propagate",
+    compute="float64",
 ):
     """Values of the spline interpolant at coordinates (``scipy.ndimage.map_coordinates``).
 
@@ -274,11 +305,27 @@ def map_coordinates(
     Data types as scipy's: bool, integer, float and complex input;
     ``output`` None (the input's dtype), a dtype, a dtype name or an array
     of any dtype, byte order and strides that does not share memory with
-    ``input`` or ``coordinates``. Integer and boolean results are computed
-    in float64 and rounded as scipy rounds them (half away from zero,
-    saturated: :mod:`splinelab._dtypes`); float32 and complex64 results are
-    computed in float32; complex input is interpolated part by part
-    (``cval`` may be complex). An input with an empty axis gives ``cval``
+    ``input`` or ``coordinates``. Every input is computed in float64, as
+    scipy computes it (complex: complex128, part by part; ``cval`` may be
+    complex), and rounded once into the result: float32, complex64 and
+    float16 results are the float64 values rounded once; integer and
+    boolean results are rounded as scipy rounds them (half away from zero,
+    saturated: :mod:`splinelab._dtypes`). ``compute="float32"`` (ours)
+    computes in float32 instead: float32 samples and arithmetic, error about
+    ``(A + 1) * 6e-8`` of ``max|input|`` (``A``: :func:`filter_bound`'s
+    amplification) where float64's is that of one rounding of the result;
+    speed in python/bench/float32.py.
+
+    Memory beside the input and the result, as scipy's or less: with the
+    prefilter (``order >= 2``) one float64 array of coefficients, the
+    input's shape grown by ``order // 2 + 2`` per side (scipy: a float64
+    copy of the coefficients); float64 and float32 input is read where it
+    lies (other dtypes: a float32 or float64 copy first). Without
+    (``order <= 1``, ``prefilter=False``) the same padded float64 copy of
+    the input, which scipy does not hold (it reads the input). 'nearest'
+    and 'grid-constant' (scipy's route): the input padded by 12 (a copy in
+    its dtype, as scipy's) and one float64 coefficient array of that.
+    ``compute="float32"``: float32 arrays instead. An input with an empty axis gives ``cval``
     at every point in 'constant' / 'grid-constant' (all points lie
     outside), as scipy; other modes refuse it (scipy reads outside the array).
     Cost: the prefilter (O(poles) per sample and axis) once, then
@@ -317,11 +364,11 @@ def map_coordinates(
         return _map_array_like(input, flat, shape, output, d, mode, cval, prefilter, tol, threads, exact_edges,
                                deriv, nan_policy, sign)
 
-    def evaluate(a, cv):
-        values = _map_real(a, flat, d, mode, cv, prefilter, tol, threads, exact_edges, deriv, nan_policy)
+    def evaluate(a, cv, work):
+        values = _map_real(a, flat, d, mode, cv, prefilter, tol, threads, exact_edges, deriv, nan_policy, work)
         return values if sign is None else values * sign.astype(values.dtype)
 
-    return _interpolate(input, output, shape, cval, evaluate, coordinates)
+    return _interpolate(input, output, shape, cval, evaluate, coordinates, compute=compute)
 
 
 def _map_array_like(src, flat, shape, output, d, mode, cval, prefilter, tol, threads, exact_edges, deriv,
@@ -332,7 +379,7 @@ def _map_array_like(src, flat, shape, output, d, mode, cval, prefilter, tol, thr
     src = _local.source(src)
     dtype, target = _dt.output_dtype(output, src.dtype, _dt.default_output(src.dtype, False), False)
     _dt.check_output_shape(target, shape)
-    work = _dt.compute_dtype(_dt.real_dtype(dtype))
+    work = np.dtype(np.float32 if _dt.real_dtype(dtype) == np.float32 else np.float64)
     values = _local.evaluate_array_like(src, flat, d, mode, _cval(cval, False), prefilter, tol, threads, exact_edges,
                                         deriv, nan_policy, work)
     if sign is not None:
@@ -373,14 +420,15 @@ def _reflection_sign(flat, shape, mode, deriv):
 
 def spline_gradient(
     input, coordinates, order=3, mode="constant", cval=0.0, prefilter=True, *, tol=DEFAULT_TOL, threads=None,
-    exact_edges=False, nan_policy="propagate",
+    exact_edges=False, nan_policy="propagate", compute="float64",
 ):
     """All first partial derivatives of the interpolant of
     :func:`map_coordinates` at the points: an array of shape ``(ndim,
     *coordinates.shape[1:])``, row ``a`` the derivative along axis ``a``
     (``map_coordinates(..., derivative=e_a)``; float64, or float32 for
-    float32 input). Cost: ``ndim`` evaluations (and prefilters).
-    ``nan_policy`` as :func:`map_coordinates`.
+    float32 input: computed in float64 and rounded once, or in float32 with
+    ``compute="float32"``). Cost: ``ndim`` evaluations (and prefilters).
+    ``nan_policy`` and memory as :func:`map_coordinates`.
 
     >>> import numpy as np, splinelab
     >>> x = np.add.outer(0.5 * np.arange(40.0), 3 * np.arange(40.0))  # i / 2 + 3 j
@@ -398,7 +446,7 @@ def spline_gradient(
         unit[axis] = 1
         rows.append(map_coordinates(a, coordinates, output=out, order=order, mode=mode, cval=cval,
                                     prefilter=prefilter, tol=tol, threads=threads, exact_edges=exact_edges,
-                                    derivative=unit, nan_policy=nan_policy))
+                                    derivative=unit, nan_policy=nan_policy, compute=compute))
     return np.stack(rows)
 
 
@@ -437,27 +485,29 @@ def _cval(cval, complex_input):
     return _opt_float(cval, "cval")
 
 
-def _interpolate(input, output, shape, cval, evaluate, *others):
-    """The interpolation functions' dtype handling, as scipy's: the result
-    has ``output``'s dtype (None: the input's), integer and boolean results
-    are computed in float64 and rounded as scipy rounds them
-    (:func:`splinelab._dtypes.store_rounded`), float32 and complex64 results
-    are computed in float32, and complex input goes through ``evaluate``
-    part by part (``cval``'s real and imaginary parts). ``evaluate(a, cv)``
-    takes a real array of the working dtype and returns the flat values."""
+def _interpolate(input, output, shape, cval, evaluate, *others, compute="float64"):
+    """The interpolation functions' dtype handling, as scipy's: every input
+    computed in float64 (complex input part by part, ``cval``'s real and
+    imaginary parts) and the result of ``output``'s dtype (None: the
+    input's) rounded once from it: float32 (and complex64) results by the
+    engine as it stores them, float16 by numpy, integer and boolean results
+    as scipy rounds them (:func:`splinelab._dtypes.store_rounded`).
+    ``compute="float32"``: float32 arithmetic instead (:class:`_dt.Work`).
+    ``evaluate(a, cv, work)`` takes the real array the engine reads
+    (``work.samples``) and returns the flat values in ``work.dtype``."""
     a = _dt.input_array(input)
     cplx = a.dtype.kind == "c"
     dtype, target = _dt.output_dtype(output, a.dtype, _dt.default_output(a.dtype, cplx), cplx)
     _dt.refuse_aliasing(target, a, *[np.asarray(o) for o in others])
     _dt.check_output_shape(target, shape)
     cv = _cval(cval, cplx)
-    work = _dt.compute_dtype(_dt.real_dtype(dtype))
+    work = _dt.Work(compute, _dt.real_dtype(dtype))
     if cplx:
         result = np.empty(shape, dtype)
-        result.real = evaluate(a.real.astype(work), cv.real).reshape(shape)
-        result.imag = evaluate(a.imag.astype(work), cv.imag).reshape(shape)
+        result.real = evaluate(work.samples(a.real), cv.real, work).reshape(shape)
+        result.imag = evaluate(work.samples(a.imag), cv.imag, work).reshape(shape)
     else:
-        values = evaluate(a.astype(work, copy=False), cv).reshape(shape)
+        values = evaluate(work.samples(a), cv, work).reshape(shape)
         result = values if values.dtype == dtype else _dt.store_rounded(values, dtype)
     return _dt.deliver(result, target, shape)
 
@@ -484,10 +534,22 @@ def _wrap_coordinates(flat, shape):
     return np.stack([_wrap_axis(x, n) for x, n in zip(flat, shape)]) if len(shape) else flat
 
 
+_F64 = _dt.Work("float64", np.float64)
+
+
+def _engine(run, *args, work=_F64, filter_rule=None):
+    """The extension's ``run(*args)`` in ``work``'s arithmetic (float64,
+    float64 or float32 results; or float32) with ``filter_rule``."""
+    return run(*args, out32=work.out32, filter_rule=filter_rule, f32=work.f32)
+
+
 class _Points:
     """Points at which to evaluate: scattered, ``(ndim, k)`` (scipy's
     coordinate array), evaluated point by point; the engine's
-    ``map_coordinates``."""
+    ``map_coordinates``. ``work`` (:class:`_dt.Work`): the arithmetic and
+    the values' dtype; ``filter_rule``: prefilter the samples under that
+    rule and evaluate them as given coefficients (scipy's 'nearest' and
+    'grid-constant')."""
 
     def __init__(self, flat):
         self.flat = flat
@@ -510,23 +572,25 @@ class _Points:
         flat = np.asarray(self.flat)
         return ((flat < 0) | (flat > limit)).any(axis=0)
 
-    def run(self, a, d, mode, cv, tol, prefilter, threads, deriv, cval_outside=False, nan_policy="propagate"):
+    def run(self, a, d, mode, cv, tol, prefilter, threads, deriv, cval_outside=False, nan_policy="propagate",
+            work=_F64, filter_rule=None):
         """The values (flat), ``cval`` (its derivative 0) at points outside
         the grid with ``cval_outside`` (scipy's 'constant')."""
+        opts = dict(nan_policy=nan_policy, work=work, filter_rule=filter_rule)
         if cval_outside and not deriv and type(self) is _Points:
             # cval outside decided by the engine per point, in parallel.
-            return self.evaluate(a, d, mode, cv, tol, prefilter, threads, None, cval_outside=True,
-                                 nan_policy=nan_policy)
-        values = self.evaluate(a, d, mode, cv, tol, prefilter, threads, deriv, nan_policy=nan_policy)
+            return self.evaluate(a, d, mode, cv, tol, prefilter, threads, None, cval_outside=True, **opts)
+        values = self.evaluate(a, d, mode, cv, tol, prefilter, threads, deriv, **opts)
         if cval_outside:
             fill = 0.0 if deriv and any(deriv) else cv
             values = np.where(self.outside(a.shape), np.asarray(fill, values.dtype), values)
         return values
 
-    def evaluate(self, a, d, mode, cv, tol, prefilter, threads, deriv, cval_outside=False, nan_policy="propagate"):
-        run = _ext.map_coordinates_f64 if a.dtype == np.float64 else _ext.map_coordinates_f32
-        return run(a, np.ascontiguousarray(np.asarray(self.flat, dtype=np.float64)), d, mode, cv, tol, prefilter,
-                   threads, deriv, cval_outside, nan_policy)
+    def evaluate(self, a, d, mode, cv, tol, prefilter, threads, deriv, cval_outside=False, nan_policy="propagate",
+                 work=_F64, filter_rule=None):
+        flat = np.ascontiguousarray(np.asarray(self.flat, dtype=np.float64))
+        return _engine(_ext.map_coordinates, a, flat, d, mode, cv, tol, prefilter, threads, deriv, cval_outside,
+                       nan_policy, work=work, filter_rule=filter_rule)
 
     def finite(self):
         """The points with every non-finite coordinate replaced by 0, and
@@ -545,11 +609,13 @@ class _Grid(_Points):
     evaluated separably by the engine (``degree + 1`` multiply-adds per
     output sample and axis); values flat in C order."""
 
-    def run(self, a, d, mode, cv, tol, prefilter, threads, deriv, cval_outside=False, nan_policy="propagate"):
+    def run(self, a, d, mode, cv, tol, prefilter, threads, deriv, cval_outside=False, nan_policy="propagate",
+            work=_F64, filter_rule=None):
         """As :meth:`_Points.run`; ``cval`` written in place into the slabs
         of output indices outside ``[0, n - 1]`` on some axis (no mask of
         the whole output, no second output array)."""
-        values = self.evaluate(a, d, mode, cv, tol, prefilter, threads, deriv, nan_policy=nan_policy)
+        values = self.evaluate(a, d, mode, cv, tol, prefilter, threads, deriv, nan_policy=nan_policy, work=work,
+                               filter_rule=filter_rule)
         if cval_outside:
             fill = 0.0 if deriv and any(deriv) else cv
             grid = values.reshape([len(x) for x in self.flat])
@@ -562,10 +628,11 @@ class _Grid(_Points):
     def count(self):
         return math.prod(len(x) for x in self.flat)
 
-    def evaluate(self, a, d, mode, cv, tol, prefilter, threads, deriv, cval_outside=False, nan_policy="propagate"):
-        run = _ext.resample_f64 if a.dtype == np.float64 else _ext.resample_f32
+    def evaluate(self, a, d, mode, cv, tol, prefilter, threads, deriv, cval_outside=False, nan_policy="propagate",
+                 work=_F64, filter_rule=None):
         axes = [np.ascontiguousarray(x, dtype=np.float64) for x in self.flat]
-        return run(a, axes, d, mode, cv, tol, prefilter, list(deriv or [0] * a.ndim), threads, nan_policy).reshape(-1)
+        return _engine(_ext.resample, a, axes, d, mode, cv, tol, prefilter, list(deriv or [0] * a.ndim), threads,
+                       nan_policy, work=work, filter_rule=filter_rule).reshape(-1)
 
     def combine(self, per_axis):
         """Per grid point (C order), whether any axis' flag holds."""
@@ -595,27 +662,29 @@ class _Affine(_Points):
     def wrapped(self, shape):
         return _Affine(self.matrix, self.offset, self.out_shape, self.shift, True)
 
-    def run(self, a, d, mode, cv, tol, prefilter, threads, deriv, cval_outside=False, nan_policy="propagate"):
+    def run(self, a, d, mode, cv, tol, prefilter, threads, deriv, cval_outside=False, nan_policy="propagate",
+            work=_F64, filter_rule=None):
         if deriv:
             raise ValueError("derivatives are taken by map_coordinates, not by the affine resampling")
         rule = "wrap" if self.wrap else "cval-outside" if cval_outside else "fold"
-        run = _ext.affine_f64 if a.dtype == np.float64 else _ext.affine_f32
-        return run(a, self.matrix, self.offset, list(self.out_shape), d, mode, cv, tol, prefilter, self.shift, rule,
-                   threads, nan_policy).reshape(-1)
+        return _engine(_ext.affine, a, self.matrix, self.offset, list(self.out_shape), d, mode, cv, tol, prefilter,
+                       self.shift, rule, threads, nan_policy, work=work, filter_rule=filter_rule).reshape(-1)
 
 
-def _map_real(a, flat, d, mode, cv, prefilter, tol, threads, exact_edges, deriv=None, nan_policy="propagate"):
-    """map_coordinates of a real float64/float32 array at ``flat`` (``(ndim,
-    k)``, or a :class:`_Points`): the values (or the partial derivative
-    ``deriv``), flat, in ``a``'s dtype. A non-finite coordinate: refused
-    under 'raise', else scipy's value there (:func:`_at_non_finite`)."""
+def _map_real(a, flat, d, mode, cv, prefilter, tol, threads, exact_edges, deriv=None, nan_policy="propagate",
+              work=_F64):
+    """map_coordinates of a real array the engine reads (``work.samples``)
+    at ``flat`` (``(ndim, k)``, or a :class:`_Points`): the values (or the
+    partial derivative ``deriv``), flat, in ``work.dtype``. A non-finite
+    coordinate: refused under 'raise', else scipy's value there
+    (:func:`_at_non_finite`)."""
     points = flat if isinstance(flat, _Points) else _Points(flat)
     if a.size == 0 and mode in ("constant", "grid-constant"):
         # An empty axis puts every point outside the grid: cval, as scipy
         # (its other modes read outside the array there; the engine refuses
         # an empty signal).
-        return np.full(points.count(), 0.0 if deriv else cv, a.dtype)
-    args = (d, mode, cv, prefilter, tol, threads, exact_edges, deriv, nan_policy)
+        return np.full(points.count(), 0.0 if deriv else cv, work.dtype)
+    args = (d, mode, cv, prefilter, tol, threads, exact_edges, deriv, nan_policy, work)
     try:
         return _map_points(a, points, *args)
     except _ext.NonFiniteCoordinateError:
@@ -624,37 +693,40 @@ def _map_real(a, flat, d, mode, cv, prefilter, tol, threads, exact_edges, deriv=
         return _at_non_finite(a, points, *args)
 
 
-def _map_points(a, points, d, mode, cv, prefilter, tol, threads, exact_edges, deriv, nan_policy):
+def _map_points(a, points, d, mode, cv, prefilter, tol, threads, exact_edges, deriv, nan_policy, work=_F64):
     """:func:`_map_real` at finite points: on the local route where it
-    reads less than the global one (:mod:`splinelab._local`)."""
-    if type(points) is _Points:
+    reads less than the global one (:mod:`splinelab._local`; float64
+    arithmetic only, and float32 samples only for float32 results, which
+    it rounds once as the global route does)."""
+    if type(points) is _Points and not work.f32 and (a.dtype == np.float64 or work.out32):
         local = _local.try_map(a, points.flat, d, mode, cv, prefilter, tol, threads, exact_edges, deriv, nan_policy)
         if local is not None:
-            return local
+            return local.astype(work.dtype, copy=False)
     if prefilter and 1 < d <= 5 and mode in _EXACT_EDGES and not exact_edges:
         # scipy's route (_prepad_for_spline_filter): pad 12, filter with
-        # its rule, evaluate the coefficients at x + 12 (rounded as scipy).
+        # its rule, evaluate the coefficients at x + 12 as given (the
+        # engine does both in one coefficient array: the padded copy and
+        # that array, as scipy holds).
         pad = 12
         if nan_policy == "raise":
             _refuse_non_finite(a)  # named in the input, not in the padded copy
         kind = {"mode": "edge"} if mode == "nearest" else {"mode": "constant", "constant_values": cv}
-        coeffs = _filter(np.pad(a, pad, **kind), list(range(a.ndim)), d, a.dtype, mode, tol, threads,
-                         nan_policy=nan_policy)
-        return points.shifted(pad).run(coeffs, d, mode, cv, None, False, threads, deriv, nan_policy=nan_policy)
+        return points.shifted(pad).run(np.pad(a, pad, **kind), d, mode, cv, tol, True, threads, deriv,
+                                       nan_policy=nan_policy, work=work, filter_rule=_SCIPY_FILTER_RULE[mode])
+    opts = dict(nan_policy=nan_policy, work=work)
     if mode == "wrap":
         # The mirror spline (scipy filters 'wrap' with the mirror rule and
         # reads the window with it) at the point folded with period n - 1.
-        return points.wrapped(a.shape).run(a, d, "mirror", cv, tol, prefilter, threads, deriv, nan_policy=nan_policy)
+        return points.wrapped(a.shape).run(a, d, "mirror", cv, tol, prefilter, threads, deriv, **opts)
     engine_mode = "mirror" if mode == "constant" else mode
     # scipy's 'constant': no interpolation beyond the edges.
-    return points.run(a, d, engine_mode, cv, tol, prefilter, threads, deriv, cval_outside=mode == "constant",
-                      nan_policy=nan_policy)
+    return points.run(a, d, engine_mode, cv, tol, prefilter, threads, deriv, cval_outside=mode == "constant", **opts)
 
 
 _PERIODIC = ("grid-wrap", "wrap")
 
 
-def _at_non_finite(a, points, d, mode, cv, prefilter, tol, threads, exact_edges, deriv, nan_policy):
+def _at_non_finite(a, points, d, mode, cv, prefilter, tol, threads, exact_edges, deriv, nan_policy, work=_F64):
     """Values at points some of whose coordinates are NaN or ±inf, as scipy
     1.17.1 gives them (its C casts the coordinate to an integer, undefined
     behaviour; measured on every mode and order): under the periodic modes
@@ -665,7 +737,7 @@ def _at_non_finite(a, points, d, mode, cv, prefilter, tol, threads, exact_edges,
     non-finite coordinates replaced by 0, which also gives the index-0
     samples)."""
     clean, masks = points.finite()
-    values = _map_points(a, clean, d, mode, cv, prefilter, tol, threads, exact_edges, deriv, nan_policy).copy()
+    values = _map_points(a, clean, d, mode, cv, prefilter, tol, threads, exact_edges, deriv, nan_policy, work).copy()
     bad = points.combine([n | p | m for n, p, m in masks])
     if mode in _PERIODIC:
         to_cval = points.combine([n | m for n, _, m in masks])

@@ -45,7 +45,8 @@ def _per_axis(value, ndim, what):
 class _Spec:
     """The interpolation arguments shared by every function."""
 
-    def __init__(self, order, mode, cval, prefilter, tol, threads, exact_edges, nan_policy="propagate"):
+    def __init__(self, order, mode, cval, prefilter, tol, threads, exact_edges, nan_policy="propagate",
+                 compute="float64"):
         self.d = _degree(order)
         self.mode = _interp_mode(mode)
         self.cval = cval
@@ -54,26 +55,27 @@ class _Spec:
         self.tol = _tol_for(tol, self.nan_policy, self.d if self.prefilter else 0)
         self.threads = _threads(threads)
         self.exact_edges = bool(exact_edges)
+        self.compute = _dt.compute_name(compute)
 
     def at_points(self, input, output, shape, flat_of):
         """The values at the points ``flat_of(a)`` (``(ndim, prod(shape))``)."""
 
-        def evaluate(a, cv):
+        def evaluate(a, cv, work):
             return _map_real(a, flat_of(a), self.d, self.mode, cv, self.prefilter, self.tol, self.threads,
-                             self.exact_edges, nan_policy=self.nan_policy)
+                             self.exact_edges, nan_policy=self.nan_policy, work=work)
 
-        return _interpolate(input, output, shape, self.cval, evaluate)
+        return _interpolate(input, output, shape, self.cval, evaluate, compute=self.compute)
 
     def on_grid(self, input, output, shape, axis_coordinates):
         """The values on the tensor grid of per-axis coordinate vectors."""
 
         grid = _Grid(axis_coordinates)
 
-        def evaluate(a, cv):
+        def evaluate(a, cv, work):
             return _map_real(a, grid, self.d, self.mode, cv, self.prefilter, self.tol, self.threads,
-                             self.exact_edges, nan_policy=self.nan_policy)
+                             self.exact_edges, nan_policy=self.nan_policy, work=work)
 
-        return _interpolate(input, output, shape, self.cval, evaluate)
+        return _interpolate(input, output, shape, self.cval, evaluate, compute=self.compute)
 
 
 def _zoom_shift_coordinates(out_shape, zooms=None, shifts=None, grid_mode=False):
@@ -108,7 +110,7 @@ def _early_copy(input, output, shape):
 
 
 def zoom(input, zoom, output=None, order=3, mode="constant", cval=0.0, prefilter=True, *, grid_mode=False,
-         tol=DEFAULT_TOL, threads=None, exact_edges=False, nan_policy="propagate"):
+         tol=DEFAULT_TOL, threads=None, exact_edges=False, nan_policy="propagate", compute="float64"):
     """Resample an array by ``zoom`` per axis (``scipy.ndimage.zoom``).
 
     The output shape is ``round(n * zoom)`` per axis (Python's ``round``);
@@ -120,10 +122,16 @@ def zoom(input, zoom, output=None, order=3, mode="constant", cval=0.0, prefilter
     so are ``nan_policy`` ('propagate', 'raise', 'local') and ``tol``
     (under 'local' default 1e-12: a missing sample reaches the outputs
     within :func:`splinelab.nan_reach` ``(order, tol)`` input samples;
-    elsewhere within the bound stated there). A zoom
+    elsewhere within the bound stated there), ``compute`` (float64 by
+    default, as scipy; ``"float32"`` the opt-in float32 arithmetic) and the
+    memory held. A zoom
     of 1 on every axis with the prefilter returns the input converted, as
     scipy. Cost: the prefilter, then ``order + 1`` multiply-adds per output
-    sample and axis (separable tensor-product evaluation).
+    sample and axis (separable tensor-product evaluation). Memory beside
+    the input and the result: the coefficients (:func:`map_coordinates`)
+    and the array of the last axis resampled (the input's leading shape by
+    the output's last axis, float64), float32 results written rounded once
+    a row at a time.
 
     >>> import numpy as np, splinelab
     >>> splinelab.zoom(np.array([0.0, 1.0, 2.0]), 5 / 3, order=1)
@@ -136,7 +144,7 @@ def zoom(input, zoom, output=None, order=3, mode="constant", cval=0.0, prefilter
     out_shape = tuple(int(round(n * z)) for n, z in zip(a.shape, zooms))
     if any(m < 0 for m in out_shape):
         raise ValueError(f"zoom gives a negative output shape {out_shape}")
-    spec = _Spec(order, mode, cval, prefilter, tol, threads, exact_edges, nan_policy)
+    spec = _Spec(order, mode, cval, prefilter, tol, threads, exact_edges, nan_policy, compute)
     if all(z == 1 for z in zooms) and spec.prefilter:
         return _early_copy(a, output, out_shape)
     grid_mode = _flag(grid_mode, "grid_mode")
@@ -154,7 +162,7 @@ def zoom(input, zoom, output=None, order=3, mode="constant", cval=0.0, prefilter
 
 
 def shift(input, shift, output=None, order=3, mode="constant", cval=0.0, prefilter=True, *, tol=DEFAULT_TOL,
-          threads=None, exact_edges=False, nan_policy="propagate"):
+          threads=None, exact_edges=False, nan_policy="propagate", compute="float64"):
     """Shift an array by ``shift`` samples per axis (``scipy.ndimage.shift``):
     output index ``k`` reads the input at ``k - shift``. Arguments as
     :func:`zoom`; cost the prefilter, then ``order + 1`` multiply-adds per
@@ -168,7 +176,7 @@ def shift(input, shift, output=None, order=3, mode="constant", cval=0.0, prefilt
     if a.ndim < 1:
         raise ValueError("input must have at least one dimension")
     shifts = [-s for s in _per_axis(shift, a.ndim, "shift")]
-    spec = _Spec(order, mode, cval, prefilter, tol, threads, exact_edges, nan_policy)
+    spec = _Spec(order, mode, cval, prefilter, tol, threads, exact_edges, nan_policy, compute)
     coords = _zoom_shift_coordinates(a.shape, shifts=shifts)
     return spec.on_grid(a, output, a.shape, coords)
 
@@ -208,7 +216,7 @@ def _output_shape(output_shape, output, default):
 
 def affine_transform(input, matrix, offset=0.0, output_shape=None, output=None, order=3, mode="constant",
                      cval=0.0, prefilter=True, *, tol=DEFAULT_TOL, threads=None, exact_edges=False,
-                     nan_policy="propagate"):
+                     nan_policy="propagate", compute="float64"):
     """Apply an affine transformation (``scipy.ndimage.affine_transform``):
     output index ``o`` reads the input at ``matrix @ o + offset`` (the
     "pull" direction, as scipy).
@@ -220,7 +228,10 @@ def affine_transform(input, matrix, offset=0.0, output_shape=None, output=None, 
     an ``output`` array of another shape is refused with a ValueError that
     is also scipy's RuntimeError.
     Other arguments as :func:`zoom`. Cost: the prefilter, then
-    ``(order + 1)**ndim`` multiply-adds per output sample.
+    ``(order + 1)**ndim`` multiply-adds per output sample. Memory beside
+    the input and the result: the coefficients only (the points are
+    generated where they are evaluated; float32 results rounded once, 2048
+    at a time).
 
     >>> import numpy as np, splinelab
     >>> x = np.arange(12.0).reshape(3, 4)
@@ -234,7 +245,7 @@ def affine_transform(input, matrix, offset=0.0, output_shape=None, output=None, 
     if len(out_shape) < 1:
         raise ValueError("output must have at least one dimension")
     m, offsets = _affine_parts(matrix, offset, a.ndim, len(out_shape))
-    spec = _Spec(order, mode, cval, prefilter, tol, threads, exact_edges, nan_policy)
+    spec = _Spec(order, mode, cval, prefilter, tol, threads, exact_edges, nan_policy, compute)
     if m.ndim == 1:
         if len(out_shape) != a.ndim:
             raise ValueError(f"a diagonal matrix needs an output of {a.ndim} dimensions, got {out_shape}")
@@ -290,7 +301,8 @@ def _rotation(angle, axes, shape, reshape):
 
 
 def rotate(input, angle, axes=(1, 0), reshape=True, output=None, order=3, mode="constant", cval=0.0,
-           prefilter=True, *, tol=DEFAULT_TOL, threads=None, exact_edges=False, nan_policy="propagate"):
+           prefilter=True, *, tol=DEFAULT_TOL, threads=None, exact_edges=False, nan_policy="propagate",
+           compute="float64"):
     """Rotate an array by ``angle`` degrees in the plane of ``axes``
     (``scipy.ndimage.rotate``): about the centre ``(n - 1) / 2`` of the
     plane, the matrix ``[[c, s], [-s, c]]`` from output to input;
@@ -308,7 +320,7 @@ def rotate(input, angle, axes=(1, 0), reshape=True, output=None, order=3, mode="
     ndim = a.ndim
     axes, rot, offset, out_plane, out_shape = _rotation(angle, axes, a.shape, reshape)
     kwargs = dict(order=order, mode=mode, cval=cval, prefilter=prefilter, tol=tol, threads=threads,
-                  exact_edges=exact_edges, nan_policy=nan_policy)
+                  exact_edges=exact_edges, nan_policy=nan_policy, compute=compute)
     if ndim == 2:
         return affine_transform(a, rot, offset, out_shape, output, **kwargs)
     # Plane by plane, as scipy (each plane prefiltered on its own), each
@@ -328,7 +340,8 @@ def rotate(input, angle, axes=(1, 0), reshape=True, output=None, order=3, mode="
 
 def geometric_transform(input, mapping, output_shape=None, output=None, order=3, mode="constant", cval=0.0,
                         prefilter=True, extra_arguments=(), extra_keywords=None, *, vectorized=False,
-                        tol=DEFAULT_TOL, threads=None, exact_edges=False, nan_policy="propagate"):
+                        tol=DEFAULT_TOL, threads=None, exact_edges=False, nan_policy="propagate",
+                        compute="float64"):
     """Apply an arbitrary coordinate mapping (``scipy.ndimage.geometric_transform``).
 
     ``mapping(out_index, *extra_arguments, **extra_keywords)`` takes a
@@ -356,7 +369,7 @@ def geometric_transform(input, mapping, output_shape=None, output=None, order=3,
         raise ValueError("output must have at least one dimension")
     kwargs = {} if extra_keywords is None else dict(extra_keywords)
     extra = tuple(extra_arguments)
-    spec = _Spec(order, mode, cval, prefilter, tol, threads, exact_edges, nan_policy)
+    spec = _Spec(order, mode, cval, prefilter, tol, threads, exact_edges, nan_policy, compute)
     if vectorized:
         points = np.asarray(mapping(np.indices(out_shape, dtype=np.float64), *extra, **kwargs), dtype=np.float64)
         if points.shape != (a.ndim, *out_shape):

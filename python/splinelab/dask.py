@@ -57,6 +57,7 @@ import dask.array as da
 import numpy as np
 
 import splinelab
+from splinelab import _dtypes as _dt
 from splinelab._ndimage import _axis, _filter, _filter_mode
 from splinelab._validate import _nan_policy
 
@@ -116,9 +117,10 @@ def bound(order, tol=DEFAULT_TOL, ndim=1, route="truncated"):
 _NUMPY_PAD = {"mirror": "reflect", "reflect": "symmetric"}
 
 
-def _map(darr, axes, order, mode, tol, output, threads, route, nan_policy="propagate"):
+def _map(darr, axes, order, mode, tol, output, threads, route, nan_policy="propagate", compute="float64"):
     darr = da.asarray(darr)
     dtype = np.dtype(output)
+    compute = _dt.compute_name(compute)
     nan_policy = _nan_policy(nan_policy)
     d = depth(order, tol, route)
     # An axis in one chunk has no seam: no overlap. An axis not longer than
@@ -140,13 +142,15 @@ def _map(darr, axes, order, mode, tol, output, threads, route, nan_policy="propa
     def block(x, block_info=None):
         if not zeros_beyond:
             # The local convolution: a coefficient reads only samples within `n`.
-            return _filter(x, axes, order, dtype, mode, block_tol, threads, convolution=True, nan_policy=nan_policy)
+            return _filter(x, axes, order, dtype, mode, block_tol, threads, convolution=True, nan_policy=nan_policy,
+                           compute=compute)
         info = block_info[0]
         x, crop = _pad_array_edges(x, seamed, rule, d, info["chunk-location"], info["num-chunks"])
         y = _filter(x, seamed, order, dtype, "grid-constant", local_tol, threads, exact_edges=True,
-                    nan_policy=nan_policy)[crop]
+                    nan_policy=nan_policy, compute=compute)[crop]
         whole = [ax for ax in axes if ax not in seamed]
-        return _filter(y, whole, order, dtype, mode, local_tol, threads, nan_policy=nan_policy) if whole else y
+        return (_filter(y, whole, order, dtype, mode, local_tol, threads, nan_policy=nan_policy, compute=compute)
+                if whole else y)
 
     out = darr.map_overlap(block, depth=depths, boundary=boundary, dtype=dtype, meta=np.array((), dtype=dtype))
     if nan_policy != "propagate" or order < 2 or darr.dtype.kind not in "fc":
@@ -173,7 +177,7 @@ def _pad_array_edges(x, seamed, rule, d, location, chunks):
 
 
 def spline_filter(darr, order=3, mode="mirror", tol=DEFAULT_TOL, output=np.float64, threads=1, route="truncated",
-                  nan_policy="propagate"):
+                  nan_policy="propagate", compute="float64"):
     """``splinelab.spline_filter`` of a dask array, chunk by chunk.
 
     ``order`` is the spline **degree** 0..199. ``tol`` in (0, 1) is the
@@ -185,7 +189,11 @@ def spline_filter(darr, order=3, mode="mirror", tol=DEFAULT_TOL, output=np.float
     documentation); :func:`bound` gives the certified error of either.
     ``nan_policy``: 'propagate' (default, scipy's whole-array pattern by a
     global reduction), 'raise' or 'local' (the unchunked pattern whatever
-    the chunking; module documentation).
+    the chunking; module documentation). ``compute``: 'float64' (default:
+    every block computed in float64, float32 blocks read as they lie, a
+    float32 ``output`` rounded after every axis as scipy rounds it) or
+    'float32' (the opt-in float32 arithmetic, as
+    :func:`splinelab.spline_filter`).
 
     >>> import dask.array as da, numpy as np, splinelab, splinelab.dask
     >>> x = np.random.default_rng(0).uniform(-1, 1, (64, 64))
@@ -195,12 +203,12 @@ def spline_filter(darr, order=3, mode="mirror", tol=DEFAULT_TOL, output=np.float
     True
     """
     darr = da.asarray(darr)
-    return _map(darr, list(range(darr.ndim)), order, mode, tol, output, threads, route, nan_policy)
+    return _map(darr, list(range(darr.ndim)), order, mode, tol, output, threads, route, nan_policy, compute)
 
 
 def spline_filter1d(
     darr, order=3, axis=-1, mode="mirror", tol=DEFAULT_TOL, output=np.float64, threads=1, route="truncated",
-    nan_policy="propagate",
+    nan_policy="propagate", compute="float64",
 ):
     """``splinelab.spline_filter1d`` of a dask array along ``axis``, chunk by chunk.
 
@@ -208,7 +216,7 @@ def spline_filter1d(
     :func:`spline_filter`.
     """
     darr = da.asarray(darr)
-    return _map(darr, [_axis(axis, darr.ndim)], order, mode, tol, output, threads, route, nan_policy)
+    return _map(darr, [_axis(axis, darr.ndim)], order, mode, tol, output, threads, route, nan_policy, compute)
 
 
 # ---------------------------------------------------------------------------
@@ -253,10 +261,13 @@ class _Plan:
     """How a mode reads coefficients: the coefficient array (lazy), the
     engine mode for given coefficients, and the points' transformation."""
 
-    def __init__(self, darr, order, mode, cval, tol, route, threads, nan_policy="propagate"):
+    def __init__(self, darr, order, mode, cval, tol, route, threads, nan_policy="propagate", compute="float64"):
         from splinelab._ndimage import _EXACT_EDGES, _interp_mode
 
         self.d, self.mode, self.cval = order, _interp_mode(mode), float(cval)
+        self.compute = _dt.compute_name(compute)
+        if self.compute == "float32":
+            darr = darr.astype(np.float32)
         self.shape = darr.shape
         self.pad = 12 if (1 < order <= 5 and self.mode in _EXACT_EDGES) else 0
         if order > 5 and self.mode in _EXACT_EDGES:
@@ -269,8 +280,11 @@ class _Plan:
             need = depth(order, tol, route)
             if smallest < need:  # the overlap needs chunks of at least the depth
                 darr = darr.rechunk(tuple(min(max(c, need), n) for c, n in zip(darr.chunksize, darr.shape)))
-            darr = spline_filter(darr, order=order, mode=self.mode, tol=tol, output=darr.dtype, threads=threads,
-                                 route=route, nan_policy=nan_policy)
+            # Coefficients in the arithmetic's dtype (float64: from float32
+            # blocks read as they lie, as the unchunked filter).
+            coeff_dtype = np.float32 if self.compute == "float32" else np.float64
+            darr = spline_filter(darr, order=order, mode=self.mode, tol=tol, output=coeff_dtype, threads=threads,
+                                 route=route, nan_policy=nan_policy, compute=self.compute)
         elif _nan_policy(nan_policy) == "raise":
             darr = darr.map_blocks(_refused_if_missing, dtype=darr.dtype)
         self.coeffs = darr
@@ -333,15 +347,17 @@ def _refused_if_missing(x):
 
 def _evaluate_region(region_coeffs, lo, x, mask, plan, dtype):
     """The values at global points ``x`` (prepared) from the coefficient
-    region starting at ``lo``; every window inside the region."""
+    region starting at ``lo``; every window inside the region. Computed in
+    the plan's arithmetic (float64: float32 results rounded once)."""
     from splinelab._ndimage import _Points
 
+    work = _dt.Work(plan.compute, dtype)
     local = x - np.array(lo, dtype=np.float64)[:, None]
-    coeffs = np.ascontiguousarray(region_coeffs, dtype=dtype)
-    values = _Points(local).evaluate(coeffs, plan.d, plan.engine_mode, plan.cval, None, False, 1, None)
+    coeffs = work.samples(np.ascontiguousarray(region_coeffs))
+    values = _Points(local).evaluate(coeffs, plan.d, plan.engine_mode, plan.cval, None, False, 1, None, work=work)
     if mask is not None:
         values = np.where(mask, np.asarray(plan.cval, values.dtype), values)
-    return values
+    return values.astype(dtype, copy=False)
 
 
 def _chunk(plan, flat, dtype):
@@ -364,14 +380,14 @@ def _work_dtype(darr, output):
 
 
 def _on_output_grid(darr, out_shape, chunks, points_of, order, mode, cval, tol, route, output, threads,
-                    nan_policy="propagate"):
+                    nan_policy="propagate", compute="float64"):
     """The output of ``out_shape`` in ``chunks``, chunk ``slices`` at the
     points ``points_of(slices)`` (``(ndim, k)``, scipy's arithmetic)."""
     import itertools
 
     darr = da.asarray(darr)
     dtype = _work_dtype(darr, output)
-    plan = _Plan(darr.astype(dtype), order, mode, cval, tol, route, threads, nan_policy)
+    plan = _Plan(darr, order, mode, cval, tol, route, threads, nan_policy, compute)
     chunks = da.core.normalize_chunks(chunks if chunks is not None else darr.chunksize[: len(out_shape)] if
                                       len(out_shape) == darr.ndim else "auto", out_shape, dtype=dtype)
     starts = [np.concatenate([[0], np.cumsum(c)[:-1]]).astype(int) for c in chunks]
@@ -384,7 +400,7 @@ def _on_output_grid(darr, out_shape, chunks, points_of, order, mode, cval, tol, 
 
 
 def map_coordinates(input, coordinates, order=3, mode="constant", cval=0.0, tol=DEFAULT_TOL, output=None,
-                    threads=1, route="truncated", nan_policy="propagate"):
+                    threads=1, route="truncated", nan_policy="propagate", compute="float64"):
     """``splinelab.map_coordinates`` with dask: ``input`` (dask or numpy)
     prefiltered once by the certified chunked filter, ``coordinates`` a
     dask array ``(ndim, ...)`` chunked along the points (axis 0 whole); the
@@ -393,7 +409,9 @@ def map_coordinates(input, coordinates, order=3, mode="constant", cval=0.0, tol=
     built). Within ``bound(order, tol, ndim) * max|input|`` (plus rounding)
     of ``splinelab.map_coordinates`` (module notes above). ``nan_policy``
     as :func:`spline_filter` (the coefficients); a coefficient that is NaN
-    reaches the outputs whose window holds it, as unchunked.
+    reaches the outputs whose window holds it, as unchunked. ``compute``:
+    'float64' (default: float64 coefficients, float32 results rounded once,
+    as :func:`splinelab.map_coordinates`) or 'float32' (the opt-in).
 
     >>> import dask.array as da, numpy as np, splinelab, splinelab.dask
     >>> x = np.random.default_rng(0).uniform(-1, 1, (40, 40))
@@ -411,10 +429,11 @@ def map_coordinates(input, coordinates, order=3, mode="constant", cval=0.0, tol=
     dtype = _work_dtype(darr, output)
     flat = at.reshape(at.shape[0], -1).rechunk({0: -1}).astype(np.float64)
     parts = dask.compute(*flat.to_delayed().ravel())  # each chunk's points, to find its region
-    local = _local_points(darr, parts, at, order, mode, cval, tol, threads, nan_policy, dtype)
+    local = None if compute == "float32" else _local_points(darr, parts, at, order, mode, cval, tol, threads,
+                                                             nan_policy, dtype)
     if local is not None:
         return local
-    plan = _Plan(darr.astype(dtype), order, mode, cval, tol, route, threads, nan_policy)
+    plan = _Plan(darr, order, mode, cval, tol, route, threads, nan_policy, compute)
     pieces = [_chunk(plan, np.asarray(p), dtype) for p in parts]
     return da.concatenate(pieces).reshape(at.shape[1:])
 
@@ -441,7 +460,7 @@ def _local_points(darr, parts, at, order, mode, cval, tol, threads, nan_policy, 
 
 
 def zoom(input, zoom, order=3, mode="constant", cval=0.0, *, grid_mode=False, tol=DEFAULT_TOL, output=None,
-         chunks=None, threads=1, route="truncated", nan_policy="propagate"):
+         chunks=None, threads=1, route="truncated", nan_policy="propagate", compute="float64"):
     """``splinelab.zoom`` of a dask array (scipy's output shape and
     coordinates), output in ``chunks`` (default: the input's chunk size).
     Bound as :func:`map_coordinates`."""
@@ -456,11 +475,11 @@ def zoom(input, zoom, order=3, mode="constant", cval=0.0, *, grid_mode=False, to
     factors = np.divide(num, div, out=np.ones(darr.ndim, dtype=np.float64), where=div != 0)
     axes = _zoom_shift_coordinates(out_shape, zooms=factors, grid_mode=grid_mode)
     return _on_output_grid(darr, out_shape, chunks, lambda s: _grid_points(axes, s), order, mode, cval, tol, route,
-                           output, threads, nan_policy)
+                           output, threads, nan_policy, compute)
 
 
 def shift(input, shift, order=3, mode="constant", cval=0.0, *, tol=DEFAULT_TOL, output=None, chunks=None,
-          threads=1, route="truncated", nan_policy="propagate"):
+          threads=1, route="truncated", nan_policy="propagate", compute="float64"):
     """``splinelab.shift`` of a dask array; arguments and bound as :func:`zoom`."""
     from splinelab._resample import _per_axis, _zoom_shift_coordinates
 
@@ -468,7 +487,7 @@ def shift(input, shift, order=3, mode="constant", cval=0.0, *, tol=DEFAULT_TOL, 
     shifts = [-s for s in _per_axis(shift, darr.ndim, "shift")]
     axes = _zoom_shift_coordinates(darr.shape, shifts=shifts)
     return _on_output_grid(darr, darr.shape, chunks, lambda s: _grid_points(axes, s), order, mode, cval, tol, route,
-                           output, threads, nan_policy)
+                           output, threads, nan_policy, compute)
 
 
 def _grid_points(axes, slices):
@@ -477,7 +496,8 @@ def _grid_points(axes, slices):
 
 
 def affine_transform(input, matrix, offset=0.0, output_shape=None, order=3, mode="constant", cval=0.0, *,
-                     tol=DEFAULT_TOL, output=None, chunks=None, threads=1, route="truncated", nan_policy="propagate"):
+                     tol=DEFAULT_TOL, output=None, chunks=None, threads=1, route="truncated", nan_policy="propagate",
+                     compute="float64"):
     """``splinelab.affine_transform`` of a dask array (every matrix form
     scipy takes); arguments and bound as :func:`zoom`."""
     from splinelab._resample import _affine_parts, _zoom_shift_coordinates
@@ -504,11 +524,11 @@ def affine_transform(input, matrix, offset=0.0, output_shape=None, order=3, mode
             return points
 
     return _on_output_grid(darr, out_shape, chunks, points_of, order, mode, cval, tol, route, output, threads,
-                           nan_policy)
+                           nan_policy, compute)
 
 
 def rotate(input, angle, axes=(1, 0), reshape=True, order=3, mode="constant", cval=0.0, *, tol=DEFAULT_TOL,
-           output=None, chunks=None, threads=1, route="truncated", nan_policy="propagate"):
+           output=None, chunks=None, threads=1, route="truncated", nan_policy="propagate", compute="float64"):
     """``splinelab.rotate`` of a dask array (scipy's matrix, centre and
     output shape); arguments and bound as :func:`zoom`. Above two
     dimensions the rotation is one N-D affine map, the identity off the
@@ -524,4 +544,5 @@ def rotate(input, angle, axes=(1, 0), reshape=True, order=3, mode="constant", cv
     offset = np.zeros(darr.ndim)
     offset[axes] = plane_offset
     return affine_transform(darr, matrix, offset, out_shape, order, mode, cval, tol=tol,
-                            output=output, chunks=chunks, threads=threads, route=route, nan_policy=nan_policy)
+                            output=output, chunks=chunks, threads=threads, route=route, nan_policy=nan_policy,
+                            compute=compute)

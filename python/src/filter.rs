@@ -1,6 +1,10 @@
 //! `spline_filter1d` / `spline_filter`: the prefilter along the given axes
 //! of a float64 or float32 array (scipy.ndimage's functions; `order` there
-//! is our degree), written into a C-ordered array the caller allocated
+//! is our degree), computed in float64 (float64 or float32 samples read as
+//! they lie, float64 or float32 coefficients, the latter rounded after
+//! every axis as scipy rounds a float32 `output`) or in float32 (`f32`,
+//! the `compute="float32"` opt-in), written into a
+//! C-ordered array the caller allocated
 //! (numpy: its allocator asks for transparent huge pages, which a fresh
 //! Rust `Vec` of the same size does not get — at 10⁷ samples the 4 KiB page
 //! faults of an 80 MB `Vec` cost more than the filter itself).
@@ -20,11 +24,13 @@
 use crate::cache;
 use crate::error::value_error;
 use crate::pool::run_with;
+use crate::with_samples;
 use ndarray::{ArrayView1, ArrayViewD, ArrayViewMut1, ArrayViewMutD};
 use numpy::{Element, PyReadonlyArrayDyn, PyReadwriteArrayDyn};
 use pyo3::prelude::*;
 use splinelab::ndimage::NdimageError;
-use splinelab::ndimage::nd_prefilter::{filter_missing, spline_filter_from};
+use splinelab::ndimage::nd_prefilter::{filter_missing, spline_filter_from_as};
+use splinelab::ndimage::samples::{Sample, Stored};
 use splinelab::prelude::*;
 use std::sync::Arc;
 
@@ -127,19 +133,32 @@ fn one_line(shape: &[usize], len: usize, axes: &[usize]) -> bool {
 }
 
 /// Filters `out` (C order) along `axes`, after copying `src` into it when
-/// given (else `out` already holds the samples).
-fn filter_into<T: Real + Copy + Send + Sync + 'static>(
-    src: Option<ArrayViewD<'_, T>>,
-    out: &mut ArrayViewMutD<'_, T>,
+/// given (else `out` already holds the samples). One line of samples and
+/// coefficients of the compute type takes the line routes below; anything
+/// else the engine's N-D filter.
+fn filter_into<T, E, O>(
+    src: Option<ArrayViewD<'_, E>>,
+    out: &mut ArrayViewMutD<'_, O>,
     axes: &[usize],
     spec: &Spec,
-) -> Result<(), NdimageError> {
+) -> Result<(), NdimageError>
+where
+    T: Real + Copy + Send + Sync + 'static,
+    E: Sample<T>,
+    O: Sample<T> + Stored<T>,
+{
     let filter = spec.line_filter::<T>()?;
     let line = match (&src, &filter) {
-        (Some(s), Some(_)) if one_line(out.shape(), out.len(), axes) => s.as_slice(),
+        (Some(s), Some(_)) if one_line(out.shape(), out.len(), axes) => {
+            s.as_slice().and_then(E::as_compute)
+        }
         _ => None,
     };
-    let (Some(s), Some(f), Some(d)) = (line, &filter, out.as_slice_mut()) else {
+    let (Some(s), Some(f), Some(d)) = (
+        line,
+        &filter,
+        out.as_slice_mut().and_then(O::as_compute_mut),
+    ) else {
         return filter_nd(src, out, axes, filter.as_deref());
     };
     // One long line under `tol`: certified blocks on the pool, read from
@@ -184,14 +203,19 @@ fn filter_into<T: Real + Copy + Send + Sync + 'static>(
 /// The general case: the engine's N-D filter, reading `src` when given
 /// (the copy fused into the first pass; `spline_filter_from`), else
 /// filtering `out` in place.
-fn filter_nd<T: Real + Send + Sync>(
-    src: Option<ArrayViewD<'_, T>>,
-    out: &mut ArrayViewMutD<'_, T>,
+fn filter_nd<T, E, O>(
+    src: Option<ArrayViewD<'_, E>>,
+    out: &mut ArrayViewMutD<'_, O>,
     axes: &[usize],
     filter: Option<&LineFilter<T>>,
-) -> Result<(), NdimageError> {
+) -> Result<(), NdimageError>
+where
+    T: Real + Send + Sync,
+    E: Sample<T>,
+    O: Sample<T> + Stored<T>,
+{
     if let Some(s) = src {
-        return spline_filter_from(&s, out, axes, filter);
+        return spline_filter_from_as(&s, out, axes, filter);
     }
     let Some(f) = filter else {
         return Ok(());
@@ -204,18 +228,19 @@ fn filter_nd<T: Real + Send + Sync>(
         .try_for_each(|&axis| spline_filter1d(out, axis, f))
 }
 
-fn filter_generic<'py, T>(
+fn filter_generic<'py, T, E, O>(
     py: Python<'py>,
-    input: Option<PyReadonlyArrayDyn<'py, T>>,
-    mut output: PyReadwriteArrayDyn<'py, T>,
+    src: Option<ArrayViewD<'_, E>>,
+    mut output: PyReadwriteArrayDyn<'py, O>,
     axes: Vec<usize>,
     spec: Spec,
     threads: Option<usize>,
 ) -> PyResult<()>
 where
-    T: Real + Copy + Element + Send + Sync + 'static,
+    T: Real + Copy + Send + Sync + 'static,
+    E: Sample<T>,
+    O: Sample<T> + Stored<T> + Element,
 {
-    let src = input.as_ref().map(|a| a.as_array());
     let mut out = output.as_array_mut();
     // The engine's strided-axis kernels assume C order (a Fortran-ordered
     // array would take the per-lane path, whose rounding differs by ulps).
@@ -237,52 +262,75 @@ where
         Some(n) if n > 0 && one_line(out.shape(), out.len(), &axes) && blocks().is_none() => None,
         t => t,
     };
-    py.detach(|| run_with(threads, || filter_into(src, &mut out, &axes, &spec)))?
-        .map_err(value_error)
+    py.detach(|| {
+        run_with(threads, || {
+            filter_into::<T, E, O>(src, &mut out, &axes, &spec)
+        })
+    })?
+    .map_err(value_error)
 }
 
-/// The float64 and float32 entry points, one generic body.
-macro_rules! filter_fn {
-    ($name:ident, $t:ty, $doc:literal) => {
-        #[doc = $doc]
-        #[pyfunction]
-        #[pyo3(signature = (input, output, axes, degree, mode, cval, tol, threads, convolution=false, nan_policy="propagate"))]
-        #[allow(clippy::too_many_arguments)]
-        pub fn $name<'py>(
-            py: Python<'py>,
-            input: Option<PyReadonlyArrayDyn<'py, $t>>,
-            output: PyReadwriteArrayDyn<'py, $t>,
-            axes: Vec<usize>,
-            degree: u32,
-            mode: &str,
-            cval: f64,
-            tol: Option<f64>,
-            threads: Option<usize>,
-            convolution: bool,
-            nan_policy: &str,
-        ) -> PyResult<()> {
-            filter_generic(
-                py,
-                input,
-                output,
-                axes,
-                Spec::new(degree, mode, cval, tol, convolution, nan_policy)?,
-                threads,
-            )
-        }
-    };
+/// [`filter_generic`] in float64 into `output` of `O`, from `input` (a
+/// float64 or float32 array) or in place.
+fn filter_into_f64<'py, O>(
+    py: Python<'py>,
+    input: Option<&Bound<'py, PyAny>>,
+    output: PyReadwriteArrayDyn<'py, O>,
+    axes: Vec<usize>,
+    spec: Spec,
+    threads: Option<usize>,
+) -> PyResult<()>
+where
+    O: Sample<f64> + Stored<f64> + Element,
+{
+    match input {
+        None => filter_generic::<f64, O, O>(py, None, output, axes, spec, threads),
+        Some(input) => with_samples!(input, a => {
+            filter_generic::<f64, _, O>(py, Some(a), output, axes, spec, threads)
+        }),
+    }
 }
 
-filter_fn!(
-    filter_f64,
-    f64,
-    "Coefficients of a float64 array along `axes` (in that order), written into `output` (C order; `input` None: filter `output` in place)."
-);
-filter_fn!(
-    filter_f32,
-    f32,
-    "Coefficients of a float32 array along `axes`, computed in float32, written into `output` (as filter_f64)."
-);
+/// Coefficients along `axes` (in that order) of `input` (any strides;
+/// None: `output` filtered in place), written into `output` (C order):
+/// computed in float64 from a float64 or float32 array into float64 or
+/// float32 (float32 rounded after every axis, as scipy), or with `f32` in
+/// float32 from float32 into float32 (the `compute="float32"` opt-in).
+#[pyfunction]
+#[pyo3(signature = (input, output, axes, degree, mode, cval, tol, threads, convolution=false, nan_policy="propagate", f32=false))]
+#[allow(clippy::too_many_arguments)]
+pub fn filter<'py>(
+    py: Python<'py>,
+    input: Option<Bound<'py, PyAny>>,
+    output: Bound<'py, PyAny>,
+    axes: Vec<usize>,
+    degree: u32,
+    mode: &str,
+    cval: f64,
+    tol: Option<f64>,
+    threads: Option<usize>,
+    convolution: bool,
+    nan_policy: &str,
+    f32: bool,
+) -> PyResult<()> {
+    let spec = Spec::new(degree, mode, cval, tol, convolution, nan_policy)?;
+    let input = input.as_ref();
+    if f32 {
+        let src = input
+            .map(|a| a.extract::<PyReadonlyArrayDyn<'py, f32>>())
+            .transpose()?;
+        let out = output.extract::<PyReadwriteArrayDyn<'py, f32>>()?;
+        let src = src.as_ref().map(|a| a.as_array());
+        return filter_generic::<f32, f32, f32>(py, src, out, axes, spec, threads);
+    }
+    if let Ok(out) = output.extract::<PyReadwriteArrayDyn<'py, f64>>() {
+        filter_into_f64(py, input, out, axes, spec, threads)
+    } else if let Ok(out) = output.extract::<PyReadwriteArrayDyn<'py, f32>>() {
+        filter_into_f64(py, input, out, axes, spec, threads)
+    } else {
+        Err(crate::samples::unsupported(&output))
+    }
+}
 
 /// `(half_width, bound, amplification)` of the filter for `degree`, `tol`:
 /// the certified truncation half-width and its tail bound `Σ_{|j|>n}|c_j|`

@@ -1,17 +1,26 @@
-//! `map_coordinates`: the spline interpolant of a float64 or float32 array
-//! evaluated at points given as scipy does, one row per axis: `(ndim, k)`.
+//! `map_coordinates`: the spline interpolant of an array evaluated at
+//! points given as scipy does, one row per axis: `(ndim, k)`. It computes
+//! in float64 from float64 or float32 samples (read as they lie, widened
+//! by the engine as it reads them) and stores float64 or float32 results
+//! (each rounded once), or with `f32` float32 samples in float32 (the
+//! `compute="float32"` opt-in).
 //! With `prefilter` the array holds samples (the engine solves for the
 //! coefficients); without, it already holds coefficients (scipy's
 //! `prefilter=False`), which are extended by the mode and evaluated as given.
+//! With `filter_rule`, the samples are prefiltered under that rule and the
+//! coefficients evaluated as given (scipy's route for `nearest` and
+//! `grid-constant`), in one coefficient array.
 //! With `deriv`, a partial derivative of the interpolant instead of its values;
 //! with `cval_outside`, `cval` at points outside the grid (scipy's 'constant').
 
 use crate::error::{engine_error, value_error};
 use crate::pool::run_with;
-use numpy::{Element, IntoPyArray, PyArray1, PyReadonlyArray2, PyReadonlyArrayDyn};
+use crate::with_samples;
+use ndarray::ArrayViewD;
+use numpy::{Element, PyArray1, PyArrayMethods, PyReadonlyArray2, PyReadonlyArrayDyn};
 use pyo3::prelude::*;
-use rayon::prelude::*;
 use splinelab::ndimage::interpolant::PointRule;
+use splinelab::ndimage::samples::{Sample, Stored};
 use splinelab::prelude::*;
 
 pub(crate) fn options(
@@ -30,49 +39,63 @@ pub(crate) fn options(
     Ok(opts)
 }
 
-/// The interpolant of samples (`prefilter`: the engine solves for the
-/// coefficients) or of given coefficients (scipy's `prefilter=False`).
-pub(crate) fn interpolant<T: Real + Send + Sync>(
-    data: &ndarray::ArrayViewD<'_, T>,
-    opts: Options,
-    prefilter: bool,
-) -> Result<Interpolant<T>, NdimageError> {
-    if prefilter {
-        Interpolant::new(data, opts)
-    } else {
-        Interpolant::from_coefficients_with(data, opts)
+/// How the interpolant's coefficients are made: from samples (the engine
+/// prefilters them under the mode), from samples prefiltered under another
+/// rule and then taken as given (scipy's `nearest`/`grid-constant`), or
+/// taken as given (scipy's `prefilter=False`).
+#[derive(Debug, Clone, Copy)]
+pub(crate) enum Coefficients {
+    Prefilter,
+    FilteredAs(Mode),
+    Given,
+}
+
+impl Coefficients {
+    /// From `prefilter` and the optional filter rule's name.
+    pub(crate) fn new(prefilter: bool, filter_rule: Option<&str>) -> PyResult<Self> {
+        Ok(match (prefilter, filter_rule) {
+            (false, _) => Coefficients::Given,
+            (true, None) => Coefficients::Prefilter,
+            (true, Some(rule)) => Coefficients::FilteredAs(rule.parse().map_err(value_error)?),
+        })
     }
 }
 
-/// `∂^deriv f` at each point (columns of `at`), in parallel: the engine's
-/// [`Interpolant::eval_derivative`] per point.
-fn derivatives<T: Real + Send + Sync>(
-    f: &Interpolant<T>,
-    at: ndarray::ArrayView2<'_, f64>,
-    deriv: &[u32],
-) -> Result<Vec<T>, NdimageError> {
-    (0..at.ncols())
-        .into_par_iter()
-        .with_min_len(256)
-        .map(|k| f.eval_derivative(&at.column(k).to_vec(), deriv))
-        .collect()
+/// The interpolant of `data` (samples of any type read into `T`).
+pub(crate) fn interpolant<T, E>(
+    data: &ArrayViewD<'_, E>,
+    opts: Options,
+    how: Coefficients,
+) -> Result<Interpolant<T>, NdimageError>
+where
+    T: Real + Send + Sync,
+    E: Sample<T>,
+{
+    match how {
+        Coefficients::Prefilter => Interpolant::from_samples(data, opts),
+        Coefficients::FilteredAs(rule) => Interpolant::from_samples_filtered_as(data, opts, rule),
+        Coefficients::Given => Interpolant::from_coefficients_of(data, opts),
+    }
 }
 
+/// The values (or the partial derivative `deriv`) at the columns of
+/// `coordinates`, in a new array of `O` (numpy's allocation).
 #[allow(clippy::too_many_arguments)]
-fn map_generic<'py, T>(
+fn map_generic<'py, T, E, O>(
     py: Python<'py>,
-    input: PyReadonlyArrayDyn<'py, T>,
-    coordinates: PyReadonlyArray2<'py, f64>,
+    data: ArrayViewD<'_, E>,
+    coordinates: &PyReadonlyArray2<'py, f64>,
     opts: Options,
-    prefilter: bool,
+    how: Coefficients,
     threads: Option<usize>,
     deriv: Option<Vec<u32>>,
     cval_outside: bool,
-) -> PyResult<Bound<'py, PyArray1<T>>>
+) -> PyResult<Bound<'py, PyAny>>
 where
-    T: Real + Element + Send + Sync,
+    T: Real + Send + Sync,
+    E: Sample<T>,
+    O: Stored<T> + Element,
 {
-    let data = input.as_array();
     let at = coordinates.as_array();
     // scipy's 'constant': cval outside the grid, decided per point in the
     // parallel evaluation (not by passes over the points in numpy after it).
@@ -81,62 +104,66 @@ where
     } else {
         PointRule::Fold
     };
+    let result = PyArray1::<O>::zeros(py, at.ncols(), false);
+    let mut view = result.readwrite();
+    let out = view.as_slice_mut()?;
     let run = || {
         let deriv = deriv.filter(|d| d.iter().any(|&k| k > 0));
-        let f = interpolant(&data, opts, prefilter)?;
-        if let Some(d) = deriv {
-            return derivatives(&f, at, &d);
-        }
-        let mut out = vec![T::zero(); at.ncols()];
-        f.eval_many_with(at.t(), rule, &mut out).map(|()| out)
-    };
-    let out = py.detach(|| run_with(threads, run))?;
-    Ok(out.map_err(engine_error)?.into_pyarray(py))
-}
-
-/// The float64 and float32 entry points, one generic body.
-macro_rules! map_fn {
-    ($name:ident, $t:ty, $doc:literal) => {
-        #[doc = $doc]
-        #[pyfunction]
-        #[pyo3(signature = (input, coordinates, degree, mode, cval, tol, prefilter, threads, deriv=None, cval_outside=false, nan_policy="propagate"))]
-        #[allow(clippy::too_many_arguments)]
-        pub fn $name<'py>(
-            py: Python<'py>,
-            input: PyReadonlyArrayDyn<'py, $t>,
-            coordinates: PyReadonlyArray2<'py, f64>,
-            degree: u32,
-            mode: &str,
-            cval: f64,
-            tol: Option<f64>,
-            prefilter: bool,
-            threads: Option<usize>,
-            deriv: Option<Vec<u32>>,
-            cval_outside: bool,
-            nan_policy: &str,
-        ) -> PyResult<Bound<'py, PyArray1<$t>>> {
-            let opts = options(degree, mode, cval, tol, nan_policy)?;
-            map_generic(
-                py,
-                input,
-                coordinates,
-                opts,
-                prefilter,
-                threads,
-                deriv,
-                cval_outside,
-            )
+        let f = interpolant::<T, E>(&data, opts, how)?;
+        match deriv {
+            Some(d) => f.eval_derivatives(at.t(), &d, out),
+            None => f.eval_many_with_as(at.t(), rule, out),
         }
     };
+    py.detach(|| run_with(threads, run))?
+        .map_err(engine_error)?;
+    drop(view);
+    Ok(result.into_any())
 }
 
-map_fn!(
-    map_coordinates_f64,
-    f64,
-    "Values of the float64 interpolant at `coordinates` (`(ndim, k)`)."
-);
-map_fn!(
-    map_coordinates_f32,
-    f32,
-    "Values of the float32 interpolant (computed in float32) at `coordinates`."
-);
+/// Values of the interpolant of `input` at `coordinates` (`(ndim, k)`):
+/// computed in float64 from a float64 or float32 array (float32 results
+/// with `out32`), or with `f32` in float32 from a float32 array (the
+/// `compute="float32"` opt-in).
+#[pyfunction]
+#[pyo3(signature = (input, coordinates, degree, mode, cval, tol, prefilter, threads, deriv=None, cval_outside=false, nan_policy="propagate", out32=false, filter_rule=None, f32=false))]
+#[allow(clippy::too_many_arguments)]
+pub fn map_coordinates<'py>(
+    py: Python<'py>,
+    input: &Bound<'py, PyAny>,
+    coordinates: PyReadonlyArray2<'py, f64>,
+    degree: u32,
+    mode: &str,
+    cval: f64,
+    tol: Option<f64>,
+    prefilter: bool,
+    threads: Option<usize>,
+    deriv: Option<Vec<u32>>,
+    cval_outside: bool,
+    nan_policy: &str,
+    out32: bool,
+    filter_rule: Option<&str>,
+    f32: bool,
+) -> PyResult<Bound<'py, PyAny>> {
+    let opts = options(degree, mode, cval, tol, nan_policy)?;
+    let how = Coefficients::new(prefilter, filter_rule)?;
+    let c = &coordinates;
+    if f32 {
+        let a = input.extract::<PyReadonlyArrayDyn<'py, f32>>()?;
+        return map_generic::<f32, f32, f32>(
+            py,
+            a.as_array(),
+            c,
+            opts,
+            how,
+            threads,
+            deriv,
+            cval_outside,
+        );
+    }
+    with_samples!(input, a => if out32 {
+        map_generic::<f64, _, f32>(py, a, c, opts, how, threads, deriv, cval_outside)
+    } else {
+        map_generic::<f64, _, f64>(py, a, c, opts, how, threads, deriv, cval_outside)
+    })
+}

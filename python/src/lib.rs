@@ -16,6 +16,7 @@ mod pages;
 mod local;
 mod pool;
 mod resample;
+mod samples;
 mod width;
 
 use pyo3::prelude::*;
@@ -31,20 +32,16 @@ fn _splinelab(m: &Bound<'_, PyModule>) -> PyResult<()> {
     // `nan_policy="local"`'s default tolerance: the engine's, as the CLI's.
     m.add("LOCAL_TOL", splinelab::prelude::LOCAL_TOL)?;
     m.add_function(wrap_pyfunction!(filter::nan_reach, m)?)?;
-    m.add_function(wrap_pyfunction!(filter::filter_f64, m)?)?;
-    m.add_function(wrap_pyfunction!(filter::filter_f32, m)?)?;
+    m.add_function(wrap_pyfunction!(filter::filter, m)?)?;
     m.add_function(wrap_pyfunction!(filter::filter_bound, m)?)?;
-    m.add_function(wrap_pyfunction!(interp::map_coordinates_f64, m)?)?;
-    m.add_function(wrap_pyfunction!(interp::map_coordinates_f32, m)?)?;
+    m.add_function(wrap_pyfunction!(interp::map_coordinates, m)?)?;
     m.add_function(wrap_pyfunction!(local::local_map_f64, m)?)?;
     m.add_function(wrap_pyfunction!(local::local_map_f32, m)?)?;
     m.add_function(wrap_pyfunction!(local::local_route_cost, m)?)?;
     m.add_class::<local::LocalSplineF64>()?;
     m.add_class::<local::LocalSplineF32>()?;
-    m.add_function(wrap_pyfunction!(resample::resample_f64, m)?)?;
-    m.add_function(wrap_pyfunction!(resample::resample_f32, m)?)?;
-    m.add_function(wrap_pyfunction!(resample::affine_f64, m)?)?;
-    m.add_function(wrap_pyfunction!(resample::affine_f32, m)?)?;
+    m.add_function(wrap_pyfunction!(resample::resample, m)?)?;
+    m.add_function(wrap_pyfunction!(resample::affine, m)?)?;
     m.add_function(wrap_pyfunction!(width::truncation_width, m)?)?;
     m.add_function(wrap_pyfunction!(width::coefficients_f64, m)?)?;
     m.add_function(wrap_pyfunction!(width::coefficients_decimal, m)?)?;

@@ -5,7 +5,9 @@
 //! `splinelab.Interpolant` engine (`LocalSplineF64/F32`): a reusable spline
 //! with a bounded tile cache and in-place updates, reading an in-memory
 //! array (or a memory map) directly from its buffer, or blocks the Python
-//! layer fetched from an array-like ([`Blocks`]).
+//! layer fetched from an array-like ([`Blocks`]). float32 samples are
+//! computed in float64 as scipy computes them (widened as they are read,
+//! each result rounded once to float32; issue 42).
 
 use crate::error::{engine_error, value_error};
 use crate::pool::run_with;
@@ -15,7 +17,7 @@ use numpy::{
 };
 use pyo3::prelude::*;
 use splinelab::ndimage::local::{LocalInterpolant, LocalOptions, LocalPlan, LocalSpec};
-use splinelab::ndimage::samples::{Blocks, SampleSource};
+use splinelab::ndimage::samples::{Blocks, Sample, SampleSource, Stored};
 use splinelab::prelude::*;
 
 /// The local route's options from the Python layer's arguments.
@@ -44,38 +46,43 @@ fn nonzero(deriv: Option<Vec<u32>>) -> Option<Vec<u32>> {
     deriv.filter(|d| d.iter().any(|&k| k > 0))
 }
 
+/// Results of the float64 computation stored as `O` (rounded once).
+fn stored<O: Stored<f64>>(values: &[f64]) -> Vec<O> {
+    values.iter().map(O::store).collect()
+}
+
 #[allow(clippy::too_many_arguments)]
-fn map_local<'py, T>(
+fn map_local<'py, E>(
     py: Python<'py>,
-    input: PyReadonlyArrayDyn<'py, T>,
+    input: PyReadonlyArrayDyn<'py, E>,
     coordinates: PyReadonlyArray2<'py, f64>,
     opts: LocalOptions,
     rule: &str,
     deriv: Option<Vec<u32>>,
     threads: Option<usize>,
     force: bool,
-) -> PyResult<Option<Bound<'py, PyArray1<T>>>>
+) -> PyResult<Option<Bound<'py, PyArray1<E>>>>
 where
-    T: Real + Copy + Element + Send + Sync,
+    E: Sample<f64> + Stored<f64> + Element,
 {
     let data = input.as_array();
     let at = coordinates.as_array();
     let rule = point_rule(rule)?;
     let deriv = nonzero(deriv);
-    let run = || -> Result<Option<Vec<T>>, NdimageError> {
-        let spec = LocalSpec::<T>::new(data.shape(), opts)?;
+    let run = || -> Result<Option<Vec<f64>>, NdimageError> {
+        let spec = LocalSpec::<f64>::new(data.shape(), opts)?;
         let plan = LocalPlan::new(&spec, at.t(), rule, None)?;
         if !force && !plan.cost().prefer_local() {
             return Ok(None);
         }
-        let mut out = vec![T::zero(); at.ncols()];
+        let mut out = vec![0.0; at.ncols()];
         plan.evaluate(&spec, &data, deriv.as_deref(), &mut out)?;
         Ok(Some(out))
     };
     let out = py
         .detach(|| run_with(threads, run))?
         .map_err(engine_error)?;
-    Ok(out.map(|v| v.into_pyarray(py)))
+    Ok(out.map(|v| stored::<E>(&v).into_pyarray(py)))
 }
 
 /// The float64 and float32 entry points, one generic body.
@@ -115,7 +122,7 @@ local_map_fn!(
 local_map_fn!(
     local_map_f32,
     f32,
-    "map_coordinates of a float32 array on the local route (computed in float32, as the global route)."
+    "map_coordinates of a float32 array on the local route (computed in float64, rounded once to float32)."
 );
 
 /// The local route's cost estimate for points `coordinates` (`(ndim, k)`)
@@ -187,13 +194,19 @@ where
     Ok(out)
 }
 
-/// The float64 and float32 interpolant classes, one body.
+/// Samples as float64 values (exact from float32).
+fn widened<E: Sample<f64> + Element>(values: &PyReadonlyArray1<'_, E>) -> Vec<f64> {
+    values.as_array().iter().map(Sample::widen).collect()
+}
+
+/// The float64 and float32 interpolant classes, one body (computed in
+/// float64 either way; `$t` is the samples' and the results' type).
 macro_rules! spline_class {
     ($name:ident, $t:ty, $doc:literal) => {
         #[doc = $doc]
         #[pyclass(module = "splinelab._splinelab")]
         pub struct $name {
-            inner: LocalInterpolant<$t>,
+            inner: LocalInterpolant<f64>,
         }
 
         #[pymethods]
@@ -246,7 +259,7 @@ macro_rules! spline_class {
             ) -> PyResult<Bound<'py, PyArray1<$t>>> {
                 let (data, at) = (input.as_array(), coordinates.as_array());
                 let out = py.detach(|| eval_source(&self.inner, &data, at, rule, deriv, threads))?;
-                Ok(out.into_pyarray(py))
+                Ok(stored::<$t>(&out).into_pyarray(py))
             }
 
             #[pyo3(signature = (shape, fetched, coordinates, rule, deriv, threads))]
@@ -264,7 +277,7 @@ macro_rules! spline_class {
                 let source = blocks(&shape, &fetched)?;
                 let at = coordinates.as_array();
                 let out = py.detach(|| eval_source(&self.inner, &source, at, rule, deriv, threads))?;
-                Ok(out.into_pyarray(py))
+                Ok(stored::<$t>(&out).into_pyarray(py))
             }
 
             /// The source boxes `(lo, hi)` evaluating at `coordinates` reads.
@@ -293,7 +306,7 @@ macro_rules! spline_class {
                 indices: PyReadonlyArray2<'_, i64>,
                 values: PyReadonlyArray1<'_, $t>,
             ) -> PyResult<(usize, usize)> {
-                let (idx, v) = (flat_indices(&indices)?, values.as_array().to_vec());
+                let (idx, v) = (flat_indices(&indices)?, widened(&values));
                 let data = input.as_array();
                 let inner = &mut self.inner;
                 let s = py.detach(|| inner.update(&data, &idx, &v)).map_err(engine_error)?;
@@ -310,7 +323,7 @@ macro_rules! spline_class {
                 values: PyReadonlyArray1<'_, $t>,
             ) -> PyResult<(usize, usize)> {
                 let source = blocks(&shape, &fetched)?;
-                let (idx, v) = (flat_indices(&indices)?, values.as_array().to_vec());
+                let (idx, v) = (flat_indices(&indices)?, widened(&values));
                 let inner = &mut self.inner;
                 let s = py.detach(|| inner.update(&source, &idx, &v)).map_err(engine_error)?;
                 Ok((s.tiles, s.coefficients))
@@ -321,14 +334,14 @@ macro_rules! spline_class {
                 self.inner
                     .changed_blocks()
                     .into_iter()
-                    .map(|(first, data)| (first, data.into_pyarray(py)))
+                    .map(|(first, data)| (first, stored::<$t>(&data).into_pyarray(py)))
                     .collect()
             }
 
             /// Restores a block saved by `changed_blocks`.
             fn restore_block(&mut self, first: Vec<usize>, data: PyReadonlyArray1<'_, $t>) -> PyResult<()> {
                 self.inner
-                    .restore_block(&first, data.as_array().to_vec())
+                    .restore_block(&first, widened(&data))
                     .map_err(engine_error)
             }
         }
@@ -343,5 +356,5 @@ spline_class!(
 spline_class!(
     LocalSplineF32,
     f32,
-    "The engine of `splinelab.Interpolant` for float32 samples (computed in float32)."
+    "The engine of `splinelab.Interpolant` for float32 samples (computed in float64, results rounded once to float32)."
 );

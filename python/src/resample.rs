@@ -1,50 +1,95 @@
-//! `resample`: the spline interpolant of a float64 or float32 array on a
-//! tensor grid of points, one coordinate vector per axis (scipy's `zoom`
-//! and `shift`), by the engine's separable evaluation
-//! ([`Interpolant::resample_grid`]: `degree + 1` multiply-adds per output
-//! sample and axis), optionally a partial derivative.
+//! `resample`: the spline interpolant of an array on a tensor grid of
+//! points, one coordinate vector per axis (scipy's `zoom` and `shift`), by
+//! the engine's separable evaluation ([`Interpolant::resample_grid_as`]:
+//! `degree + 1` multiply-adds per output sample and axis), optionally a
+//! partial derivative; and `affine`: at the points of an affine map of an
+//! output grid ([`Interpolant::resample_affine_as`]). Both compute in
+//! float64 from float64 or float32 samples and store float64 or float32
+//! results (`out32`, each rounded once), or with `f32` float32 samples in
+//! float32 (the `compute="float32"` opt-in).
 
 use crate::error::{engine_error, value_error};
+use crate::interp::{Coefficients, interpolant, options};
 use crate::pool::run_with;
+use crate::with_samples;
+use ndarray::ArrayViewD;
 use numpy::{
     Element, PyArrayDyn, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2, PyReadonlyArrayDyn,
 };
 use pyo3::prelude::*;
 use splinelab::ndimage::interpolant::PointRule;
+use splinelab::ndimage::samples::{Sample, Stored};
 use splinelab::prelude::*;
 
-/// The interpolant (from samples, or from coefficients when `prefilter` is
-/// false) evaluated on the grid; the result has one axis per vector.
-fn resample_generic<'py, T>(
+/// The interpolant evaluated on the grid; the result (numpy's allocation,
+/// huge pages where it can) has one axis per vector.
+#[allow(clippy::too_many_arguments)]
+fn resample_generic<'py, T, E, O>(
     py: Python<'py>,
-    input: PyReadonlyArrayDyn<'py, T>,
-    coordinates: Vec<PyReadonlyArray1<'py, f64>>,
+    data: ArrayViewD<'_, E>,
+    coordinates: &[PyReadonlyArray1<'py, f64>],
     opts: Options,
-    prefilter: bool,
-    deriv: Vec<u32>,
+    how: Coefficients,
+    deriv: &[u32],
     threads: Option<usize>,
-) -> PyResult<Bound<'py, PyArrayDyn<T>>>
+) -> PyResult<Bound<'py, PyAny>>
 where
-    T: Real + Copy + Element + Send + Sync,
+    T: Real + Copy + Send + Sync,
+    E: Sample<T>,
+    O: Stored<T> + Element,
 {
-    let data = input.as_array();
     let axes: Vec<&[f64]> = coordinates
         .iter()
         .map(|c| c.as_slice())
         .collect::<Result<_, _>>()?;
     let shape: Vec<usize> = axes.iter().map(|x| x.len()).collect();
-    // numpy's allocation (huge pages where it can) for the result.
-    let result = PyArrayDyn::<T>::zeros(py, shape, false);
+    let result = PyArrayDyn::<O>::zeros(py, shape, false);
     let mut view = result.readwrite();
     let out = view.as_slice_mut()?;
     let run = || {
-        let f = crate::interp::interpolant(&data, opts, prefilter)?;
-        f.resample_grid(&axes, &deriv, out)
+        let f = interpolant::<T, E>(&data, opts, how)?;
+        f.resample_grid_as(&axes, deriv, out)
     };
     py.detach(|| run_with(threads, run))?
         .map_err(engine_error)?;
     drop(view);
-    Ok(result)
+    Ok(result.into_any())
+}
+
+/// Values of the interpolant of `input` on the grid of per-axis coordinate
+/// vectors: in float64 (float32 results with `out32`), or with `f32` in
+/// float32 from a float32 array.
+#[pyfunction]
+#[pyo3(signature = (input, coordinates, degree, mode, cval, tol, prefilter, deriv, threads, nan_policy="propagate", out32=false, filter_rule=None, f32=false))]
+#[allow(clippy::too_many_arguments)]
+pub fn resample<'py>(
+    py: Python<'py>,
+    input: &Bound<'py, PyAny>,
+    coordinates: Vec<PyReadonlyArray1<'py, f64>>,
+    degree: u32,
+    mode: &str,
+    cval: f64,
+    tol: Option<f64>,
+    prefilter: bool,
+    deriv: Vec<u32>,
+    threads: Option<usize>,
+    nan_policy: &str,
+    out32: bool,
+    filter_rule: Option<&str>,
+    f32: bool,
+) -> PyResult<Bound<'py, PyAny>> {
+    let opts = options(degree, mode, cval, tol, nan_policy)?;
+    let how = Coefficients::new(prefilter, filter_rule)?;
+    let c = &coordinates;
+    if f32 {
+        let a = input.extract::<PyReadonlyArrayDyn<'py, f32>>()?;
+        return resample_generic::<f32, f32, f32>(py, a.as_array(), c, opts, how, &deriv, threads);
+    }
+    with_samples!(input, a => if out32 {
+        resample_generic::<f64, _, f32>(py, a, c, opts, how, &deriv, threads)
+    } else {
+        resample_generic::<f64, _, f64>(py, a, c, opts, how, &deriv, threads)
+    })
 }
 
 /// A point rule by the Python layer's name.
@@ -57,119 +102,107 @@ pub(crate) fn point_rule(rule: &str) -> PyResult<PointRule> {
     })
 }
 
-/// The float64 and float32 entry points, one generic body.
-macro_rules! resample_fn {
-    ($name:ident, $t:ty, $doc:literal) => {
-        #[doc = $doc]
-        #[pyfunction]
-        #[pyo3(signature = (input, coordinates, degree, mode, cval, tol, prefilter, deriv, threads, nan_policy="propagate"))]
-        #[allow(clippy::too_many_arguments)]
-        pub fn $name<'py>(
-            py: Python<'py>,
-            input: PyReadonlyArrayDyn<'py, $t>,
-            coordinates: Vec<PyReadonlyArray1<'py, f64>>,
-            degree: u32,
-            mode: &str,
-            cval: f64,
-            tol: Option<f64>,
-            prefilter: bool,
-            deriv: Vec<u32>,
-            threads: Option<usize>,
-            nan_policy: &str,
-        ) -> PyResult<Bound<'py, PyArrayDyn<$t>>> {
-            let opts = crate::interp::options(degree, mode, cval, tol, nan_policy)?;
-            resample_generic(py, input, coordinates, opts, prefilter, deriv, threads)
-        }
-    };
+/// Where the points of an affine resampling come from.
+struct AffineMap<'a> {
+    matrix: &'a [f64],
+    offset: &'a [f64],
+    out_shape: Vec<usize>,
+    shift: f64,
+    rule: PointRule,
 }
 
-resample_fn!(
-    resample_f64,
-    f64,
-    "Values of the float64 interpolant on the grid of per-axis coordinate vectors."
-);
-resample_fn!(
-    resample_f32,
-    f32,
-    "Values of the float32 interpolant (computed in float32) on the grid of per-axis coordinate vectors."
-);
+impl<'a> AffineMap<'a> {
+    fn new(
+        matrix: &'a [f64],
+        offset: &'a PyReadonlyArray1<'_, f64>,
+        out_shape: Vec<usize>,
+        shift: f64,
+        rule: &str,
+    ) -> PyResult<AffineMap<'a>> {
+        let rule = point_rule(rule)?;
+        Ok(AffineMap {
+            matrix,
+            offset: offset.as_slice()?,
+            out_shape,
+            shift,
+            rule,
+        })
+    }
+}
 
 /// The interpolant at the points `matrix · o + offset (+ shift)` of every
-/// index `o` of an output of `out_shape` ([`Interpolant::resample_affine`]:
+/// index `o` of an output of `out_shape` ([`Interpolant::resample_affine_as`]:
 /// generated block by block, no coordinate array).
-#[allow(clippy::too_many_arguments)]
-fn affine_generic<'py, T>(
+fn affine_generic<'py, T, E, O>(
     py: Python<'py>,
-    input: PyReadonlyArrayDyn<'py, T>,
-    matrix: PyReadonlyArray2<'py, f64>,
-    offset: PyReadonlyArray1<'py, f64>,
-    out_shape: Vec<usize>,
+    data: ArrayViewD<'_, E>,
+    map: &AffineMap<'_>,
     opts: Options,
-    prefilter: bool,
-    shift: f64,
-    rule: &str,
+    how: Coefficients,
     threads: Option<usize>,
-) -> PyResult<Bound<'py, PyArrayDyn<T>>>
+) -> PyResult<Bound<'py, PyAny>>
 where
-    T: Real + Copy + Element + Send + Sync,
+    T: Real + Copy + Send + Sync,
+    E: Sample<T>,
+    O: Stored<T> + Element,
 {
-    let rule = point_rule(rule)?;
-    let data = input.as_array();
-    let m = matrix.as_array();
-    let m = m.as_standard_layout();
-    let m = m.as_slice().expect("standard layout");
-    let offset = offset.as_slice()?;
-    let result = PyArrayDyn::<T>::zeros(py, out_shape.clone(), false);
+    let result = PyArrayDyn::<O>::zeros(py, map.out_shape.clone(), false);
     let mut view = result.readwrite();
     let out = view.as_slice_mut()?;
     let run = || {
-        let f = crate::interp::interpolant(&data, opts, prefilter)?;
-        f.resample_affine(m, offset, &out_shape, shift, rule, out)
+        let f = interpolant::<T, E>(&data, opts, how)?;
+        let m = map;
+        f.resample_affine_as(m.matrix, m.offset, &m.out_shape, m.shift, m.rule, out)
     };
     py.detach(|| run_with(threads, run))?
         .map_err(engine_error)?;
     drop(view);
-    Ok(result)
+    Ok(result.into_any())
 }
 
-/// The float64 and float32 affine entry points, one generic body.
-macro_rules! affine_fn {
-    ($name:ident, $t:ty, $doc:literal) => {
-        #[doc = $doc]
-        #[pyfunction]
-        #[pyo3(signature = (input, matrix, offset, out_shape, degree, mode, cval, tol, prefilter, shift, rule, threads, nan_policy="propagate"))]
-        #[allow(clippy::too_many_arguments)]
-        pub fn $name<'py>(
-            py: Python<'py>,
-            input: PyReadonlyArrayDyn<'py, $t>,
-            matrix: PyReadonlyArray2<'py, f64>,
-            offset: PyReadonlyArray1<'py, f64>,
-            out_shape: Vec<usize>,
-            degree: u32,
-            mode: &str,
-            cval: f64,
-            tol: Option<f64>,
-            prefilter: bool,
-            shift: f64,
-            rule: &str,
-            threads: Option<usize>,
-            nan_policy: &str,
-        ) -> PyResult<Bound<'py, PyArrayDyn<$t>>> {
-            let opts = crate::interp::options(degree, mode, cval, tol, nan_policy)?;
-            affine_generic(
-                py, input, matrix, offset, out_shape, opts, prefilter, shift, rule, threads,
-            )
-        }
-    };
+/// Values of the interpolant of `input` at the points of an affine map of
+/// an output grid: in float64 (float32 results with `out32`), or with
+/// `f32` in float32 from a float32 array.
+#[pyfunction]
+#[pyo3(signature = (input, matrix, offset, out_shape, degree, mode, cval, tol, prefilter, shift, rule, threads, nan_policy="propagate", out32=false, filter_rule=None, f32=false))]
+#[allow(clippy::too_many_arguments)]
+pub fn affine<'py>(
+    py: Python<'py>,
+    input: &Bound<'py, PyAny>,
+    matrix: PyReadonlyArray2<'py, f64>,
+    offset: PyReadonlyArray1<'py, f64>,
+    out_shape: Vec<usize>,
+    degree: u32,
+    mode: &str,
+    cval: f64,
+    tol: Option<f64>,
+    prefilter: bool,
+    shift: f64,
+    rule: &str,
+    threads: Option<usize>,
+    nan_policy: &str,
+    out32: bool,
+    filter_rule: Option<&str>,
+    f32: bool,
+) -> PyResult<Bound<'py, PyAny>> {
+    let opts = options(degree, mode, cval, tol, nan_policy)?;
+    let how = Coefficients::new(prefilter, filter_rule)?;
+    let m = matrix.as_array();
+    let m = m.as_standard_layout();
+    let map = AffineMap::new(
+        m.as_slice().unwrap_or_default(),
+        &offset,
+        out_shape,
+        shift,
+        rule,
+    )?;
+    if f32 {
+        let a = input.extract::<PyReadonlyArrayDyn<'py, f32>>()?;
+        return affine_generic::<f32, f32, f32>(py, a.as_array(), &map, opts, how, threads);
+    }
+    with_samples!(input, a => if out32 {
+        affine_generic::<f64, _, f32>(py, a, &map, opts, how, threads)
+    } else {
+        affine_generic::<f64, _, f64>(py, a, &map, opts, how, threads)
+    })
 }
-
-affine_fn!(
-    affine_f64,
-    f64,
-    "Values of the float64 interpolant at the points of an affine map of an output grid."
-);
-affine_fn!(
-    affine_f32,
-    f32,
-    "Values of the float32 interpolant (computed in float32) at the points of an affine map of an output grid."
-);

@@ -96,7 +96,7 @@ def test_extension_refuses_a_bad_axis_without_panicking():
     # The compiled half reached directly (bypassing the Python checks).
     x = np.ones(5)
     with pytest.raises(ValueError, match="axis 3 is out of range"):
-        splinelab._ext.filter_f64(x, np.empty(5), [3], 3, "mirror", 0.0, None, 1)
+        splinelab._ext.filter(x, np.empty(5), [3], 3, "mirror", 0.0, None, 1)
 
 
 def test_non_finite_user_values_are_failures_not_errors():

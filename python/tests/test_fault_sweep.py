@@ -584,7 +584,7 @@ def test_threads_outside_1_to_256_is_refused_at_once_naming_the_range():
     # The extension's own check, for callers that skip the Python layer.
     with pytest.raises(ValueError, match=r"threads=1000000 is outside 1\.\.256"):
         y = np.ones((4, 5))
-        _splinelab.filter_f64(y, np.empty_like(y), [0, 1], 3, "mirror", 0.0, None, 10**6)
+        _splinelab.filter(y, np.empty_like(y), [0, 1], 3, "mirror", 0.0, None, 10**6)
     with pytest.raises(TypeError, match="threads must be an integer"):
         splinelab.spline_filter(x, threads=2.0)
     assert time.perf_counter() - t0 < 5

@@ -1,5 +1,6 @@
 //! Why the N-D engine refused a request or failed: [`NdimageError`].
 
+use super::mode::Mode;
 use crate::sspline::prefilter::PrefilterError;
 use crate::validation::NonFiniteValue;
 
@@ -143,6 +144,11 @@ pub enum NdimageError {
         /// The axis' length.
         len: usize,
     },
+    /// A prefilter asked for under a mode that is not one of the
+    /// symmetric ones the coefficients are computed with (scipy's filter
+    /// rules: mirror, reflect, grid-wrap).
+    #[error("the prefilter's mode {0} is not one of mirror, reflect, grid-wrap")]
+    FilterMode(Mode),
 }
 
 impl From<PrefilterError> for NdimageError {

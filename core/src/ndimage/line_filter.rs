@@ -39,6 +39,7 @@ use super::NdimageError;
 use super::lanes;
 use super::mode::Mode;
 use super::nan_policy::NanPolicy;
+use super::samples::Stored;
 use crate::scalar::Real;
 use crate::sspline::SplineFamily;
 use crate::sspline::prefilter::{ConvolutionPrefilter, RecursivePrefilter};
@@ -237,6 +238,33 @@ impl<T: Real> LineFilter<T> {
         } else {
             f64::MAX
         };
+        self.check_magnitude_below(max_abs, axes, top)
+    }
+
+    /// [`Self::check_magnitude`] for coefficients stored as `O`
+    /// ([`Stored`]): also refused where they could pass the largest value
+    /// `O` holds (`f32` coefficients of an `f64` filter: the filter cannot
+    /// overflow in `f64`, but its results would be ±∞ in `f32`).
+    pub fn check_magnitude_for<O: Stored<T>>(
+        &self,
+        max_abs: f64,
+        axes: usize,
+    ) -> Result<(), NdimageError> {
+        self.check_magnitude(max_abs, axes)?;
+        match O::LARGEST {
+            top if top.is_finite() => self.check_magnitude_below(max_abs, axes, top),
+            _ => Ok(()),
+        }
+    }
+
+    /// The check of [`Self::check_magnitude`] against `top`, the largest
+    /// magnitude the results may take.
+    fn check_magnitude_below(
+        &self,
+        max_abs: f64,
+        axes: usize,
+        top: f64,
+    ) -> Result<(), NdimageError> {
         let growth = self.growth();
         let limit = top / growth.powi(axes as i32);
         let max = max_abs.max(self.cval.to_f64().abs());

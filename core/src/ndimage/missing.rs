@@ -11,6 +11,7 @@ use super::mode::Mode;
 use super::nan_policy::{
     NanPolicy, dilate, fill_missing, first_non_finite, max_finite, missing, spread, write_nan,
 };
+use super::samples::{Sample, Stored};
 use crate::scalar::Real;
 use ndarray::{ArrayBase, ArrayD, Data, DataMut, Dimension};
 
@@ -61,7 +62,7 @@ pub(crate) fn cval_missing<T: Real>(filter: &LineFilter<T>) -> bool {
 /// [`dilate`] by the certified half-width for [`NanPolicy::Local`]).
 /// Kept here, not in a route, so that every route reaches it without the
 /// routes naming each other.
-pub(crate) fn fill_filter_mark<T, S1, S2, D>(
+pub(crate) fn fill_filter_mark<T, E, O, S1, S2, D>(
     src: &ArrayBase<S1, D>,
     out: &mut ArrayBase<S2, D>,
     axes: &[usize],
@@ -70,8 +71,10 @@ pub(crate) fn fill_filter_mark<T, S1, S2, D>(
 ) -> Result<(), NdimageError>
 where
     T: Real + Send + Sync,
-    S1: Data<Elem = T>,
-    S2: DataMut<Elem = T>,
+    E: Sample<T>,
+    O: Stored<T>,
+    S1: Data<Elem = E>,
+    S2: DataMut<Elem = O>,
     D: Dimension,
 {
     let mask = fill(src, out, axes.len(), filter)?;
@@ -83,8 +86,9 @@ where
 /// The first half of [`fill_filter_mark`]: refused by
 /// [`NanPolicy::Raise`] (naming the first missing sample), the finite
 /// samples' magnitude checked for `axes` filtered axes, then `src` into
-/// `out` with its missing samples 0; returns their mask.
-pub(crate) fn fill<T, S1, S2, D>(
+/// `out` with its missing samples 0 (read into `T`, stored as `O`);
+/// returns their mask.
+pub(crate) fn fill<T, E, O, S1, S2, D>(
     src: &ArrayBase<S1, D>,
     out: &mut ArrayBase<S2, D>,
     axes: usize,
@@ -92,16 +96,18 @@ pub(crate) fn fill<T, S1, S2, D>(
 ) -> Result<ArrayD<bool>, NdimageError>
 where
     T: Real + Send + Sync,
-    S1: Data<Elem = T>,
-    S2: DataMut<Elem = T>,
+    E: Sample<T>,
+    O: Stored<T>,
+    S1: Data<Elem = E>,
+    S2: DataMut<Elem = O>,
     D: Dimension,
 {
     if filter.nan_policy() == NanPolicy::Raise {
-        first_non_finite(src)?;
+        first_non_finite::<T, _, _, _>(src)?;
     }
-    filter.check_magnitude(max_finite(src), axes)?;
+    filter.check_magnitude_for::<O>(max_finite::<T, _, _, _>(src), axes)?;
     fill_missing(src, out);
-    Ok(missing(src))
+    Ok(missing::<T, _, _, _>(src))
 }
 
 /// The second half: where the coefficients along `axes` of samples whose

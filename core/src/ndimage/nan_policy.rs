@@ -47,6 +47,7 @@
 
 use super::NdimageError;
 use super::mode::Mode;
+use super::samples::{Sample, Stored};
 use crate::scalar::Real;
 use crate::sspline::SplineFamily;
 use crate::sspline::width::certified_width;
@@ -118,48 +119,63 @@ pub fn nan_reach(degree: u32, tol: f64) -> Result<usize, NdimageError> {
     Ok(n + window)
 }
 
-/// Where `a` is not finite, in logical order (a copy of its shape).
-pub(crate) fn missing<T: Real + Sync, S: Data<Elem = T>, D: Dimension>(
-    a: &ArrayBase<S, D>,
-) -> ArrayD<bool> {
+/// Where `a` (read into `T`) is not finite, in logical order (a copy of
+/// its shape).
+pub(crate) fn missing<T, E, S, D>(a: &ArrayBase<S, D>) -> ArrayD<bool>
+where
+    T: Real,
+    E: Sample<T>,
+    S: Data<Elem = E>,
+    D: Dimension,
+{
     let mut m = ArrayD::from_elem(IxDyn(a.shape()), false);
     Zip::from(&mut m)
         .and(&a.view().into_dyn())
-        .par_for_each(|m, x| *m = !x.is_finite());
+        .par_for_each(|m, x| *m = !x.widen().is_finite());
     m
 }
 
 /// The largest finite `|x|` of `a` (for the overflow bound where some
 /// samples are missing).
-pub(crate) fn max_finite<T: Real + Sync, S: Data<Elem = T>, D: Dimension>(
-    a: &ArrayBase<S, D>,
-) -> f64 {
+pub(crate) fn max_finite<T, E, S, D>(a: &ArrayBase<S, D>) -> f64
+where
+    T: Real,
+    E: Sample<T>,
+    S: Data<Elem = E>,
+    D: Dimension,
+{
     a.iter()
+        .map(Sample::widen)
         .filter(|x| x.is_finite())
         .fold(0.0f64, |m, x| m.max(x.to_f64().abs()))
 }
 
-/// Writes `src` into `out` with its non-finite samples replaced by 0.
-pub(crate) fn fill_missing<T, S1, S2, D>(src: &ArrayBase<S1, D>, out: &mut ArrayBase<S2, D>)
+/// Writes `src` (read into `T`) into `out` with its non-finite samples
+/// replaced by 0.
+pub(crate) fn fill_missing<T, E, O, S1, S2, D>(src: &ArrayBase<S1, D>, out: &mut ArrayBase<S2, D>)
 where
     T: Real + Send + Sync,
-    S1: Data<Elem = T>,
-    S2: DataMut<Elem = T>,
+    E: Sample<T>,
+    O: Stored<T>,
+    S1: Data<Elem = E>,
+    S2: DataMut<Elem = O>,
     D: Dimension,
 {
-    Zip::from(out)
-        .and(src)
-        .par_for_each(|o, s| *o = if s.is_finite() { s.clone() } else { T::zero() });
+    Zip::from(out).and(src).par_for_each(|o, s| {
+        let x = s.widen();
+        *o = O::store(&if x.is_finite() { x } else { T::zero() });
+    });
 }
 
 /// NaN wherever `mask` holds (`out` of the mask's shape).
-pub(crate) fn write_nan<T, S, D>(out: &mut ArrayBase<S, D>, mask: &ArrayD<bool>)
+pub(crate) fn write_nan<T, O, S, D>(out: &mut ArrayBase<S, D>, mask: &ArrayD<bool>)
 where
     T: Real + Send + Sync,
-    S: DataMut<Elem = T>,
+    O: Stored<T>,
+    S: DataMut<Elem = O>,
     D: Dimension,
 {
-    let nan = T::from_f64_exact(f64::NAN);
+    let nan = O::store(&T::from_f64_exact(f64::NAN));
     Zip::from(out.view_mut().into_dyn())
         .and(mask)
         .par_for_each(|o, &m| {
@@ -225,15 +241,19 @@ pub(crate) fn dilate(
     cur
 }
 
-/// The error naming the first non-finite element of `a` in logical order
-/// (`Ok` if there is none). Serial: runs only on failure.
-pub(crate) fn first_non_finite<T: Real, S: Data<Elem = T>, D: Dimension>(
-    a: &ArrayBase<S, D>,
-) -> Result<(), NdimageError> {
+/// The error naming the first non-finite element of `a` (read into `T`) in
+/// logical order (`Ok` if there is none). Serial: runs only on failure.
+pub(crate) fn first_non_finite<T, E, S, D>(a: &ArrayBase<S, D>) -> Result<(), NdimageError>
+where
+    T: Real,
+    E: Sample<T>,
+    S: Data<Elem = E>,
+    D: Dimension,
+{
     match a
         .iter()
         .enumerate()
-        .find_map(|(i, x)| Some((i, NonFiniteValue::of(x)?)))
+        .find_map(|(i, x)| Some((i, NonFiniteValue::of(&x.widen())?)))
     {
         Some((index, value)) => Err(NdimageError::NonFinite { index, value }),
         None => Ok(()),

@@ -55,57 +55,73 @@
 //! bound (≈ `D A^{D−1} b`).
 
 use super::NdimageError;
+use super::alloc::try_padded_zeros;
 use super::block_filter::BlockPrefilter;
 use super::lanes;
 use super::line_filter::{LineFilter, RowCheck};
 use super::missing::{fill, fill_filter_mark, pattern};
 use super::mode::Mode;
 use super::nan_policy::{first_non_finite, write_nan};
+use super::samples::{Sample, Stored};
 use super::stash::Stash;
 use crate::scalar::Real;
 use ndarray::{
-    Array, ArrayBase, ArrayView, ArrayView3, ArrayViewMut3, Axis, Data, DataMut, Dimension, Zip,
+    Array, ArrayBase, ArrayView3, ArrayViewMut3, Axis, Data, DataMut, Dimension, Slice, Zip,
 };
 use rayon::prelude::*;
 
-/// The first non-finite element (in logical order), as an error.
-pub(crate) fn check_finite<T: Real + Send + Sync, S: Data<Elem = T>, D: Dimension>(
-    a: &ArrayBase<S, D>,
-) -> Result<(), NdimageError> {
+/// The first non-finite element (in logical order) of samples read into
+/// `T`, as an error.
+pub(crate) fn check_finite<T, E, S, D>(a: &ArrayBase<S, D>) -> Result<(), NdimageError>
+where
+    T: Real + Send + Sync,
+    E: Sample<T>,
+    S: Data<Elem = E>,
+    D: Dimension,
+{
     if a.is_empty() {
         return Err(NdimageError::Empty);
     }
     if let Some(s) = a.as_slice_memory_order() {
         // Fast path: one vectorised pass on the pool; the position only on failure.
-        if scan(s).0 {
+        if scan::<T, E>(s).0 {
             return Ok(());
         }
     }
-    first_non_finite(a)
+    first_non_finite::<T, _, _, _>(a)
 }
 
-/// The finiteness and overflow checks ([`LineFilter::check_magnitude`]) in one pass over the samples:
-/// `Ok(true)` where every sample is finite (and below the overflow limit),
+/// The finiteness and overflow checks ([`LineFilter::check_magnitude_for`]
+/// coefficients stored as `O`) in one pass over the samples: `Ok(true)`
+/// where every sample is finite (and below the overflow limit),
 /// `Ok(false)` where some is not (for [`filter_missing`] to handle by the
 /// filter's [`NanPolicy`]).
-fn scan_samples<T: Real + Send + Sync, S: Data<Elem = T>, D: Dimension>(
+fn scan_samples<T, E, O, S, D>(
     a: &ArrayBase<S, D>,
     filter: &LineFilter<T>,
     axes: usize,
-) -> Result<bool, NdimageError> {
+) -> Result<bool, NdimageError>
+where
+    T: Real + Send + Sync,
+    E: Sample<T>,
+    O: Stored<T>,
+    S: Data<Elem = E>,
+    D: Dimension,
+{
     if a.is_empty() {
         return Err(NdimageError::Empty);
     }
     let (finite, max) = match a.as_slice_memory_order() {
-        Some(s) => scan(s),
+        Some(s) => scan::<T, E>(s),
         None => {
             let mut scan = Scan::default();
-            a.iter().for_each(|x| scan.add(std::slice::from_ref(x)));
+            a.iter()
+                .for_each(|x| scan.add(std::slice::from_ref(&x.widen())));
             scan.result()
         }
     };
     if finite {
-        filter.check_magnitude(max, axes)?;
+        filter.check_magnitude_for::<O>(max, axes)?;
     }
     Ok(finite)
 }
@@ -144,7 +160,7 @@ fn scan_samples<T: Real + Send + Sync, S: Data<Elem = T>, D: Dimension>(
 /// assert_eq!(out.iter().filter(|x| x.is_nan()).count(), 2 * n + 1);
 /// assert!(out[40 - n].is_nan() && out[40 - n - 1].is_finite());
 /// ```
-pub fn filter_missing<T, S1, S2, D>(
+pub fn filter_missing<T, E, O, S1, S2, D>(
     src: &ArrayBase<S1, D>,
     out: &mut ArrayBase<S2, D>,
     axes: &[usize],
@@ -152,8 +168,10 @@ pub fn filter_missing<T, S1, S2, D>(
 ) -> Result<(), NdimageError>
 where
     T: Real + Send + Sync,
-    S1: Data<Elem = T>,
-    S2: DataMut<Elem = T>,
+    E: Sample<T>,
+    O: Sample<T> + Stored<T>,
+    S1: Data<Elem = E>,
+    S2: DataMut<Elem = O>,
     D: Dimension,
 {
     fill_filter_mark(src, out, axes, filter, |o| {
@@ -162,14 +180,15 @@ where
 }
 
 /// [`filter_missing`] in place.
-fn filter_missing_in_place<T, S, D>(
+fn filter_missing_in_place<T, O, S, D>(
     a: &mut ArrayBase<S, D>,
     axes: &[usize],
     filter: &LineFilter<T>,
 ) -> Result<(), NdimageError>
 where
     T: Real + Send + Sync,
-    S: DataMut<Elem = T>,
+    O: Sample<T> + Stored<T>,
+    S: DataMut<Elem = O>,
     D: Dimension,
 {
     let src = a.to_owned();
@@ -180,11 +199,16 @@ where
 /// overhead per task is then well below the time to stream it).
 const SCAN_BLOCK: usize = 1 << 15;
 
-/// Whether every value of `s` is finite, and `max|s|` (0 for scalars of
-/// more than 53 bits, which cannot overflow): one pass on the pool.
-fn scan<T: Real + Send + Sync>(s: &[T]) -> (bool, f64) {
+/// Whether every value of `s` (read into `T`) is finite, and `max|s|` (0
+/// for scalars of more than 53 bits, which cannot overflow): one pass on
+/// the pool.
+fn scan<T: Real + Send + Sync, E: Sample<T>>(s: &[E]) -> (bool, f64) {
     s.par_chunks(SCAN_BLOCK)
-        .map(scan_block)
+        .map(|b| {
+            let mut scan = Scan::default();
+            scan.add_samples(b);
+            scan.result()
+        })
         .reduce(|| (true, 0.0), |a, b| (a.0 & b.0, a.1.max(b.1)))
 }
 
@@ -242,6 +266,20 @@ impl Scan {
         (self.ok, self.max) = (ok, max);
     }
 
+    /// Takes in the values of samples `s` read into `T` (themselves where
+    /// they are of type `T`; otherwise widened a short run at a time).
+    fn add_samples<T: Real, E: Sample<T>>(&mut self, s: &[E]) {
+        if let Some(t) = E::as_compute(s) {
+            return self.add(t);
+        }
+        const RUN: usize = 256;
+        let mut buf = vec![T::zero(); s.len().min(RUN)];
+        for c in s.chunks(RUN) {
+            E::widen_into(c, &mut buf);
+            self.add(&buf[..c.len()]);
+        }
+    }
+
     /// The scan of both parts.
     fn merge(mut self, other: Scan) -> Scan {
         for (a, b) in self.ok.iter_mut().zip(other.ok) {
@@ -273,18 +311,23 @@ impl RowCheck for Scan {
 /// Independent accumulators of [`Scan`]: two AVX registers of f64.
 const LANES: usize = 8;
 
-/// Copies `src` into `dst` on the pool, scanning each block ([`scan`])
-/// while it is in L1: the copy, the finiteness and the magnitude check in
-/// one pass (and the first touch of `dst`'s pages on the thread that
-/// will filter them).
-fn copy_scan<T: Real + Send + Sync>(src: &[T], dst: &mut [T]) -> (bool, f64) {
+/// Copies `src` into `dst` on the pool (widened into `T`), scanning each
+/// block ([`scan`]) while it is in L1: the copy, the finiteness and the
+/// magnitude check in one pass (and the first touch of `dst`'s pages on
+/// the thread that will filter them).
+fn copy_scan<T: Real + Send + Sync, E: Sample<T>>(src: &[E], dst: &mut [T]) -> (bool, f64) {
     dst.par_chunks_mut(SCAN_BLOCK)
         .zip(src.par_chunks(SCAN_BLOCK))
         .map(|(d, s)| {
-            d.clone_from_slice(s);
+            E::widen_into(s, d);
             scan_block(d)
         })
         .reduce(|| (true, 0.0), |a, b| (a.0 & b.0, a.1.max(b.1)))
+}
+
+/// Whether `O` is the compute type `T` itself (its buffers are `T`'s).
+fn is_compute<T, O: Stored<T>>() -> bool {
+    O::as_compute_mut(&mut []).is_some()
 }
 
 fn check_axis<D: Dimension>(dim: &D, axis: usize) -> Result<(), NdimageError> {
@@ -300,7 +343,11 @@ fn check_axis<D: Dimension>(dim: &D, axis: usize) -> Result<(), NdimageError> {
 
 /// Replaces `a` by its coefficients along `axis` (scipy's `spline_filter1d`
 /// with `order` = degree and `mode`). Lines in parallel. Non-finite samples
-/// by the filter's [`NanPolicy`] ([`filter_missing`]).
+/// by the filter's [`NanPolicy`] ([`filter_missing`]). The elements of `a`
+/// may be of another type than the filter's `T` ([`Sample`] and
+/// [`Stored`]: `f32` storage filtered in `f64`): each line is read into `T`,
+/// filtered, and stored rounded once, as scipy filters a float32 array
+/// into a float32 output (float64 line buffers).
 ///
 ///
 /// **Accuracy**: the [`LineFilter`] route's per line; scipy 1.17.1's output within 16 ulps
@@ -314,18 +361,19 @@ fn check_axis<D: Dimension>(dim: &D, axis: usize) -> Result<(), NdimageError> {
 /// // Mirror ends: (4 D_0 + 2 D_1)/6 = s_0 on every row.
 /// assert!(((4.0 * a[[1, 0]] + 2.0 * a[[1, 1]]) / 6.0 - 3.0).abs() < 1e-15);
 /// ```
-pub fn spline_filter1d<T, S, D>(
+pub fn spline_filter1d<T, O, S, D>(
     a: &mut ArrayBase<S, D>,
     axis: usize,
     filter: &LineFilter<T>,
 ) -> Result<(), NdimageError>
 where
     T: Real + Send + Sync,
-    S: DataMut<Elem = T>,
+    O: Sample<T> + Stored<T>,
+    S: DataMut<Elem = O>,
     D: Dimension,
 {
     check_axis(&a.raw_dim(), axis)?;
-    if !scan_samples(a, filter, 1)? {
+    if !scan_samples::<T, O, O, _, _>(a, filter, 1)? {
         return filter_missing_in_place(a, &[axis], filter);
     }
     filter_axis_unchecked(a, axis, filter)
@@ -335,19 +383,20 @@ where
 /// [`Route::Truncated`](super::line_filter::Route::Truncated) runs in
 /// certified blocks on the pool ([`BlockPrefilter::apply_line_into`]);
 /// everything else by lines.
-fn filter_axis_unchecked<T, S, D>(
+fn filter_axis_unchecked<T, O, S, D>(
     a: &mut ArrayBase<S, D>,
     axis: usize,
     filter: &LineFilter<T>,
 ) -> Result<(), NdimageError>
 where
     T: Real + Send + Sync,
-    S: DataMut<Elem = T>,
+    O: Sample<T> + Stored<T>,
+    S: DataMut<Elem = O>,
     D: Dimension,
 {
     let blocks = BlockPrefilter::from_line_filter(filter).filter(|b| b.pays_off(a.len()));
     if let (Some(b), true) = (blocks, a.len() == a.shape()[axis])
-        && let Some(line) = a.as_slice_memory_order_mut()
+        && let Some(line) = a.as_slice_memory_order_mut().and_then(O::as_compute_mut)
     {
         // One line, in place: the blocks read a copy of the samples.
         let s: Vec<T> = line.par_iter().cloned().collect();
@@ -359,18 +408,19 @@ where
 
 /// The lines of `axis` filtered in parallel: a standard-layout array of
 /// more than one line in one pass ([`axis_pass`]), other layouts lane by
-/// lane through a contiguous copy.
-fn filter_lines<T, S, D>(a: &mut ArrayBase<S, D>, axis: usize, filter: &LineFilter<T>)
+/// lane through a contiguous copy (in `T`, stored back as `O`).
+fn filter_lines<T, O, S, D>(a: &mut ArrayBase<S, D>, axis: usize, filter: &LineFilter<T>)
 where
     T: Real + Send + Sync,
-    S: DataMut<Elem = T>,
+    O: Sample<T> + Stored<T>,
+    S: DataMut<Elem = O>,
     D: Dimension,
 {
     let shape = a.shape().to_vec();
     if a.len() > shape[axis]
         && let Some(data) = a.as_slice_mut()
     {
-        axis_pass(
+        axis_pass::<T, O, O>(
             data,
             None,
             &shape,
@@ -382,13 +432,13 @@ where
     }
     Zip::from(a.lanes_mut(Axis(axis))).par_for_each(|mut lane| {
         let mut scratch = Vec::new();
-        match lane.as_slice_mut() {
+        match lane.as_slice_mut().and_then(O::as_compute_mut) {
             Some(line) => filter.apply(line, &mut scratch),
             None => {
-                let mut line = lane.to_vec();
+                let mut line: Vec<T> = lane.iter().map(Sample::widen).collect();
                 filter.apply(&mut line, &mut scratch);
-                for (d, s) in lane.iter_mut().zip(line) {
-                    *d = s;
+                for (d, s) in lane.iter_mut().zip(&line) {
+                    *d = O::store(s);
                 }
             }
         }
@@ -399,21 +449,22 @@ where
 /// array in passes ([`filter_run`]: the trailing axes slab by slab);
 /// otherwise, or where one axis holds every element (one line: the
 /// certified blocks' case), axis by axis ([`filter_axis_unchecked`]).
-fn filter_axes_unchecked<T, S, D>(
+fn filter_axes_unchecked<T, O, S, D>(
     a: &mut ArrayBase<S, D>,
     axes: &[usize],
     filter: &LineFilter<T>,
 ) -> Result<(), NdimageError>
 where
     T: Real + Send + Sync,
-    S: DataMut<Elem = T>,
+    O: Sample<T> + Stored<T>,
+    S: DataMut<Elem = O>,
     D: Dimension,
 {
     let shape = a.shape().to_vec();
     let one_line = axes.iter().any(|&k| a.len() == shape[k]);
     match a.as_slice_mut() {
         Some(data) if !one_line => {
-            filter_run(
+            filter_run::<T, O, O>(
                 data,
                 None,
                 &shape,
@@ -429,11 +480,13 @@ where
     }
 }
 
-/// The work buffers of one task: `rows` (a strip's or a group's rows)
-/// and the filter's `scratch`.
+/// The work buffers of one task: `rows` (a strip's or a group's rows),
+/// the filter's `scratch`, and `wide` (a block read into `T` where the
+/// array's elements are of another type).
 struct Work<T> {
     rows: Vec<T>,
     scratch: Vec<T>,
+    wide: Vec<T>,
 }
 
 impl<T> Default for Work<T> {
@@ -441,6 +494,7 @@ impl<T> Default for Work<T> {
         Work {
             rows: Vec::new(),
             scratch: Vec::new(),
+            wide: Vec::new(),
         }
     }
 }
@@ -480,6 +534,10 @@ impl<T: Send> On<'_, T> {
 /// turn, the first pass reading the samples from `src` (the same shape)
 /// when given: the copy fused into that pass, which also scans what it
 /// reads (the [`Scan`] of `src` is returned; of nothing without `src`).
+/// Samples of another type than `T` are widened block by block as the
+/// pass reads them, and results of another type are stored rounded once
+/// at the end of each pass ([`Sample`], [`Stored`]: the same operations
+/// in `T` on every line, through a work block that stays in cache).
 ///
 /// Where the remaining axes are at least two trailing ones (none is axis
 /// 0) of an array of three or more dimensions, each slab `data[i, …]` is
@@ -488,14 +546,19 @@ impl<T: Send> On<'_, T> {
 /// slabs), not once per axis. Every line gets the operations it gets in
 /// an axis-by-axis pass (lines side by side are independent columns), so
 /// the same bits.
-fn filter_run<T: Real + Send + Sync>(
-    data: &mut [T],
-    mut src: Option<&[T]>,
+fn filter_run<T, E, O>(
+    data: &mut [O],
+    mut src: Option<&[E]>,
     shape: &[usize],
     axes: &[usize],
     filter: &LineFilter<T>,
     mut on: On<'_, T>,
-) -> Scan {
+) -> Scan
+where
+    T: Real + Send + Sync,
+    E: Sample<T>,
+    O: Sample<T> + Stored<T>,
+{
     let mut scan = Scan::default();
     let mut rest = axes;
     while let Some((&axis, tail)) = rest.split_first() {
@@ -514,14 +577,19 @@ const SLAB_BYTES: usize = 1 << 20;
 
 /// [`filter_run`] along `axes` (none is 0) slab by slab: on the pool, one
 /// slab per task, where a slab fits [`SLAB_BYTES`]; otherwise in turn.
-fn slab_pass<T: Real + Send + Sync>(
-    data: &mut [T],
-    src: Option<&[T]>,
+fn slab_pass<T, E, O>(
+    data: &mut [O],
+    src: Option<&[E]>,
     shape: &[usize],
     axes: &[usize],
     filter: &LineFilter<T>,
     on: On<'_, T>,
-) -> Scan {
+) -> Scan
+where
+    T: Real + Send + Sync,
+    E: Sample<T>,
+    O: Sample<T> + Stored<T>,
+{
     let (sub, len) = (&shape[1..], shape[1..].iter().product::<usize>());
     let inner: Vec<usize> = axes.iter().map(|&k| k - 1).collect();
     let slabs = pieces(data, src, len);
@@ -537,11 +605,11 @@ fn slab_pass<T: Real + Send + Sync>(
 }
 
 /// `data` in pieces of `len`, each with the same piece of `src` if given.
-fn pieces<'a, T>(
-    data: &'a mut [T],
-    src: Option<&'a [T]>,
+fn pieces<'a, O, E>(
+    data: &'a mut [O],
+    src: Option<&'a [E]>,
     len: usize,
-) -> Vec<(&'a mut [T], Option<&'a [T]>)> {
+) -> Vec<(&'a mut [O], Option<&'a [E]>)> {
     match src {
         Some(s) => data.chunks_mut(len).zip(s.chunks(len).map(Some)).collect(),
         None => data.chunks_mut(len).map(|d| (d, None)).collect(),
@@ -552,22 +620,27 @@ fn pieces<'a, T>(
 /// (more than one line), reading from `src` when given (and scanning it):
 /// strided axes by strips ([`strided_pass`]), the last by groups of lines
 /// ([`last_pass`]).
-fn axis_pass<T: Real + Send + Sync>(
-    data: &mut [T],
-    src: Option<&[T]>,
+fn axis_pass<T, E, O>(
+    data: &mut [O],
+    src: Option<&[E]>,
     shape: &[usize],
     axis: usize,
     filter: &LineFilter<T>,
     on: On<'_, T>,
-) -> Scan {
+) -> Scan
+where
+    T: Real + Send + Sync,
+    E: Sample<T>,
+    O: Sample<T> + Stored<T>,
+{
     if axis + 1 < shape.len() {
         return strided_pass(data, src, shape, axis, filter, on);
     }
     let n = shape[axis];
     if std::mem::size_of::<T>() <= 4 {
-        last_pass::<T, { 2 * lanes::LINES }>(data, src, n, filter, on)
+        last_pass::<T, E, O, { 2 * lanes::LINES }>(data, src, n, filter, on)
     } else {
-        last_pass::<T, { lanes::LINES }>(data, src, n, filter, on)
+        last_pass::<T, E, O, { lanes::LINES }>(data, src, n, filter, on)
     }
 }
 
@@ -581,16 +654,63 @@ fn axis_pass<T: Real + Send + Sync>(
 /// (two AVX-512 registers, enough independent chains to hide the
 /// recursion's latency) and 32 of `f32`: the same bytes per row, twice
 /// the lanes.
-fn last_pass<T: Real + Send + Sync, const G: usize>(
-    data: &mut [T],
-    src: Option<&[T]>,
+fn last_pass<T, E, O, const G: usize>(
+    data: &mut [O],
+    src: Option<&[E]>,
     n: usize,
     filter: &LineFilter<T>,
     on: On<'_, T>,
-) -> Scan {
+) -> Scan
+where
+    T: Real + Send + Sync,
+    E: Sample<T>,
+    O: Sample<T> + Stored<T>,
+{
     on.each(pieces(data, src, n * G), |(lines, src), work| {
-        last_group::<T, G>(lines, src, n, filter, work)
+        last_group_as::<T, E, O, G>(lines, src, n, filter, work)
     })
+}
+
+/// One group of [`last_pass`] whatever the element types: lines and
+/// samples of type `T` go straight to [`last_group`]; samples of another
+/// type are widened into the lines first (where those are `T`'s), or the
+/// group goes through the task's `wide` block in `T` and is stored rounded
+/// once (where they are not).
+fn last_group_as<T: Real, E: Sample<T>, O: Sample<T> + Stored<T>, const G: usize>(
+    lines: &mut [O],
+    src: Option<&[E]>,
+    n: usize,
+    filter: &LineFilter<T>,
+    work: &mut Work<T>,
+) -> Scan {
+    if let Some(t) = O::as_compute_mut(lines) {
+        let Some(s) = src else {
+            return last_group::<T, G>(t, None, n, filter, work);
+        };
+        if let Some(s) = E::as_compute(s) {
+            return last_group::<T, G>(t, Some(s), n, filter, work);
+        }
+        // Widened into the lines, scanned there while in cache, then
+        // filtered in place.
+        E::widen_into(s, t);
+        let mut scan = Scan::default();
+        scan.add(t);
+        return scan.merge(last_group::<T, G>(t, None, n, filter, work));
+    }
+    let mut wide = std::mem::take(&mut work.wide);
+    wide.resize(lines.len(), T::zero());
+    let mut scan = Scan::default();
+    match src {
+        Some(s) => {
+            E::widen_into(s, &mut wide);
+            scan.add(&wide);
+        }
+        None => O::widen_into(lines, &mut wide),
+    }
+    last_group::<T, G>(&mut wide, None, n, filter, work);
+    O::store_from(&wide, lines);
+    work.wide = wide;
+    scan
 }
 
 /// One group of [`last_pass`]: at most `G` lines of `n` samples, read
@@ -603,7 +723,7 @@ fn last_group<T: Real, const G: usize>(
     work: &mut Work<T>,
 ) -> Scan {
     let mut scan = Scan::default();
-    let Work { rows, scratch } = work;
+    let Work { rows, scratch, .. } = work;
     let count = lines.len() / n;
     if rows.len() < n * G {
         rows.resize(n * G, T::zero());
@@ -672,14 +792,19 @@ fn strip_width<T>(n: usize) -> usize {
 /// their rows through the work buffer ([`LineFilter::apply_rows`]: the
 /// array read and written once), or read from `src` and written into
 /// `data` ([`LineFilter::apply_rows_from`], scanned as they are read).
-fn strided_pass<T: Real + Send + Sync>(
-    data: &mut [T],
-    src: Option<&[T]>,
+fn strided_pass<T, E, O>(
+    data: &mut [O],
+    src: Option<&[E]>,
     shape: &[usize],
     axis: usize,
     filter: &LineFilter<T>,
     on: On<'_, T>,
-) -> Scan {
+) -> Scan
+where
+    T: Real + Send + Sync,
+    E: Sample<T>,
+    O: Sample<T> + Stored<T>,
+{
     let n = shape[axis];
     let dims = (
         shape[..axis].iter().product::<usize>(),
@@ -691,9 +816,9 @@ fn strided_pass<T: Real + Send + Sync>(
     // into an array larger than L3, by streaming stores.
     let stream = src.is_some() && std::mem::size_of_val(data) >= lanes::STREAM_BYTES;
     let mut v = ArrayViewMut3::from_shape(dims, data).expect("standard layout");
-    let strips: Vec<ArrayViewMut3<'_, T>> = v.axis_chunks_iter_mut(Axis(2), w).collect();
+    let strips: Vec<ArrayViewMut3<'_, O>> = v.axis_chunks_iter_mut(Axis(2), w).collect();
     let from = src.map(|s| ArrayView3::from_shape(dims, s).expect("the same shape"));
-    let froms: Vec<Option<ArrayView3<'_, T>>> = match &from {
+    let froms: Vec<Option<ArrayView3<'_, E>>> = match &from {
         Some(s) => s.axis_chunks_iter(Axis(2), w).map(Some).collect(),
         None => strips.iter().map(|_| None).collect(),
     };
@@ -704,31 +829,76 @@ fn strided_pass<T: Real + Send + Sync>(
 }
 
 /// One strip of [`strided_pass`] (`outer × n × w`), block by block;
-/// `stream`: its rows written by streaming stores.
-fn filter_strip<T: Real>(
-    mut strip: ArrayViewMut3<'_, T>,
-    from: Option<ArrayView3<'_, T>>,
+/// `stream`: its rows written by streaming stores. Rows and samples of
+/// type `T` are filtered where they lie; samples of another type are
+/// widened into the rows first (rows of type `T`), or the block goes
+/// through the task's `wide` block in `T` and is stored rounded once.
+fn filter_strip<T: Real, E: Sample<T>, O: Sample<T> + Stored<T>>(
+    mut strip: ArrayViewMut3<'_, O>,
+    from: Option<ArrayView3<'_, E>>,
     filter: &LineFilter<T>,
     work: &mut Work<T>,
     stream: bool,
 ) -> Scan {
     let mut scan = Scan::default();
-    let Work { rows: buf, scratch } = work;
+    let Work {
+        rows: buf,
+        scratch,
+        wide,
+    } = work;
     for (k, mut block) in strip.outer_iter_mut().enumerate() {
-        let mut rows: Vec<&mut [T]> = block
+        let mut rows: Vec<&mut [O]> = block
             .axis_iter_mut(Axis(0))
             .map(|r| r.into_slice().expect("a row of a standard-layout strip"))
             .collect();
-        match &from {
-            Some(s) => {
-                let block = s.index_axis(Axis(0), k);
-                let src: Vec<&[T]> = block
-                    .axis_iter(Axis(0))
-                    .map(|r| r.to_slice().expect("a row of a standard-layout strip"))
-                    .collect();
-                filter.apply_rows_from(&src, &mut rows, buf, scratch, &mut scan, stream);
+        let src_block = from.as_ref().map(|s| s.index_axis(Axis(0), k));
+        let src: Option<Vec<&[E]>> = src_block.as_ref().map(|b| {
+            b.axis_iter(Axis(0))
+                .map(|r| r.to_slice().expect("a row of a standard-layout strip"))
+                .collect()
+        });
+        if is_compute::<T, O>() {
+            let mut rows: Vec<&mut [T]> = rows.into_iter().filter_map(O::as_compute_mut).collect();
+            let Some(src) = src else {
+                filter.apply_rows(&mut rows, buf, scratch);
+                continue;
+            };
+            match src
+                .iter()
+                .map(|r| E::as_compute(r))
+                .collect::<Option<Vec<&[T]>>>()
+            {
+                Some(s) => filter.apply_rows_from(&s, &mut rows, buf, scratch, &mut scan, stream),
+                None => {
+                    for (r, s) in rows.iter_mut().zip(&src) {
+                        E::widen_into(s, r);
+                        scan.add(r);
+                    }
+                    filter.apply_rows(&mut rows, buf, scratch);
+                }
             }
-            None => filter.apply_rows(&mut rows, buf, scratch),
+            continue;
+        }
+        let (n, w) = (rows.len(), rows.first().map_or(0, |r| r.len()));
+        wide.resize(n * w, T::zero());
+        let block_t = &mut wide[..n * w];
+        match &src {
+            Some(src) => {
+                for (t, s) in block_t.chunks_mut(w).zip(src) {
+                    E::widen_into(s, t);
+                }
+                scan.add(block_t);
+            }
+            None => {
+                for (t, r) in block_t.chunks_mut(w).zip(&rows) {
+                    O::widen_into(r, t);
+                }
+            }
+        }
+        let mut rows_t: Vec<&mut [T]> = block_t.chunks_mut(w).collect();
+        filter.apply_rows(&mut rows_t, buf, scratch);
+        for (r, t) in rows.iter_mut().zip(wide[..n * w].chunks(w)) {
+            O::store_from(t, r);
         }
     }
     scan
@@ -743,17 +913,18 @@ fn filter_strip<T: Real>(
 /// **Accuracy**: per axis the [`LineFilter`] route's; the truncated route compounds to `((A
 /// + b)^D − A^D) max|s|` (module documentation); scipy agreement in
 /// `verify/tests/it/engine_scipy.rs::spline_filter_matches_scipy`.
-pub fn spline_filter<T, S, D>(
+pub fn spline_filter<T, O, S, D>(
     a: &mut ArrayBase<S, D>,
     filter: &LineFilter<T>,
 ) -> Result<(), NdimageError>
 where
     T: Real + Send + Sync,
-    S: DataMut<Elem = T>,
+    O: Sample<T> + Stored<T>,
+    S: DataMut<Elem = O>,
     D: Dimension,
 {
     let axes: Vec<usize> = (0..a.ndim()).collect();
-    if !scan_samples(a, filter, a.ndim())? {
+    if !scan_samples::<T, O, O, _, _>(a, filter, a.ndim())? {
         return filter_missing_in_place(a, &axes, filter);
     }
     filter_axes_unchecked(a, &axes, filter)
@@ -771,6 +942,14 @@ where
 /// the pool first (the first touch of `out`'s pages included), then
 /// filtered in place. `filter` `None`: the copy only (degrees 0 and 1).
 ///
+/// **Element types.** `src` may hold any [`Sample`] type of the compute
+/// type `T` (`f32` samples of an `f64` filter: widened exactly as the
+/// first pass reads them, a block at a time, no widened copy of the
+/// input), and `out` any type that is both read and stored ([`Stored`]:
+/// `f32` coefficients of an `f64` filter are rounded once at the end of
+/// each axis' pass, scipy's float64 line buffers written into a float32
+/// output).
+///
 /// **Method**, **accuracy** and **source**: those of [`spline_filter`]
 /// (scipy agreement in `verify/tests/it/engine_scipy.rs::spline_filter_matches_scipy`;
 /// equal to the in-place call in
@@ -787,7 +966,7 @@ where
 /// spline_filter(&mut b, &f).unwrap();
 /// assert_eq!(out, b);
 /// ```
-pub fn spline_filter_from<T, S1, S2, D>(
+pub fn spline_filter_from<T, E, S1, S2, D>(
     src: &ArrayBase<S1, D>,
     out: &mut ArrayBase<S2, D>,
     axes: &[usize],
@@ -795,8 +974,44 @@ pub fn spline_filter_from<T, S1, S2, D>(
 ) -> Result<(), NdimageError>
 where
     T: Real + Send + Sync,
-    S1: Data<Elem = T>,
+    E: Sample<T>,
+    S1: Data<Elem = E>,
     S2: DataMut<Elem = T>,
+    D: Dimension,
+{
+    spline_filter_from_as(src, out, axes, filter)
+}
+
+/// [`spline_filter_from`] into coefficients of any type `O` the compute
+/// type is stored into and read back from ([`Stored`], [`Sample`]): `f32`
+/// coefficients of an `f64` filter, each axis' pass read into `f64`
+/// blocks and stored rounded once at its end, as scipy's `spline_filter`
+/// computes a float32 `output` (float64 line buffers, the output rounded
+/// after every axis); no `f64` array of the output's size.
+///
+/// ```
+/// use splinelab::prelude::*;
+/// use splinelab::ndimage::nd_prefilter::spline_filter_from_as;
+/// let f = LineFilter::<f64>::new(&SplineFamily::Order(4), Mode::Mirror, 0.0, Route::Exact).unwrap();
+/// let a = ndarray::array![0.1f32, 0.7, 0.2, 0.9];
+/// let mut out = ndarray::Array1::<f32>::zeros(4);
+/// spline_filter_from_as(&a, &mut out, &[0], Some(&f)).unwrap();
+/// let mut wide = a.mapv(f64::from);
+/// spline_filter1d(&mut wide, 0, &f).unwrap();
+/// assert_eq!(out, wide.mapv(|x| x as f32));
+/// ```
+pub fn spline_filter_from_as<T, E, O, S1, S2, D>(
+    src: &ArrayBase<S1, D>,
+    out: &mut ArrayBase<S2, D>,
+    axes: &[usize],
+    filter: Option<&LineFilter<T>>,
+) -> Result<(), NdimageError>
+where
+    T: Real + Send + Sync,
+    E: Sample<T>,
+    O: Sample<T> + Stored<T>,
+    S1: Data<Elem = E>,
+    S2: DataMut<Elem = O>,
     D: Dimension,
 {
     if src.shape() != out.shape() {
@@ -822,16 +1037,23 @@ where
     ) {
         let stash = Stash::default();
         return match filter_run(d, Some(s), &shape, axes, f, On::Pool(&stash)).result() {
-            (true, max) => f.check_magnitude(max, axes.len()),
+            (true, max) => f.check_magnitude_for::<O>(max, axes.len()),
             (false, _) => filter_missing(src, out, axes, f),
         };
     }
-    let scanned = match (src.as_slice(), out.as_slice_mut()) {
+    if !is_compute::<T, O>() {
+        // Results of another type than `T` (f32 coefficients of an f64
+        // filter): the first axis lane by lane from `src`, so that the
+        // samples are not rounded into `out` before they are filtered.
+        return filter_lanes_from(src, out, axes, filter);
+    }
+    let scanned = match (
+        src.as_slice(),
+        out.as_slice_mut().and_then(O::as_compute_mut),
+    ) {
         (Some(s), Some(d)) => Some(copy_scan(s, d)),
         _ => {
-            Zip::from(&mut *out)
-                .and(src)
-                .par_for_each(|d, s| *d = s.clone());
+            store_samples(src, out);
             None
         }
     };
@@ -839,14 +1061,69 @@ where
         return Ok(());
     };
     let finite = match scanned {
-        Some((true, max)) => filter.check_magnitude(max, axes.len()).map(|()| true)?,
+        Some((true, max)) => filter
+            .check_magnitude_for::<O>(max, axes.len())
+            .map(|()| true)?,
         Some((false, _)) => false,
-        None => scan_samples(src, filter, axes.len())?,
+        None => scan_samples::<T, E, O, _, _>(src, filter, axes.len())?,
     };
     if !finite {
         return filter_missing(src, out, axes, filter);
     }
     filter_axes_unchecked(out, axes, filter)
+}
+
+/// `out[i] = src[i]` read into `T` and stored as `O`, on the pool.
+fn store_samples<T, E, O, S1, S2, D>(src: &ArrayBase<S1, D>, out: &mut ArrayBase<S2, D>)
+where
+    T: Real + Send + Sync,
+    E: Sample<T>,
+    O: Stored<T>,
+    S1: Data<Elem = E>,
+    S2: DataMut<Elem = O>,
+    D: Dimension,
+{
+    Zip::from(out)
+        .and(src)
+        .par_for_each(|d, s| *d = O::store(&s.widen()));
+}
+
+/// [`spline_filter_from`] where `out` is not of the compute type and the
+/// fused pass does not serve (other layouts, one line, no axes): `src`
+/// checked, then filtered along the first axis lane by lane (each lane
+/// read into `T`, filtered, stored once) and along the others in place;
+/// no axes or no filter: `src` stored into `out`.
+fn filter_lanes_from<T, E, O, S1, S2, D>(
+    src: &ArrayBase<S1, D>,
+    out: &mut ArrayBase<S2, D>,
+    axes: &[usize],
+    filter: Option<&LineFilter<T>>,
+) -> Result<(), NdimageError>
+where
+    T: Real + Send + Sync,
+    E: Sample<T>,
+    O: Sample<T> + Stored<T>,
+    S1: Data<Elem = E>,
+    S2: DataMut<Elem = O>,
+    D: Dimension,
+{
+    let (Some(f), Some((&first, rest))) = (filter, axes.split_first()) else {
+        store_samples(src, out);
+        return Ok(());
+    };
+    if !scan_samples::<T, E, O, _, _>(src, f, axes.len())? {
+        return filter_missing(src, out, axes, f);
+    }
+    Zip::from(out.lanes_mut(Axis(first)))
+        .and(src.lanes(Axis(first)))
+        .par_for_each(|mut o, s| {
+            let mut line: Vec<T> = s.iter().map(Sample::widen).collect();
+            f.apply(&mut line, &mut Vec::new());
+            for (d, v) in o.iter_mut().zip(&line) {
+                *d = O::store(v);
+            }
+        });
+    filter_axes_unchecked(out, rest, f)
 }
 
 /// The coefficients of `a` along every axis including `pad` coefficients
@@ -861,31 +1138,35 @@ where
 /// (`verify/tests/it/engine_properties.rs::nearest_outside_the_grid_is_the_edge_extended_spline`).
 /// **Source**: scipy's `_prepad_for_spline_filter` convention, the pad widened to the pole
 /// horizon.
-pub fn padded_coefficients<T, S, D>(
+pub fn padded_coefficients<T, E, S, D>(
     a: &ArrayBase<S, D>,
     filter: &LineFilter<T>,
     pad: usize,
 ) -> Result<Array<T, D>, NdimageError>
 where
     T: Real + Send + Sync,
-    S: Data<Elem = T>,
+    E: Sample<T>,
+    S: Data<Elem = E>,
     D: Dimension,
 {
-    let run = |a: ArrayView<'_, T, D>| {
-        pad_lanes(&a, pad, |buf| {
-            filter.apply_padded(buf, pad, &mut Vec::new())
-        })
-    };
-    if scan_samples(a, filter, a.ndim())? {
-        return Ok(run(a.view()));
-    }
+    let mut c = padded_array::<T, D>(a.raw_dim(), pad)?;
+    let mut inner = interior_mut(&mut c, pad);
     // The missing-sample path of every route (`missing`), on the padded
-    // layout: the output grows by `pad`, so it is filled into a copy.
-    let mut filled = a.to_owned();
-    let mask = fill(a, &mut filled, a.ndim(), filter)?;
-    let mut c = run(filled.view());
-    let axes: Vec<usize> = (0..a.ndim()).collect();
-    write_nan(&mut c, &pattern(&mask, &axes, filter, pad));
+    // layout: the samples with their missing ones filled, then the policy's
+    // pattern grown by `pad`.
+    let mask = if scan_samples::<T, E, T, _, _>(a, filter, a.ndim())? {
+        store_samples(a, &mut inner);
+        None
+    } else {
+        Some(fill(a, &mut inner, a.ndim(), filter)?)
+    };
+    pad_lanes(&mut c, a.shape(), pad, |buf| {
+        filter.apply_padded(buf, pad, &mut Vec::new())
+    });
+    if let Some(mask) = mask {
+        let axes: Vec<usize> = (0..a.ndim()).collect();
+        write_nan(&mut c, &pattern(&mask, &axes, filter, pad));
+    }
     Ok(c)
 }
 
@@ -908,9 +1189,11 @@ where
     S: Data<Elem = T>,
     D: Dimension,
 {
-    check_finite(a)?;
+    check_finite::<T, _, _, _>(a)?;
     let cval = T::from_f64_exact(cval);
-    Ok(pad_lanes(a, pad, |buf| {
+    let mut c = padded_array::<T, D>(a.raw_dim(), pad)?;
+    interior_mut(&mut c, pad).assign(a);
+    pad_lanes(&mut c, a.shape(), pad, |buf| {
         let s = buf[pad..buf.len() - pad].to_vec();
         for (j, o) in buf.iter_mut().enumerate() {
             *o = match mode.fold(j as i64 - pad as i64, s.len()) {
@@ -918,41 +1201,61 @@ where
                 None => cval.clone(),
             };
         }
-    }))
+    });
+    Ok(c)
 }
 
-/// Every lane of `a`, axis by axis, copied into the middle of a buffer
-/// with `pad` slots each side, passed to `fill` and stored whole.
-fn pad_lanes<T, S, D>(
-    a: &ArrayBase<S, D>,
+/// A zero array of `dim` grown by `pad` on both sides of every axis, in
+/// standard layout, allocated fallibly ([`try_padded_zeros`]).
+fn padded_array<T: Real, D: Dimension>(
+    mut dim: D,
+    pad: usize,
+) -> Result<Array<T, D>, NdimageError> {
+    let (padded, v) = try_padded_zeros(dim.slice(), pad, "padded coefficients")?;
+    dim.slice_mut().copy_from_slice(&padded);
+    Ok(Array::from_shape_vec(dim, v).expect("the padded shape"))
+}
+
+/// The elements of the padded array `c` away from its pads.
+fn interior_mut<T, D: Dimension>(
+    c: &mut Array<T, D>,
+    pad: usize,
+) -> ndarray::ArrayViewMut<'_, T, D> {
+    c.slice_each_axis_mut(|ax| Slice::from(pad..ax.len - pad))
+}
+
+/// The padded array `c` (of the interior `shape`, grown by `pad` per side)
+/// filled lane by lane from its interior, axis by axis: along axis `k`
+/// every lane over the whole extent of the axes before it (filled by then)
+/// and the interior of those after it, copied into a buffer (its samples in
+/// the middle, `pad` slots each side), passed to `fill` and stored whole.
+/// In place: one array.
+fn pad_lanes<T, D>(
+    c: &mut Array<T, D>,
+    shape: &[usize],
     pad: usize,
     fill: impl Fn(&mut Vec<T>) + Sync,
-) -> Array<T, D>
-where
+) where
     T: Real + Send + Sync,
-    S: Data<Elem = T>,
     D: Dimension,
 {
-    let mut cur = a.to_owned();
-    for axis in 0..a.ndim() {
-        let mut dim = cur.raw_dim();
-        dim[axis] += 2 * pad;
-        let mut next = Array::from_elem(dim, T::zero());
-        Zip::from(cur.lanes(Axis(axis)))
-            .and(next.lanes_mut(Axis(axis)))
-            .par_for_each(|src, mut dst| {
-                let mut buf: Vec<T> = Vec::with_capacity(src.len() + 2 * pad);
-                buf.resize(pad, T::zero());
-                buf.extend(src.iter().cloned());
-                buf.resize(src.len() + 2 * pad, T::zero());
-                fill(&mut buf);
-                for (d, s) in dst.iter_mut().zip(buf) {
-                    *d = s;
-                }
-            });
-        cur = next;
+    for axis in 0..shape.len() {
+        let mut part = c.slice_each_axis_mut(|ax| {
+            let k = ax.axis.index();
+            if k > axis {
+                Slice::from(pad..pad + shape[k])
+            } else {
+                Slice::from(..)
+            }
+        });
+        Zip::from(part.lanes_mut(Axis(axis))).par_for_each(|mut lane| {
+            let mut buf: Vec<T> = lane.to_vec();
+            fill(&mut buf);
+            for (d, s) in lane.iter_mut().zip(buf) {
+                *d = s;
+            }
+        });
     }
-    cur
 }
 
 #[cfg(test)]

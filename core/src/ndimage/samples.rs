@@ -25,41 +25,106 @@ use ndarray::{ArrayBase, Data, Dimension, IxDyn, SliceInfoElem};
 /// type `T` by [`Sample::widen`]: exactly (`f32 → f64`, `f32 → f32`,
 /// `f64 → f64`, integers of up to 32 bits → `f64`), or as numpy's `astype`
 /// rounds (64-bit integers → `f64`, to nearest).
-pub trait Sample<T>: Copy + Send + Sync + 'static {
+pub trait Sample<T>: Clone + Send + Sync + 'static {
     /// The sample as a value of the compute type.
-    fn widen(self) -> T;
+    fn widen(&self) -> T;
+
+    /// `src` as values of the compute type without a copy, where the
+    /// sample type is the compute type itself (`None` otherwise): the
+    /// engine's passes read such samples where they lie.
+    #[inline(always)]
+    fn as_compute(src: &[Self]) -> Option<&[T]> {
+        let _ = src;
+        None
+    }
+
+    /// `dst[i] = src[i].widen()` (the shorter length).
+    #[inline(always)]
+    fn widen_into(src: &[Self], dst: &mut [T]) {
+        for (d, s) in dst.iter_mut().zip(src) {
+            *d = s.widen();
+        }
+    }
 }
 
 /// An element type the engine stores results into from the compute type
 /// `T` by [`Stored::store`]: `T` itself (no rounding), or `f32` from `f64`
 /// (rounded to nearest once, as numpy's `astype` and scipy's C cast do).
-pub trait Stored<T>: Copy + Send + Sync + 'static {
+pub trait Stored<T>: Clone + Send + Sync + 'static {
+    /// The largest finite magnitude the stored type holds, where it is
+    /// below the compute type's (`f32::MAX` for `f32` results of `f64`
+    /// arithmetic), else ∞: what a check that the results stay finite
+    /// compares against.
+    const LARGEST: f64 = f64::INFINITY;
+
     /// The result as stored.
     fn store(value: &T) -> Self;
-}
 
-impl<T: Real + Copy + 'static> Sample<T> for T {
+    /// `out` as a buffer of the compute type, where the result type is the
+    /// compute type itself (`None` otherwise: the engine computes into a
+    /// work buffer of `T` a chunk at a time and stores it through
+    /// [`Stored::store_from`]).
     #[inline(always)]
-    fn widen(self) -> T {
-        self
+    fn as_compute_mut(out: &mut [Self]) -> Option<&mut [T]> {
+        let _ = out;
+        None
+    }
+
+    /// `dst[i] = store(src[i])` (the shorter length).
+    #[inline(always)]
+    fn store_from(src: &[T], dst: &mut [Self]) {
+        for (d, s) in dst.iter_mut().zip(src) {
+            *d = Self::store(s);
+        }
     }
 }
 
-impl<T: Real + Copy + 'static> Stored<T> for T {
+impl<T: Real> Sample<T> for T {
+    #[inline(always)]
+    fn widen(&self) -> T {
+        self.clone()
+    }
+
+    #[inline(always)]
+    fn as_compute(src: &[T]) -> Option<&[T]> {
+        Some(src)
+    }
+
+    #[inline(always)]
+    fn widen_into(src: &[T], dst: &mut [T]) {
+        let n = src.len().min(dst.len());
+        dst[..n].clone_from_slice(&src[..n]);
+    }
+}
+
+impl<T: Real> Stored<T> for T {
     #[inline(always)]
     fn store(value: &T) -> Self {
-        *value
+        value.clone()
+    }
+
+    #[inline(always)]
+    fn as_compute_mut(out: &mut [T]) -> Option<&mut [T]> {
+        Some(out)
+    }
+
+    #[inline(always)]
+    fn store_from(src: &[T], dst: &mut [T]) {
+        let n = src.len().min(dst.len());
+        dst[..n].clone_from_slice(&src[..n]);
     }
 }
 
 impl Sample<f64> for f32 {
     #[inline(always)]
-    fn widen(self) -> f64 {
-        f64::from(self)
+    fn widen(&self) -> f64 {
+        f64::from(*self)
     }
 }
 
 impl Stored<f64> for f32 {
+    const LARGEST: f64 = f32::MAX as f64;
+
     #[inline(always)]
     fn store(value: &f64) -> Self {
         *value as f32
@@ -72,14 +137,14 @@ macro_rules! integer_samples {
     (exact: $($t:ty),*; rounded: $($r:ty),*) => {
         $(impl Sample<f64> for $t {
             #[inline(always)]
-            fn widen(self) -> f64 {
-                f64::from(self)
+            fn widen(&self) -> f64 {
+                f64::from(*self)
             }
         })*
         $(impl Sample<f64> for $r {
             #[inline(always)]
-            fn widen(self) -> f64 {
-                self as f64
+            fn widen(&self) -> f64 {
+                *self as f64
             }
         })*
     };
@@ -219,13 +284,13 @@ mod tests {
     fn float32_samples_widen_exactly_and_store_rounded_once() {
         // 1 + 2^-23 is a float32; widened it keeps every bit.
         let x = 1.0f32 + f32::EPSILON;
-        assert_eq!(Sample::<f64>::widen(x), 1.0 + 2f64.powi(-23));
+        assert_eq!(Sample::<f64>::widen(&x), 1.0 + 2f64.powi(-23));
         // 1 + 2^-24 + 2^-30 rounds up to 1 + 2^-23 (nearest), not down.
         let v = 1.0 + 2f64.powi(-24) + 2f64.powi(-30);
         assert_eq!(<f32 as Stored<f64>>::store(&v), 1.0 + f32::EPSILON);
         // 2^53 + 1 as an i64 rounds to 2^53 (ties to even), as numpy's astype.
-        assert_eq!(Sample::<f64>::widen((1i64 << 53) + 1), 2f64.powi(53));
-        assert_eq!(Sample::<f64>::widen(u32::MAX), 4294967295.0);
+        assert_eq!(Sample::<f64>::widen(&((1i64 << 53) + 1)), 2f64.powi(53));
+        assert_eq!(Sample::<f64>::widen(&u32::MAX), 4294967295.0);
     }
 
     #[test]

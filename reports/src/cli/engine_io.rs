@@ -3,11 +3,13 @@
 //! `--nan-policy`), reading the samples, the conditioning check, the cost
 //! estimate and the output file.
 //!
-//! Precision: without `--prec` the engine runs in the input's own type (an
-//! f32 `.npy` in f32, anything else in f64), as scipy does not; `--prec f64`
-//! computes in f64 and `--prec BITS` in MPFR. The results are rounded once
-//! from the working type into the output: the input's dtype for `.npy`,
-//! decimal strings (the digits `BITS` carries) for `.json`.
+//! Precision: without `--prec` the engine computes in f64 whatever the
+//! input's type, as scipy does (an f32 `.npy` is widened exactly);
+//! `--compute float32` opts into f32 arithmetic (the samples rounded to f32
+//! first where they are not), `--prec BITS` computes in MPFR. The results
+//! are rounded once from the working type into the output: the input's
+//! dtype for `.npy`, decimal strings (the digits `BITS` carries) for
+//! `.json`.
 
 use super::prec::{Prec, parse_prec};
 use crate::array_io::read_samples_as;
@@ -82,10 +84,17 @@ pub struct EngineArgs {
     /// of the missing samples by values up to max|finite sample|.
     #[arg(long, default_value_t = NanPolicy::default(), value_parser = nan_policy_parser())]
     pub nan_policy: NanPolicy,
-    /// Working precision: f64, or MPFR bits (16..=2048). Default: the
-    /// input's type (f32 for a float32 .npy, else f64).
+    /// Working precision: f64, or MPFR bits (16..=2048). Default: f64 (a
+    /// float32 .npy is computed in f64 and its result rounded once to
+    /// float32, as scipy does).
     #[arg(long, value_parser = parse_prec)]
     pub prec: Option<Prec>,
+    /// The arithmetic without --prec: float64 (the default, scipy's) or
+    /// float32 (f32 samples and arithmetic: error about (A + 1)·6e-8 of
+    /// max|s| with A the printed amplification, where float64's is one
+    /// rounding of the result; the Python package's compute="float32").
+    #[arg(long, default_value = "float64", value_parser = ["float64", "float32"])]
+    pub compute: String,
     /// Largest accepted estimate u·1/|V(−1)| of the coefficients' relative
     /// error (default 1e-8, or 1e-4 when computing in f32); above it the
     /// degree is refused as ill-conditioned with a precision that meets it.
@@ -108,7 +117,7 @@ fn parse_mode(s: &str) -> Result<Mode, String> {
 /// The working type of a run.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Working {
-    /// IEEE binary32 (an f32 input without `--prec`).
+    /// IEEE binary32 (`--compute float32`).
     F32,
     /// f64 or MPFR, as `--prec`.
     Prec(Prec),
@@ -198,10 +207,16 @@ pub fn plan(args: &EngineArgs, min_degree: u32) -> Result<Plan, CliError> {
     // multi-index); the other policies hand them to the engine.
     let data = read_samples_as(&args.input, args.nan_policy == NanPolicy::Raise)?;
     let missing = data.0.iter().filter(|x| !x.is_finite()).count();
-    let working = match (args.prec, data.1) {
+    let working = match (args.prec, args.compute.as_str()) {
+        (Some(_), "float32") => {
+            return Err(CliError::invalid(
+                "--compute",
+                "float32 arithmetic takes no --prec (give one of them)",
+            ));
+        }
         (Some(p), _) => Working::Prec(p),
-        (None, UserFormat::F32) => Working::F32,
-        (None, UserFormat::F64) => Working::Prec(Prec::F64),
+        (None, "float32") => Working::F32,
+        (None, _) => Working::Prec(Prec::F64),
     };
     let output = match output {
         OutputKind::Npy(_) => OutputKind::Npy(data.1),

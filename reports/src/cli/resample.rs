@@ -8,7 +8,8 @@
 //! the engine's, as in `interpolate` (`nearest` and `grid-constant` the
 //! exact spline of the extended signal, which scipy approximates by
 //! padding 12 samples; scipy's `constant` and `wrap` are the Python
-//! package's). Works in f64, or f32 for a float32 input. NaN/±inf
+//! package's). Works in f64 (a float32 input's result rounded once to
+//! float32), or f32 with `--compute float32`. NaN/±inf
 //! samples by `--nan-policy` ([`super::nan_io`]).
 
 use super::engine_io::{
@@ -85,7 +86,7 @@ pub fn run(args: &ResampleArgs) -> Result<(), CliError> {
     if !matches!(plan.working, Working::F32 | Working::Prec(Prec::F64)) {
         return Err(CliError::invalid(
             "--prec",
-            "resample computes in f64 (or f32 for a float32 input)",
+            "resample computes in f64 (or f32 with --compute float32)",
         ));
     }
     let points = points(args, plan.data.shape())?;

@@ -28,6 +28,7 @@ mod curves_hermite;
 mod curves_rational;
 mod determinism;
 mod engine_batch;
+mod engine_float32;
 mod engine_lanes;
 mod engine_properties;
 mod engine_proptest;

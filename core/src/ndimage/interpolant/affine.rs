@@ -23,6 +23,7 @@
 use super::batch::PointSource;
 use super::{Interpolant, PointRule};
 use crate::ndimage::NdimageError;
+use crate::ndimage::samples::Stored;
 use crate::scalar::Real;
 
 impl<T: Real + Copy + Send + Sync> Interpolant<T> {
@@ -39,6 +40,7 @@ impl<T: Real + Copy + Send + Sync> Interpolant<T> {
     /// (`affine.rs::tests::affine_points_equal_pointwise_evaluation_bit_for_bit`,
     /// `runs.rs::tests::runs_equal_the_batch_path_bit_for_bit`). **Source**:
     /// scipy's `affine_transform` (`ni_interpolation.c`, `NI_GeometricTransform`).
+    /// Results of another type than `T`: [`Self::resample_affine_as`].
     ///
     /// ```
     /// use splinelab::prelude::*;
@@ -58,6 +60,22 @@ impl<T: Real + Copy + Send + Sync> Interpolant<T> {
         shift: f64,
         rule: PointRule,
         out: &mut [T],
+    ) -> Result<(), NdimageError> {
+        self.resample_affine_as(matrix, offset, out_shape, shift, rule, out)
+    }
+
+    /// [`Self::resample_affine`] into results of any type `O` the compute
+    /// type stores into ([`Stored`]: `f32` results of an `f64`
+    /// interpolant), each rounded once, a chunk of 2048 at a time (no `T`
+    /// copy of `out`).
+    pub fn resample_affine_as<O: Stored<T>>(
+        &self,
+        matrix: &[f64],
+        offset: &[f64],
+        out_shape: &[usize],
+        shift: f64,
+        rule: PointRule,
+        out: &mut [O],
     ) -> Result<(), NdimageError> {
         let (n, k) = (self.ndim(), out_shape.len());
         if matrix.len() != n * k || offset.len() != n || k == 0 {

@@ -16,6 +16,7 @@
 
 use super::{Interpolant, PointRule, Scratch, cell_weights_into};
 use crate::ndimage::NdimageError;
+use crate::ndimage::samples::Stored;
 use crate::scalar::Real;
 use crate::sspline::bspline_uniform::centred_cell;
 use ndarray::{ArrayView2, Axis, s};
@@ -196,13 +197,14 @@ impl<T: Real + Send + Sync> Interpolant<T> {
     /// [`Interpolant::eval`]; the coefficient rows of 64 points are
     /// prefetched before they are summed (module documentation); 1 to 3
     /// dimensions of degree 1 to 5 in `f64`/`f32` by fixed-size kernels
-    /// (`kernel.rs`).
+    /// (`kernel.rs`). Results of another type than `T`:
+    /// [`Self::eval_many_with_as`].
     pub fn eval_many(
         &self,
         points: ArrayView2<'_, f64>,
         out: &mut [T],
     ) -> Result<(), NdimageError> {
-        self.eval_many_with(points, PointRule::Fold, out)
+        self.eval_many_with_as(points, PointRule::Fold, out)
     }
 
     /// [`Self::eval_many`] with a [`PointRule`] applied to each point first:
@@ -217,6 +219,34 @@ impl<T: Real + Send + Sync> Interpolant<T> {
         points: ArrayView2<'_, f64>,
         rule: PointRule,
         out: &mut [T],
+    ) -> Result<(), NdimageError> {
+        self.eval_many_with_as(points, rule, out)
+    }
+
+    /// [`Self::eval_many_with`] into results of any type `O` the compute
+    /// type stores into ([`Stored`]: `f32` results of an `f64`
+    /// interpolant, each rounded once from its `f64` value, as scipy
+    /// stores a float32 output): the values are computed a chunk of 2048
+    /// at a time into a buffer of `T` and stored from it (no `T` copy of
+    /// `out`); the same values as [`Self::eval_many_with`] rounded once
+    /// (`verify/tests/it/engine_float32.rs`).
+    ///
+    /// ```
+    /// use splinelab::prelude::*;
+    /// use splinelab::ndimage::interpolant::PointRule;
+    /// let data = ndarray::array![0.1f32, 0.7, 0.2, 0.9, 0.4];
+    /// let f = Interpolant::<f64>::from_samples(&data, Options::new(3, Mode::Mirror)).unwrap();
+    /// let at = ndarray::array![[1.3], [2.71]];
+    /// let (mut wide, mut narrow) = ([0.0f64; 2], [0.0f32; 2]);
+    /// f.eval_many(at.view(), &mut wide).unwrap();
+    /// f.eval_many_with_as(at.view(), PointRule::Fold, &mut narrow).unwrap();
+    /// assert_eq!(narrow, [wide[0] as f32, wide[1] as f32]);
+    /// ```
+    pub fn eval_many_with_as<O: Stored<T>>(
+        &self,
+        points: ArrayView2<'_, f64>,
+        rule: PointRule,
+        out: &mut [O],
     ) -> Result<(), NdimageError> {
         if points.ncols() != self.ndim() {
             return Err(NdimageError::PointDimension {
@@ -242,21 +272,62 @@ impl<T: Real + Send + Sync> Interpolant<T> {
     }
 
     /// The points of `src` into `out` (one per element), in parallel over
-    /// chunks of [`CHUNK`] points.
-    pub(super) fn eval_source<S: PointSource>(
+    /// chunks of [`CHUNK`] points ([`store_chunks`]).
+    pub(super) fn eval_source<S: PointSource, O: Stored<T>>(
         &self,
         src: &S,
-        out: &mut [T],
+        out: &mut [O],
     ) -> Result<(), NdimageError> {
-        out.par_chunks_mut(CHUNK)
-            .enumerate()
-            .try_for_each(|(c, chunk)| {
-                if self.has_kernel() {
-                    self.eval_kernel(src, c * CHUNK, chunk)
+        store_chunks(out, |start, chunk| {
+            if self.has_kernel() {
+                self.eval_kernel(src, start, chunk)
+            } else {
+                self.eval_chunk(src, start, chunk)
+            }
+        })
+    }
+
+    /// `∂^deriv f` at each row of `points` (`(count, ndim)`, any strides)
+    /// into `out` ([`Stored`]), in parallel over chunks of [`CHUNK`]
+    /// points: [`Self::eval_derivative`] per point (a non-finite coordinate
+    /// is named by its flat index, as [`Self::eval_many`] names it).
+    pub fn eval_derivatives<O: Stored<T>>(
+        &self,
+        points: ArrayView2<'_, f64>,
+        deriv: &[u32],
+        out: &mut [O],
+    ) -> Result<(), NdimageError> {
+        let ndim = self.ndim();
+        if points.ncols() != ndim || deriv.len() != ndim {
+            return Err(NdimageError::PointDimension {
+                expected: ndim,
+                got: if points.ncols() != ndim {
+                    points.ncols()
                 } else {
-                    self.eval_chunk(src, c * CHUNK, chunk)
-                }
-            })
+                    deriv.len()
+                },
+            });
+        }
+        if out.len() != points.nrows() {
+            return Err(NdimageError::BufferLength {
+                expected: points.nrows(),
+                got: out.len(),
+            });
+        }
+        store_chunks(out, |start, chunk| {
+            let mut x = vec![0.0; ndim];
+            for (j, o) in chunk.iter_mut().enumerate() {
+                let k = start + j;
+                x.iter_mut().zip(points.row(k)).for_each(|(x, &p)| *x = p);
+                *o = self.eval_derivative(&x, deriv).map_err(|e| match e {
+                    NdimageError::NonFiniteCoordinate(i) => {
+                        NdimageError::NonFiniteCoordinate(k * ndim + i)
+                    }
+                    e => e,
+                })?;
+            }
+            Ok(())
+        })
     }
 
     /// The points `start..start + out.len()` of `src` on the general path,
@@ -425,6 +496,31 @@ impl<T: Real + Send + Sync> Interpolant<T> {
         }
         sum
     }
+}
+
+/// `out` filled on the pool in chunks of [`CHUNK`]: `eval(start, values)`
+/// computes the values of outputs `start..start + values.len()` in `T`,
+/// into the chunk itself where `O` is `T`, else into a buffer of one chunk
+/// that is then stored ([`Stored::store_from`]: each value rounded once).
+pub(super) fn store_chunks<T, O>(
+    out: &mut [O],
+    eval: impl Fn(usize, &mut [T]) -> Result<(), NdimageError> + Sync,
+) -> Result<(), NdimageError>
+where
+    T: Real + Send + Sync,
+    O: Stored<T>,
+{
+    out.par_chunks_mut(CHUNK)
+        .enumerate()
+        .try_for_each(|(c, chunk)| {
+            if let Some(values) = O::as_compute_mut(chunk) {
+                return eval(c * CHUNK, values);
+            }
+            let mut values = vec![T::zero(); chunk.len()];
+            eval(c * CHUNK, &mut values)?;
+            O::store_from(&values, chunk);
+            Ok(())
+        })
 }
 
 /// The flat (row-major) index of the first non-finite coordinate of

@@ -23,13 +23,13 @@
 //! for bit (`tests::runs_equal_the_batch_path_bit_for_bit`).
 
 use super::affine::AffinePoints;
-use super::batch::{BATCH, CHUNK};
+use super::batch::{BATCH, store_chunks};
 use super::kernel::{bases_in_lanes, cells_and_weights, sum_fixed};
 use super::{Interpolant, PointRule};
 use crate::ndimage::NdimageError;
+use crate::ndimage::samples::Stored;
 use crate::scalar::Real;
 use multiversion::multiversion;
-use rayon::prelude::*;
 
 /// One run of outputs along the last output axis: the sums of the other
 /// axes' terms `row_h`, the last axis' column `step_h`, and the index of
@@ -105,14 +105,12 @@ impl<T: Real + Send + Sync> Interpolant<T> {
 
     /// The outputs of `src` into `out` by runs (module documentation), in
     /// parallel over chunks of [`CHUNK`] outputs.
-    pub(super) fn eval_affine_runs(
+    pub(super) fn eval_affine_runs<O: Stored<T>>(
         &self,
         src: &AffinePoints<'_>,
-        out: &mut [T],
+        out: &mut [O],
     ) -> Result<(), NdimageError> {
-        out.par_chunks_mut(CHUNK)
-            .enumerate()
-            .try_for_each(|(c, chunk)| self.affine_chunk(src, c * CHUNK, chunk))
+        store_chunks(out, |start, chunk| self.affine_chunk(src, start, chunk))
     }
 
     /// Outputs `start..start + out.len()` of `src`, run by run.
