@@ -18,6 +18,7 @@
 //! rounding of `m^D` non-negative-weight terms, `≤ m D u Σ|D_i| w_i`.
 
 use super::NdimageError;
+use super::alloc::try_to_owned;
 use super::line_filter::{LineFilter, Route};
 use super::mode::Mode;
 use super::nan_policy::NanPolicy;
@@ -155,15 +156,22 @@ impl<T: Real + Send + Sync> Interpolant<T> {
             Mode::Mirror | Mode::Reflect | Mode::GridWrap => {
                 // Copied and checked on the pool (`spline_filter_from`),
                 // not by a copy on the calling thread.
-                let mut c = ArrayD::from_shape_vec(data.shape(), zeros_on_huge_pages(data.len()))
-                    .expect("the data's shape");
+                let mut c = ArrayD::from_shape_vec(data.shape(), zeros_on_huge_pages(data.len())?)
+                    .map_err(|_| NdimageError::BufferLength {
+                        expected: data.len(),
+                        got: 0,
+                    })?;
                 let axes: Vec<usize> = (0..data.ndim()).collect();
                 spline_filter_from(&data.view().into_dyn(), &mut c, &axes, Some(&filter))?;
-                extend_padded(&c, opts.mode, &T::zero(), pad).0
+                extend_padded(&c, opts.mode, &T::zero(), pad)?.0
             }
             Mode::Nearest | Mode::GridConstant => {
                 let c = padded_coefficients(data, &filter, pad)?.into_dyn();
-                c.as_standard_layout().into_owned()
+                if c.is_standard_layout() {
+                    c
+                } else {
+                    try_to_owned(&c, "the padded spline coefficients")?
+                }
             }
         };
         let strides = coeffs.strides().iter().map(|&s| s as usize).collect();
@@ -260,7 +268,7 @@ impl<T: Real + Send + Sync> Interpolant<T> {
         } else {
             order as usize / 2 + 2
         };
-        let (mut padded, finite) = extend_padded(coeffs, mode, &T::from_f64_exact(cval), pad);
+        let (mut padded, finite) = extend_padded(coeffs, mode, &T::from_f64_exact(cval), pad)?;
         match opts.nan_policy {
             // Names the first non-finite coefficient.
             NanPolicy::Raise if !finite => check_finite(coeffs)?,

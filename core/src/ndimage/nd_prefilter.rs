@@ -55,6 +55,7 @@
 //! bound (≈ `D A^{D−1} b`).
 
 use super::NdimageError;
+use super::alloc::{try_array, try_to_owned};
 use super::block_filter::BlockPrefilter;
 use super::lanes;
 use super::line_filter::{LineFilter, RowCheck};
@@ -172,7 +173,7 @@ where
     S: DataMut<Elem = T>,
     D: Dimension,
 {
-    let src = a.to_owned();
+    let src = try_to_owned(a, "a copy of the samples with missing ones")?;
     filter_missing(&src, a, axes, filter)
 }
 
@@ -877,13 +878,13 @@ where
         })
     };
     if scan_samples(a, filter, a.ndim())? {
-        return Ok(run(a.view()));
+        return run(a.view());
     }
     // The missing-sample path of every route (`missing`), on the padded
     // layout: the output grows by `pad`, so it is filled into a copy.
-    let mut filled = a.to_owned();
+    let mut filled = try_to_owned(a, "the samples with missing ones filled")?;
     let mask = fill(a, &mut filled, a.ndim(), filter)?;
-    let mut c = run(filled.view());
+    let mut c = run(filled.view())?;
     let axes: Vec<usize> = (0..a.ndim()).collect();
     write_nan(&mut c, &pattern(&mask, &axes, filter, pad));
     Ok(c)
@@ -910,7 +911,7 @@ where
 {
     check_finite(a)?;
     let cval = T::from_f64_exact(cval);
-    Ok(pad_lanes(a, pad, |buf| {
+    pad_lanes(a, pad, |buf| {
         let s = buf[pad..buf.len() - pad].to_vec();
         for (j, o) in buf.iter_mut().enumerate() {
             *o = match mode.fold(j as i64 - pad as i64, s.len()) {
@@ -918,26 +919,28 @@ where
                 None => cval.clone(),
             };
         }
-    }))
+    })
 }
 
 /// Every lane of `a`, axis by axis, copied into the middle of a buffer
-/// with `pad` slots each side, passed to `fill` and stored whole.
+/// with `pad` slots each side, passed to `fill` and stored whole; the
+/// arrays allocated fallibly ([`NdimageError::OutOfMemory`]).
 fn pad_lanes<T, S, D>(
     a: &ArrayBase<S, D>,
     pad: usize,
     fill: impl Fn(&mut Vec<T>) + Sync,
-) -> Array<T, D>
+) -> Result<Array<T, D>, NdimageError>
 where
     T: Real + Send + Sync,
     S: Data<Elem = T>,
     D: Dimension,
 {
-    let mut cur = a.to_owned();
+    const WHAT: &str = "the padded spline coefficients";
+    let mut cur = try_to_owned(a, WHAT)?;
     for axis in 0..a.ndim() {
         let mut dim = cur.raw_dim();
-        dim[axis] += 2 * pad;
-        let mut next = Array::from_elem(dim, T::zero());
+        dim[axis] = dim[axis].saturating_add(2 * pad);
+        let mut next = try_array(dim, T::zero(), WHAT)?;
         Zip::from(cur.lanes(Axis(axis)))
             .and(next.lanes_mut(Axis(axis)))
             .par_for_each(|src, mut dst| {
@@ -952,7 +955,7 @@ where
             });
         cur = next;
     }
-    cur
+    Ok(cur)
 }
 
 #[cfg(test)]

@@ -15,6 +15,8 @@
 //! symmetric padding use; copies only, no rounding
 //! (`padding.rs::tests::extension_equals_the_lane_by_lane_one`).
 
+use crate::ndimage::NdimageError;
+use crate::ndimage::alloc::{checked_len, try_filled, try_standard_layout, try_to_owned};
 use crate::ndimage::mode::Mode;
 use crate::ndimage::nd_prefilter::scan_block;
 use crate::scalar::Real;
@@ -25,12 +27,14 @@ use rayon::prelude::*;
 /// extends samples (`cval` where the mode gives none), C order, and
 /// whether every element of `a` is finite (each row scanned as it is
 /// copied, [`scan_block`]: no separate pass over `a`).
+/// [`NdimageError::OutOfMemory`] where the padded array (or the C-ordered
+/// copy of a strided `a`) cannot be allocated.
 pub(super) fn extend_padded<T, S, D>(
     a: &ArrayBase<S, D>,
     mode: Mode,
     cval: &T,
     pad: usize,
-) -> (ArrayD<T>, bool)
+) -> Result<(ArrayD<T>, bool), NdimageError>
 where
     T: Real + Send + Sync,
     S: Data<Elem = T>,
@@ -38,13 +42,16 @@ where
 {
     if a.ndim() == 0 {
         let finite = a.iter().all(|x| x.is_finite());
-        return (a.to_owned().into_dyn(), finite);
+        return Ok((try_to_owned(a, WHAT)?.into_dyn(), finite));
     }
-    let a = a.as_standard_layout();
-    let src = a.as_slice().expect("standard layout");
+    let a = try_standard_layout(a, "a C-ordered copy of the input")?;
+    let src = a.as_slice().ok_or(NdimageError::BufferLength {
+        expected: a.len(),
+        got: 0,
+    })?;
     let shape = a.shape();
     let nd = shape.len();
-    let padded: Vec<usize> = shape.iter().map(|n| n + 2 * pad).collect();
+    let padded: Vec<usize> = shape.iter().map(|n| n.saturating_add(2 * pad)).collect();
     // Per axis, the source index of every padded index (None: cval).
     let maps: Vec<Vec<Option<usize>>> = shape
         .iter()
@@ -59,8 +66,7 @@ where
         src_strides[k] = src_strides[k + 1] * shape[k + 1];
     }
     let (n_last, row_len) = (shape[nd - 1], padded[nd - 1]);
-    let total: usize = padded.iter().product();
-    let mut out = zeros_on_huge_pages(total);
+    let mut out = zeros_on_huge_pages(checked_len(&padded, WHAT)?)?;
     let finite = out
         .par_chunks_mut(row_len)
         .enumerate()
@@ -85,9 +91,16 @@ where
             scan_block(&row[pad..pad + n_last]).0
         })
         .reduce(|| true, |a, b| a & b);
-    let out = ArrayD::from_shape_vec(IxDyn(&padded), out).expect("padded shape");
-    (out, finite)
+    let out =
+        ArrayD::from_shape_vec(IxDyn(&padded), out).map_err(|_| NdimageError::BufferLength {
+            expected: padded.iter().product(),
+            got: 0,
+        })?;
+    Ok((out, finite))
 }
+
+/// What [`extend_padded`] and [`zeros_on_huge_pages`] allocate.
+const WHAT: &str = "the padded spline coefficients";
 
 /// `n` zeros whose memory the kernel may back with transparent huge pages
 /// (Linux `madvise(MADV_HUGEPAGE)` before the first touch; elsewhere, and
@@ -95,11 +108,13 @@ where
 /// fresh from `mmap` and faulted in on first write: on 4 KiB pages a 2048²
 /// f64 array (8192 faults, each zeroing its page) cost a fifth of a
 /// rotation's time; on 2 MiB pages the same bytes take 17 faults. A hint:
-/// the contents are the same zeros either way.
-pub(super) fn zeros_on_huge_pages<T: Real>(n: usize) -> Vec<T> {
-    let v = vec![T::zero(); n];
+/// the contents are the same zeros either way. Allocated fallibly
+/// ([`try_filled`]): [`NdimageError::OutOfMemory`] where the allocator
+/// refuses, not an abort.
+pub(super) fn zeros_on_huge_pages<T: Real>(n: usize) -> Result<Vec<T>, NdimageError> {
+    let v = try_filled(n, T::zero(), WHAT)?;
     advise_huge_pages(&v);
-    v
+    Ok(v)
 }
 
 #[cfg(target_os = "linux")]
@@ -143,7 +158,7 @@ mod tests {
             });
             for mode in Mode::ALL {
                 for pad in [0, 2, 7] {
-                    let (ours, finite) = extend_padded(&a, mode, &-0.5, pad);
+                    let (ours, finite) = extend_padded(&a, mode, &-0.5, pad).unwrap();
                     let lanes = padded_extension(&a, mode, -0.5, pad).unwrap();
                     assert_eq!(ours, lanes, "{shape:?} {mode} pad {pad}");
                     assert!(finite);
@@ -158,11 +173,11 @@ mod tests {
     #[test]
     fn huge_page_zeros_are_zeros() {
         for n in [0, 1, 1000, (4 << 20) / 8, (5 << 20) / 8 + 3] {
-            let v: Vec<f64> = zeros_on_huge_pages(n);
+            let v: Vec<f64> = zeros_on_huge_pages(n).unwrap();
             assert_eq!(v.len(), n);
             assert!(v.iter().all(|&x| x.to_bits() == 0), "{n}");
         }
-        let v: Vec<f32> = zeros_on_huge_pages((9 << 20) / 4 + 1);
+        let v: Vec<f32> = zeros_on_huge_pages((9 << 20) / 4 + 1).unwrap();
         assert!(v.iter().all(|&x| x.to_bits() == 0));
     }
 
@@ -178,12 +193,15 @@ mod tests {
         let shape = [4usize, 5, 3];
         let clean = ArrayD::from_shape_fn(IxDyn(&shape), |i| (i[0] * 15 + i[1] * 3 + i[2]) as f64);
         for mode in Mode::ALL {
-            assert!(extend_padded(&clean, mode, &0.0, 3).1, "{mode}");
+            assert!(extend_padded(&clean, mode, &0.0, 3).unwrap().1, "{mode}");
             for (at, bad) in [(0, f64::NAN), (59, f64::INFINITY), (31, f64::NEG_INFINITY)] {
                 let mut a = clean.clone();
                 a.as_slice_mut().unwrap()[at] = bad;
                 a.as_slice_mut().unwrap()[at.max(40)] = f64::NAN;
-                assert!(!extend_padded(&a, mode, &0.0, 3).1, "{mode} at {at}");
+                assert!(
+                    !extend_padded(&a, mode, &0.0, 3).unwrap().1,
+                    "{mode} at {at}"
+                );
                 let opts = Options {
                     nan_policy: NanPolicy::Raise,
                     ..Options::new(3, mode)
