@@ -1,8 +1,10 @@
 //! Rust errors as Python exceptions: a `ValueError` with the Rust message
-//! (bad values: degree, mode, tolerance, shapes, non-finite data).
+//! (bad values: degree, mode, tolerance, shapes, non-finite data), and a
+//! `MemoryError` where a work array or a result cannot be allocated (as
+//! scipy raises where numpy cannot allocate its output).
 
 use pyo3::PyErr;
-use pyo3::exceptions::PyValueError;
+use pyo3::exceptions::{PyMemoryError, PyValueError};
 use splinelab::ndimage::NdimageError;
 
 pyo3::create_exception!(
@@ -19,10 +21,12 @@ pub fn value_error(e: impl std::fmt::Display) -> PyErr {
 
 /// An engine error as a Python exception: a non-finite coordinate as
 /// [`NonFiniteCoordinateError`] (a `ValueError` the Python layer catches to
-/// reproduce scipy's values at such points), anything else as [`value_error`].
+/// reproduce scipy's values at such points), an allocation the allocator
+/// refused as `MemoryError`, anything else as [`value_error`].
 pub fn engine_error(e: NdimageError) -> PyErr {
     match e {
         NdimageError::NonFiniteCoordinate(_) => NonFiniteCoordinateError::new_err(e.to_string()),
+        NdimageError::OutOfMemory { .. } => PyMemoryError::new_err(e.to_string()),
         e => value_error(e),
     }
 }

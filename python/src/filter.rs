@@ -18,7 +18,7 @@
 //! the pool first.
 
 use crate::cache;
-use crate::error::value_error;
+use crate::error::{engine_error, value_error};
 use crate::pool::run_with;
 use ndarray::{ArrayView1, ArrayViewD, ArrayViewMut1, ArrayViewMutD};
 use numpy::{Element, PyReadonlyArrayDyn, PyReadwriteArrayDyn};
@@ -165,7 +165,7 @@ fn filter_into<T: Real + Copy + Send + Sync + 'static>(
     // pass over the input. On failure `d` holds garbage and the error says why.
     d.copy_from_slice(s);
     f.apply(d, &mut Vec::new());
-    if d[0].is_finite() {
+    if d.first().is_some_and(|x| x.is_finite()) {
         return Ok(());
     }
     if s.iter().any(|x| !x.is_finite()) {
@@ -238,7 +238,7 @@ where
         t => t,
     };
     py.detach(|| run_with(threads, || filter_into(src, &mut out, &axes, &spec)))?
-        .map_err(value_error)
+        .map_err(engine_error)
 }
 
 /// The float64 and float32 entry points, one generic body.

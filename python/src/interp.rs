@@ -8,7 +8,7 @@
 
 use crate::error::{engine_error, value_error};
 use crate::pool::run_with;
-use numpy::{Element, IntoPyArray, PyArray1, PyReadonlyArray2, PyReadonlyArrayDyn};
+use numpy::{Element, PyArrayDyn, PyArrayMethods, PyReadonlyArray2, PyReadonlyArrayDyn};
 use pyo3::prelude::*;
 use rayon::prelude::*;
 use splinelab::ndimage::interpolant::PointRule;
@@ -44,18 +44,21 @@ pub(crate) fn interpolant<T: Real + Send + Sync>(
     }
 }
 
-/// `∂^deriv f` at each point (columns of `at`), in parallel: the engine's
-/// [`Interpolant::eval_derivative`] per point.
+/// `∂^deriv f` at each point (columns of `at`) into `out`, in parallel:
+/// the engine's [`Interpolant::eval_derivative`] per point.
 fn derivatives<T: Real + Send + Sync>(
     f: &Interpolant<T>,
     at: ndarray::ArrayView2<'_, f64>,
     deriv: &[u32],
-) -> Result<Vec<T>, NdimageError> {
-    (0..at.ncols())
-        .into_par_iter()
+    out: &mut [T],
+) -> Result<(), NdimageError> {
+    out.par_iter_mut()
         .with_min_len(256)
-        .map(|k| f.eval_derivative(&at.column(k).to_vec(), deriv))
-        .collect()
+        .zip(at.axis_iter(ndarray::Axis(1)))
+        .try_for_each(|(o, x)| {
+            *o = f.eval_derivative(&x.to_vec(), deriv)?;
+            Ok(())
+        })
 }
 
 #[allow(clippy::too_many_arguments)]
@@ -68,12 +71,16 @@ fn map_generic<'py, T>(
     threads: Option<usize>,
     deriv: Option<Vec<u32>>,
     cval_outside: bool,
-) -> PyResult<Bound<'py, PyArray1<T>>>
+) -> PyResult<Bound<'py, PyArrayDyn<T>>>
 where
     T: Real + Element + Send + Sync,
 {
     let data = input.as_array();
     let at = coordinates.as_array();
+    // numpy's allocation: a result it cannot allocate is `MemoryError`.
+    let result = crate::alloc::zeros::<T>(py, &[at.ncols()])?;
+    let mut view = result.readwrite();
+    let out = view.as_slice_mut()?;
     // scipy's 'constant': cval outside the grid, decided per point in the
     // parallel evaluation (not by passes over the points in numpy after it).
     let rule = if cval_outside {
@@ -85,13 +92,14 @@ where
         let deriv = deriv.filter(|d| d.iter().any(|&k| k > 0));
         let f = interpolant(&data, opts, prefilter)?;
         if let Some(d) = deriv {
-            return derivatives(&f, at, &d);
+            return derivatives(&f, at, &d, out);
         }
-        let mut out = vec![T::zero(); at.ncols()];
-        f.eval_many_with(at.t(), rule, &mut out).map(|()| out)
+        f.eval_many_with(at.t(), rule, out)
     };
-    let out = py.detach(|| run_with(threads, run))?;
-    Ok(out.map_err(engine_error)?.into_pyarray(py))
+    py.detach(|| run_with(threads, run))?
+        .map_err(engine_error)?;
+    drop(view);
+    Ok(result)
 }
 
 /// The float64 and float32 entry points, one generic body.
@@ -114,7 +122,7 @@ macro_rules! map_fn {
             deriv: Option<Vec<u32>>,
             cval_outside: bool,
             nan_policy: &str,
-        ) -> PyResult<Bound<'py, PyArray1<$t>>> {
+        ) -> PyResult<Bound<'py, PyArrayDyn<$t>>> {
             let opts = options(degree, mode, cval, tol, nan_policy)?;
             map_generic(
                 py,

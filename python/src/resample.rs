@@ -33,8 +33,9 @@ where
         .map(|c| c.as_slice())
         .collect::<Result<_, _>>()?;
     let shape: Vec<usize> = axes.iter().map(|x| x.len()).collect();
-    // numpy's allocation (huge pages where it can) for the result.
-    let result = PyArrayDyn::<T>::zeros(py, shape, false);
+    // numpy's allocation (huge pages where it can) for the result; one it
+    // cannot allocate is `MemoryError`.
+    let result = crate::alloc::zeros::<T>(py, &shape)?;
     let mut view = result.readwrite();
     let out = view.as_slice_mut()?;
     let run = || {
@@ -112,9 +113,11 @@ where
     let data = input.as_array();
     let m = matrix.as_array();
     let m = m.as_standard_layout();
-    let m = m.as_slice().expect("standard layout");
+    let m = m
+        .as_slice()
+        .ok_or_else(|| value_error("matrix must be C-contiguous"))?;
     let offset = offset.as_slice()?;
-    let result = PyArrayDyn::<T>::zeros(py, out_shape.clone(), false);
+    let result = crate::alloc::zeros::<T>(py, &out_shape)?;
     let mut view = result.readwrite();
     let out = view.as_slice_mut()?;
     let run = || {
