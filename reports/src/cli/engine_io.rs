@@ -422,6 +422,7 @@ pub fn engine_error(input: &Path, e: NdimageError) -> CliError {
             CliError::Numerical(format!("{e} (or accept it with --max-error)"))
         }
         NdimageError::LocalNeedsTol => CliError::invalid("--tol", e.to_string()),
+        NdimageError::DegreeRange { .. } => CliError::invalid("--degree", e.to_string()),
         e => CliError::numerical(e),
     }
 }
