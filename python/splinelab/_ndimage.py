@@ -9,6 +9,7 @@ import numpy as np
 
 from . import _splinelab as _ext
 from . import _dtypes as _dt
+from .errors import CoordinateShapeError, ModeError
 from ._validate import DEFAULT_TOL, _degree, _int, _mode, _nan_policy, _opt_float, _real_array, _threads, _tol_for
 
 _SCIPY_FILTER_RULE = {
@@ -28,9 +29,7 @@ _MODES = "mirror, reflect, grid-mirror, grid-wrap, wrap, nearest, grid-constant,
 def _filter_mode(mode, exact_edges):
     """The engine's filter for scipy's `mode` (its rule), or with
     `exact_edges` the exact extension for nearest / grid-constant (cval 0)."""
-    mode = _mode(mode)
-    if mode not in _SCIPY_FILTER_RULE:
-        raise ValueError(f"unknown mode {mode!r}: expected one of {_MODES}")
+    mode = _interp_mode(mode)
     if exact_edges and mode in _EXACT_EDGES:
         return mode
     return _SCIPY_FILTER_RULE[mode]
@@ -64,7 +63,8 @@ def _filter(input, axes, order, output, mode, tol, threads, exact_edges=False, c
     nan_policy = _nan_policy(nan_policy)
     tol, threads = _tol_for(tol, nan_policy, d), _threads(threads)
     spec = (d, rule, 0.0, tol, threads, bool(convolution), nan_policy)
-    if d < 2:
+    if d < 2 or a.size == 0:
+        # Degrees 0 and 1, and no samples (scipy returns the empty array):
         if nan_policy == "raise":
             _refuse_non_finite(a)
         # scipy: output[...] = input (numpy's conversion), no filter.
@@ -80,10 +80,12 @@ def _filter(input, axes, order, output, mode, tol, threads, exact_edges=False, c
         return _dt.deliver(out, target, a.shape)
     if dtype in _FLOATS:
         return _filter_float(a, dtype, target, (axes, *spec))
-    work = _dt.compute_dtype(dtype)
+    # Integers and booleans: axis by axis, each stored as scipy stores it
+    # and read back by the next (booleans as npy_bool's bytes, 0..255).
+    work, carried = _dt.compute_dtype(dtype), _dt.carried_dtype(dtype)
     for axis in axes:
-        a = _dt.store_truncated(_filter_float(a, work, None, ([axis], *spec)), dtype)
-    return _dt.deliver(a, target, a.shape)
+        a = _dt.store_truncated(_dt.settled(_filter_float(a, work, None, ([axis], *spec))), carried)
+    return _dt.deliver(a.astype(dtype, copy=False), target, a.shape)
 
 
 def _refuse_non_finite(a):
@@ -272,8 +274,9 @@ def map_coordinates(
 
     Data types as scipy's: bool, integer, float and complex input;
     ``output`` None (the input's dtype), a dtype, a dtype name or an array
-    of any dtype, byte order and strides that does not share memory with
-    ``input`` or ``coordinates``. Integer and boolean results are computed
+    of any dtype, byte order and strides (it may share memory with
+    ``input`` or ``coordinates``: the values are written into it once they
+    are all computed). Integer and boolean results are computed
     in float64 and rounded as scipy rounds them (half away from zero,
     saturated: :mod:`splinelab._dtypes`); float32 and complex64 results are
     computed in float32; complex input is interpolated part by part
@@ -316,7 +319,7 @@ def map_coordinates(
         values = _map_real(a, flat, d, mode, cv, prefilter, tol, threads, exact_edges, deriv, nan_policy)
         return values if sign is None else values * sign.astype(values.dtype)
 
-    return _interpolate(input, output, shape, cval, evaluate, coordinates)
+    return _interpolate(input, output, shape, cval, evaluate)
 
 
 def _derivative(derivative, ndim):
@@ -388,7 +391,7 @@ def _flag(value, what):
 def _interp_mode(mode):
     mode = _mode(mode)
     if mode not in _SCIPY_FILTER_RULE:
-        raise ValueError(f"unknown mode {mode!r}: expected one of {_MODES}")
+        raise ModeError(f"unknown mode {mode!r}: expected one of {_MODES}")
     return mode
 
 
@@ -400,7 +403,7 @@ def _coordinates(coordinates, ndim):
     finite")`` without a serial pass over the array here."""
     at = _real_array(coordinates, "coordinates").astype(np.float64, copy=False)
     if at.ndim < 1 or at.shape[0] != ndim:
-        raise ValueError(f"coordinates must have shape ({ndim}, ...), got {at.shape}")
+        raise CoordinateShapeError(f"coordinates must have shape ({ndim}, ...), got {at.shape}")
     return at
 
 
@@ -414,18 +417,22 @@ def _cval(cval, complex_input):
     return _opt_float(cval, "cval")
 
 
-def _interpolate(input, output, shape, cval, evaluate, *others):
+def _interpolate(input, output, shape, cval, evaluate):
     """The interpolation functions' dtype handling, as scipy's: the result
     has ``output``'s dtype (None: the input's), integer and boolean results
     are computed in float64 and rounded as scipy rounds them
     (:func:`splinelab._dtypes.store_rounded`), float32 and complex64 results
     are computed in float32, and complex input goes through ``evaluate``
     part by part (``cval``'s real and imaginary parts). ``evaluate(a, cv)``
-    takes a real array of the working dtype and returns the flat values."""
+    takes a real array of the working dtype and returns the flat values.
+    The values are computed into new arrays and only then written into
+    ``output``, so an ``output`` that shares memory with ``input`` or the
+    coordinates gets the same result as a separate one (scipy's too where it
+    reads a prefiltered copy, degrees 2 and above; at degrees 0 and 1 it
+    reads samples it has already overwritten)."""
     a = _dt.input_array(input)
     cplx = a.dtype.kind == "c"
     dtype, target = _dt.output_dtype(output, a.dtype, _dt.default_output(a.dtype, cplx), cplx)
-    _dt.refuse_aliasing(target, a, *[np.asarray(o) for o in others])
     _dt.check_output_shape(target, shape)
     cv = _cval(cval, cplx)
     work = _dt.compute_dtype(_dt.real_dtype(dtype))
@@ -435,6 +442,8 @@ def _interpolate(input, output, shape, cval, evaluate, *others):
         result.imag = evaluate(a.imag.astype(work), cv.imag).reshape(shape)
     else:
         values = evaluate(a.astype(work, copy=False), cv).reshape(shape)
+        if dtype.kind == "b":
+            values = _dt.settled(values)  # truncated: see settled
         result = values if values.dtype == dtype else _dt.store_rounded(values, dtype)
     return _dt.deliver(result, target, shape)
 
