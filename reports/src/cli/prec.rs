@@ -143,7 +143,8 @@ pub fn invalid_prec(why: String) -> CliError {
 
 /// Runs `$body` with `$T` bound to the scalar type for `$prec`:
 /// `f64`, or `Mp<W>` with `W = $prec.working_bits()` (arms generated from
-/// [`precision_ladder!`]).
+/// [`precision_ladder!`]). Used in functions returning `Result<_,
+/// CliError>`: a precision off the ladder returns an error from them.
 ///
 /// ```ignore
 /// let s = with_real!(prec, T => compute::<T>(&args)?);
@@ -172,7 +173,13 @@ macro_rules! dispatch_real {
                     $body
                 }
             )+
-            w => unreachable!("working_bits {w} is on the ladder by construction"),
+            // On the ladder by construction (`Prec` is validated); an error,
+            // not a panic, should that ever change.
+            w => {
+                return Err($crate::error::CliError::numerical(format!(
+                    "working precision {w} bits is not on the ladder"
+                )))
+            }
         }
     }};
 }
@@ -204,7 +211,7 @@ mod tests {
     /// Every accepted request runs at most 2× its bits (128 for the
     /// smallest), on an entry that `with_real!` dispatches.
     #[test]
-    fn working_precision_is_at_most_twice_the_request() {
+    fn working_precision_is_at_most_twice_the_request() -> Result<(), CliError> {
         assert!(LADDER.windows(2).all(|w| w[0] < w[1]));
         for b in MIN_BITS..=MAX_BITS {
             let w = Prec::Bits(b).working_bits();
@@ -212,5 +219,6 @@ mod tests {
             let dispatched = crate::with_real!(Prec::Bits(b), T => <T as Real>::BITS);
             assert_eq!(dispatched, w);
         }
+        Ok(())
     }
 }

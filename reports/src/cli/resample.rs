@@ -61,9 +61,10 @@ pub struct ResampleArgs {
     pub output_shape: Option<Vec<usize>>,
 }
 
-/// What to evaluate: per-axis coordinate vectors, or an affine map.
+/// What to evaluate: per-axis coordinate vectors (formed only after the
+/// budget has accepted their size), or an affine map.
 enum Points {
-    Grid(Vec<Vec<f64>>),
+    Grid(Vec<Axis>),
     Affine {
         matrix: Vec<f64>,
         offset: Vec<f64>,
@@ -74,7 +75,7 @@ enum Points {
 impl Points {
     fn shape(&self) -> Vec<usize> {
         match self {
-            Points::Grid(axes) => axes.iter().map(Vec::len).collect(),
+            Points::Grid(axes) => axes.iter().map(|a| a.count).collect(),
             Points::Affine { shape, .. } => shape.clone(),
         }
     }
@@ -138,6 +139,10 @@ fn compute<T: Real + Copy + Send + Sync>(
         .map_err(|err| engine_error(&e.input, err))?;
     let done = match points {
         Points::Grid(axes) => {
+            let axes = axes
+                .iter()
+                .map(Axis::coordinates)
+                .collect::<Result<Vec<_>, _>>()?;
             let axes: Vec<&[f64]> = axes.iter().map(Vec::as_slice).collect();
             f.resample_grid(&axes, &vec![0; axes.len()], &mut out)
         }
@@ -177,29 +182,45 @@ fn per_axis(values: &[f64], ndim: usize, arg: &'static str) -> Result<Vec<f64>, 
 /// What the output array holds (named where it cannot be allocated).
 const OUT: &str = "the resampled values";
 
-/// scipy's `NI_ZoomShift` coordinate of output index `k`: `k + shift`, then
-/// `· zoom` (`grid_mode`: `+ ½`, `· zoom`, `− ½`); the vector allocated
-/// fallibly (an output axis too long to hold is an error, not an abort).
-fn zoom_shift_axis(
+/// One output axis of a zoom or shift: `count` indices `k`, whose
+/// coordinates are scipy's `NI_ZoomShift` ones, `k + shift`, then `· zoom`
+/// (`grid`: `+ ½`, `· zoom`, `− ½`).
+struct Axis {
     count: usize,
     zoom: Option<f64>,
     shift: Option<f64>,
     grid: bool,
-) -> Result<Vec<f64>, CliError> {
-    let mut axis =
-        try_with_capacity(count, "the output's coordinates").map_err(CliError::numerical)?;
-    axis.extend((0..count).map(|k| {
-        let mut c = k as f64;
-        if let Some(s) = shift {
-            c += s;
-        }
-        match zoom {
-            Some(z) if grid => (c + 0.5) * z - 0.5,
-            Some(z) => c * z,
-            None => c,
-        }
-    }));
-    Ok(axis)
+}
+
+impl Axis {
+    /// The coordinates, in a vector allocated fallibly (an axis too long
+    /// to hold is an error, not an abort).
+    fn coordinates(&self) -> Result<Vec<f64>, CliError> {
+        let mut axis = try_with_capacity(self.count, "the output's coordinates")
+            .map_err(CliError::numerical)?;
+        axis.extend((0..self.count).map(|k| {
+            let mut c = k as f64;
+            if let Some(s) = self.shift {
+                c += s;
+            }
+            match self.zoom {
+                Some(z) if self.grid => (c + 0.5) * z - 0.5,
+                Some(z) => c * z,
+                None => c,
+            }
+        }));
+        Ok(axis)
+    }
+}
+
+/// The [`Axis`] of `count` indices, `zoom`, `shift` and `grid` mode.
+fn zoom_shift_axis(count: usize, zoom: Option<f64>, shift: Option<f64>, grid: bool) -> Axis {
+    Axis {
+        count,
+        zoom,
+        shift,
+        grid,
+    }
 }
 
 fn points(args: &ResampleArgs, shape: &[usize]) -> Result<Points, CliError> {
@@ -223,7 +244,7 @@ fn points(args: &ResampleArgs, shape: &[usize]) -> Result<Points, CliError> {
                 let factor = if div != 0.0 { num / div } else { 1.0 };
                 zoom_shift_axis(m, Some(factor), None, args.grid_mode)
             })
-            .collect::<Result<_, _>>()?;
+            .collect();
         return Ok(Points::Grid(axes));
     }
     if let Some(s) = &args.shift {
@@ -232,7 +253,7 @@ fn points(args: &ResampleArgs, shape: &[usize]) -> Result<Points, CliError> {
             .iter()
             .zip(&s)
             .map(|(&n, &s)| zoom_shift_axis(n, None, Some(-s), false))
-            .collect::<Result<_, _>>()?;
+            .collect();
         return Ok(Points::Grid(axes));
     }
     if let Some(angle) = args.rotate {
@@ -274,7 +295,7 @@ fn affine_points(
                 .zip(m)
                 .zip(&offset)
                 .map(|((&k, &mk), &o)| zoom_shift_axis(k, Some(mk), Some(o / mk), false))
-                .collect::<Result<_, _>>()?;
+                .collect();
             Ok(Points::Grid(axes))
         }
         [r, c] if c == ndim + 1 && (r == ndim || r == ndim + 1) && m.len() == r * c => {
