@@ -29,7 +29,9 @@ Data: every dtype scipy takes (bool, integer, float, complex), any
 strides; ``output`` as in scipy (integer results rounded as scipy rounds
 them). Functions release the GIL while computing. Bad arguments raise
 ``ValueError`` (bad values, with the Rust engine's message) or ``TypeError``
-(wrong types).
+(wrong types), and where scipy raises ``RuntimeError`` a class of
+:mod:`splinelab.errors` that is both; an output or a work array that cannot
+be allocated raises ``MemoryError``, as scipy.
 
 >>> import numpy as np, splinelab
 >>> c = splinelab.spline_filter1d(np.array([0.0, 1.0, 8.0, 27.0]), order=3)
@@ -41,6 +43,7 @@ True
 from __future__ import annotations
 
 from . import _splinelab as _ext
+from . import errors
 from ._check import check
 from ._interpolant import Interpolant
 from ._ndimage import map_coordinates, spline_filter, spline_filter1d, spline_gradient

@@ -3,6 +3,8 @@ from typing import Any, Callable, Literal, Sequence
 import numpy as np
 import numpy.typing as npt
 
+from . import errors as errors
+
 __version__: str
 MAX_DEGREE: int
 

@@ -13,10 +13,16 @@ scipy computes every value in float64 and stores it with a C conversion
 interpolation functions round half away from zero and saturate (``t + 0.5``
 or ``t - 0.5`` in float64, clamped to the type's range, then truncated);
 the filters (``NI_LineBufferToArray``) truncate without rounding or
-clamping, as numpy's ``astype`` does. :func:`store_rounded` reproduces the
-first bit for bit, including what x86-64 gives where the C conversion is
-undefined (NaN, and 2**63 / 2**64 after rounding), as measured on scipy
-1.17.1 (python/tests/test_dtypes.py compares them live).
+clamping: a bare C cast, whose result outside the type's range is what
+x86-64 gives (:func:`c_convert`; numpy's ``astype`` differs there, e.g. a
+negative value into uint64). Booleans are scipy's ``npy_bool``, an unsigned
+char: the low byte of the truncated value (so 0.5 is False, -1.2 is True),
+which the filters read back as 0..255 when they filter the next axis.
+:func:`store_rounded` and :func:`store_truncated` reproduce both bit for
+bit, including what x86-64 gives where the C conversion is undefined (NaN,
+out of range), as measured on scipy 1.17.1 (python/tests/test_dtypes.py
+compares them live). A boolean result holds 0 or 1 (scipy's holds the low
+byte itself, which numpy reads as True wherever it is not 0).
 """
 
 from __future__ import annotations
@@ -24,6 +30,8 @@ from __future__ import annotations
 import warnings
 
 import numpy as np
+
+from .errors import DtypeError, OutputShapeError
 
 _NATIVE = (np.dtype(np.float64), np.dtype(np.float32))
 COMPUTE = ("float64", "float32")
@@ -75,7 +83,7 @@ def input_array(input, what="input"):
     float or complex."""
     a = np.asarray(input)
     if a.dtype.kind not in "biufc":
-        raise TypeError(f"{what} must be a numeric (bool, integer, float or complex) array, got dtype {a.dtype}")
+        raise DtypeError(f"{what} must be a numeric (bool, integer, float or complex) array, got dtype {a.dtype}")
     return a
 
 
@@ -85,24 +93,25 @@ def output_dtype(output, input_dtype, default, complex_input):
 
     Complex input with a real dtype given as a type or dtype is promoted to
     complex with a warning, as scipy does; a real dtype name or a real array
-    is refused (scipy: RuntimeError; here TypeError)."""
+    is refused with :class:`~splinelab.errors.DtypeError` (a TypeError that is
+    also scipy's RuntimeError)."""
     target = None
     if isinstance(output, np.ndarray):
         target, dtype = output, output.dtype
         if complex_input and dtype.kind != "c":
-            raise TypeError(f"output must have a complex dtype for complex input, got {dtype}")
+            raise DtypeError(f"output must have a complex dtype for complex input, got {dtype}")
     else:
         try:
             dtype = np.dtype(default if output is None else output)
         except TypeError as e:
-            raise TypeError(f"output must be a dtype, a dtype name or an array: {e}") from None
+            raise DtypeError(f"output must be a dtype, a dtype name or an array: {e}") from None
         if complex_input and dtype.kind != "c":
             if isinstance(output, str):
-                raise TypeError(f"output must have a complex dtype for complex input, got {output!r}")
+                raise DtypeError(f"output must have a complex dtype for complex input, got {output!r}")
             warnings.warn("promoting specified output dtype to complex", stacklevel=4)
             dtype = np.promote_types(dtype, np.complex64)
     if dtype.kind not in "biufc":
-        raise TypeError(f"output must have a numeric dtype, got {dtype}")
+        raise DtypeError(f"output must have a numeric dtype, got {dtype}")
     return dtype, target
 
 
@@ -118,16 +127,6 @@ def real_dtype(dtype):
     """The real dtype of one part of a complex dtype (itself when real)."""
     dtype = np.dtype(dtype)
     return np.empty(0, dtype).real.dtype
-
-
-def refuse_aliasing(target, *inputs):
-    """scipy writes ``output`` while it reads ``input``; an ``output`` that
-    shares memory with an input is refused rather than half overwritten."""
-    if target is None:
-        return
-    for a in inputs:
-        if isinstance(a, np.ndarray) and np.may_share_memory(target, a):
-            raise ValueError("output shares memory with the input: pass a separate array (or output=None)")
 
 
 def _round_signed(t, info, itemsize):
@@ -162,12 +161,70 @@ def _round_unsigned(t, info, itemsize):
     return np.trunc(r).astype(info.dtype)
 
 
+def _truncated(t, bits):
+    """x86-64's ``cvttsd2si`` to a ``bits``-bit register (as int64): ``t``
+    truncated toward zero, the register's minimum where that does not fit
+    (NaN, infinities, out of range)."""
+    lo = -(2.0 ** (bits - 1))
+    fits = (t >= lo) & (t < -lo)  # False for NaN
+    out = np.trunc(np.where(fits, t, 0.0)).astype(np.int64)
+    return np.where(fits, out, np.int64(lo))
+
+
+def c_convert(t, dtype):
+    """Values ``t`` (float64) converted to the integer or boolean ``dtype``
+    as a C cast ``(type) t`` compiles for x86-64 (gcc, SSE2): narrow types
+    take the low bits of a truncation to 32 bits, ``unsigned int`` of one
+    to 64 bits, ``long`` truncates to 64 bits, ``unsigned long`` subtracts
+    2**63 first from values at or above it; outside the range the register's
+    minimum (``INT_MIN``, ``LONG_MIN``) is what is cut. ``bool`` (scipy's
+    ``npy_bool``, an unsigned char) is the low byte, True where not 0."""
+    t = np.asarray(t, dtype=np.float64)
+    dtype = np.dtype(dtype)
+    if dtype.kind == "b":
+        return c_convert(t, np.uint8) != 0
+    unsigned = np.dtype(f"u{dtype.itemsize}")
+    if dtype.itemsize < 4 or dtype == np.int32:
+        bits = _truncated(t, 32)
+    elif dtype == np.uint64:
+        big = t >= 2.0**63
+        bits = np.where(big, _truncated(np.where(big, t - 2.0**63, 0.0), 64) ^ np.int64(-(2**63)), _truncated(t, 64))
+    else:
+        bits = _truncated(t, 64)
+    # The low bytes of the two's-complement register, as the type.
+    return bits.view(np.uint64).astype(unsigned).view(dtype)
+
+
 def _to_bool(t):
-    # scipy stores (npy_bool) t, an unsigned char: the value truncated to a
-    # 32-bit integer (out of range and NaN: INT_MIN), then its low byte.
-    fits = np.isfinite(t) & (t > -2.0**31 - 1) & (t < 2.0**31)
-    low = np.fmod(np.trunc(np.where(fits, t, 0.0)), 256.0)
-    return low != 0
+    return c_convert(t, np.bool_)
+
+
+# How far (in units in the last place of max(|t|, 1)) a computed value may
+# lie from an integer and still count as on it where it is truncated: the
+# evaluation's rounding is within about 2·ndim·(degree + 1) ulps of the
+# coefficients' magnitude (the separable sums' bound,
+# interpolant/separable.rs), a few ulps for the small-amplitude data
+# (masks, labels, flat regions) whose exact values are integers.
+NOISE_ULPS = 16
+
+
+def settled(t):
+    """``t`` (float64) with each value within :data:`NOISE_ULPS` ulps of an
+    integer moved onto it, for a truncating store (booleans; the filters'
+    integers): an identity transform of a boolean mask gives 1, computed as
+    1 - 2 ulps, which truncation would make False. So the stored result is
+    the exact value's, not the rounding's; scipy stores its own rounding's,
+    which lands on either side (2 of 20 True samples of
+    ``affine_transform(mask, identity, order=3)`` are False in scipy 1.17.1;
+    18 were in splinelab without this). Rounded stores (integers from the
+    interpolation functions) need none: a value a few ulps from a
+    half-integer is as likely a faithful value at a point a few ulps from
+    where the exact half lies."""
+    t = np.asarray(t, dtype=np.float64)
+    with np.errstate(invalid="ignore", over="ignore"):
+        grid = np.round(t)
+        near = np.abs(t - grid) <= NOISE_ULPS * np.spacing(np.maximum(np.abs(t), 1.0))
+    return np.where(near, grid, t)
 
 
 def store_rounded(t, dtype):
@@ -189,19 +246,20 @@ def store_rounded(t, dtype):
 
 def store_truncated(t, dtype):
     """Values ``t`` as scipy's filters store them into ``dtype``: a plain C
-    conversion (numpy's ``astype``; integers truncated toward zero; bool as
-    scipy's unsigned-char conversion, so 0.9999 is False)."""
-    if np.dtype(dtype).kind == "b":
-        return _to_bool(np.asarray(t, dtype=np.float64))
+    conversion (:func:`c_convert`: integers truncated toward zero, out of
+    range as x86-64 gives; bool as scipy's unsigned-char conversion, so
+    0.9999 is False); floats and complex as numpy converts them."""
+    if np.dtype(dtype).kind in "biu":
+        return c_convert(np.asarray(t, dtype=np.float64), dtype)
     with np.errstate(invalid="ignore", over="ignore"):
         return np.asarray(t).astype(np.dtype(dtype))
 
 
-class OutputShapeError(ValueError, RuntimeError):
-    """An ``output`` array whose shape is not the result's: a ValueError
-    (this package's error for bad values) that is also the RuntimeError
-    scipy raises there ("output shape not correct"), so code written for
-    scipy.ndimage catches it as before."""
+def carried_dtype(dtype):
+    """The dtype scipy's filters carry from one axis to the next for a
+    result of ``dtype``: ``npy_bool``'s bytes (0..255, read back as values)
+    for bool, ``dtype`` itself otherwise."""
+    return np.dtype(np.uint8) if np.dtype(dtype).kind == "b" else np.dtype(dtype)
 
 
 def check_output_shape(target, shape):

@@ -10,6 +10,7 @@ import numpy as np
 from . import _splinelab as _ext
 from . import _dtypes as _dt
 from . import _local
+from .errors import CoordinateShapeError, ModeError
 from ._validate import DEFAULT_TOL, _degree, _int, _mode, _nan_policy, _opt_float, _real_array, _threads, _tol_for
 
 _SCIPY_FILTER_RULE = {
@@ -29,9 +30,7 @@ _MODES = "mirror, reflect, grid-mirror, grid-wrap, wrap, nearest, grid-constant,
 def _filter_mode(mode, exact_edges):
     """The engine's filter for scipy's `mode` (its rule), or with
     `exact_edges` the exact extension for nearest / grid-constant (cval 0)."""
-    mode = _mode(mode)
-    if mode not in _SCIPY_FILTER_RULE:
-        raise ValueError(f"unknown mode {mode!r}: expected one of {_MODES}")
+    mode = _interp_mode(mode)
     if exact_edges and mode in _EXACT_EDGES:
         return mode
     return _SCIPY_FILTER_RULE[mode]
@@ -69,7 +68,8 @@ def _filter(input, axes, order, output, mode, tol, threads, exact_edges=False, c
     nan_policy = _nan_policy(nan_policy)
     tol, threads = _tol_for(tol, nan_policy, d), _threads(threads)
     spec = (d, rule, 0.0, tol, threads, bool(convolution), nan_policy)
-    if d < 2:
+    if d < 2 or a.size == 0:
+        # Degrees 0 and 1, and no samples (scipy returns the empty array):
         if nan_policy == "raise":
             _refuse_non_finite(a)
         # scipy: output[...] = input (numpy's conversion), no filter.
@@ -89,9 +89,12 @@ def _filter(input, axes, order, output, mode, tol, threads, exact_edges=False, c
     if dtype.kind == "f":
         # float16: every axis in the working dtype, then one rounding.
         return _dt.deliver(_filter_float(a, work, None, (axes, *spec), compute).astype(dtype), target, a.shape)
+    # Integers and booleans: axis by axis, each stored as scipy stores it
+    # and read back by the next (booleans as npy_bool's bytes, 0..255).
+    carried = _dt.carried_dtype(dtype)
     for axis in axes:
-        a = _dt.store_truncated(_filter_float(a, work, None, ([axis], *spec), compute), dtype)
-    return _dt.deliver(a, target, a.shape)
+        a = _dt.store_truncated(_dt.settled(_filter_float(a, work, None, ([axis], *spec), compute)), carried)
+    return _dt.deliver(a.astype(dtype, copy=False), target, a.shape)
 
 
 def _refuse_non_finite(a):
@@ -304,8 +307,9 @@ def map_coordinates(
 
     Data types as scipy's: bool, integer, float and complex input;
     ``output`` None (the input's dtype), a dtype, a dtype name or an array
-    of any dtype, byte order and strides that does not share memory with
-    ``input`` or ``coordinates``. Every input is computed in float64, as
+    of any dtype, byte order and strides (it may share memory with
+    ``input`` or ``coordinates``: the values are written into it once they
+    are all computed). Every input is computed in float64, as
     scipy computes it (complex: complex128, part by part; ``cval`` may be
     complex), and rounded once into the result: float32, complex64 and
     float16 results are the float64 values rounded once; integer and
@@ -459,7 +463,7 @@ def _flag(value, what):
 def _interp_mode(mode):
     mode = _mode(mode)
     if mode not in _SCIPY_FILTER_RULE:
-        raise ValueError(f"unknown mode {mode!r}: expected one of {_MODES}")
+        raise ModeError(f"unknown mode {mode!r}: expected one of {_MODES}")
     return mode
 
 
@@ -471,7 +475,7 @@ def _coordinates(coordinates, ndim):
     finite")`` without a serial pass over the array here."""
     at = _real_array(coordinates, "coordinates").astype(np.float64, copy=False)
     if at.ndim < 1 or at.shape[0] != ndim:
-        raise ValueError(f"coordinates must have shape ({ndim}, ...), got {at.shape}")
+        raise CoordinateShapeError(f"coordinates must have shape ({ndim}, ...), got {at.shape}")
     return at
 
 
@@ -494,11 +498,15 @@ def _interpolate(input, output, shape, cval, evaluate, *others, compute="float64
     as scipy rounds them (:func:`splinelab._dtypes.store_rounded`).
     ``compute="float32"``: float32 arithmetic instead (:class:`_dt.Work`).
     ``evaluate(a, cv, work)`` takes the real array the engine reads
-    (``work.samples``) and returns the flat values in ``work.dtype``."""
+    (``work.samples``) and returns the flat values in ``work.dtype``.
+    The values are computed into new arrays and only then written into
+    ``output``, so an ``output`` that shares memory with ``input`` or the
+    coordinates gets the same result as a separate one (scipy's too where it
+    reads a prefiltered copy, degrees 2 and above; at degrees 0 and 1 it
+    reads samples it has already overwritten)."""
     a = _dt.input_array(input)
     cplx = a.dtype.kind == "c"
     dtype, target = _dt.output_dtype(output, a.dtype, _dt.default_output(a.dtype, cplx), cplx)
-    _dt.refuse_aliasing(target, a, *[np.asarray(o) for o in others])
     _dt.check_output_shape(target, shape)
     cv = _cval(cval, cplx)
     work = _dt.Work(compute, _dt.real_dtype(dtype))
@@ -508,6 +516,8 @@ def _interpolate(input, output, shape, cval, evaluate, *others, compute="float64
         result.imag = evaluate(work.samples(a.imag), cv.imag, work).reshape(shape)
     else:
         values = evaluate(work.samples(a), cv, work).reshape(shape)
+        if dtype.kind == "b":
+            values = _dt.settled(values)  # truncated: see settled
         result = values if values.dtype == dtype else _dt.store_rounded(values, dtype)
     return _dt.deliver(result, target, shape)
 

@@ -22,6 +22,7 @@ import warnings
 import numpy as np
 
 from . import _dtypes as _dt
+from .errors import ArgumentTypeError, MappingError, MatrixShapeError, RankError, SequenceLengthError
 from ._ndimage import _Affine, _flag, _Grid, _interp_mode, _interpolate, _map_real
 from ._validate import DEFAULT_TOL, _degree, _int, _nan_policy, _threads, _tol_for
 
@@ -31,7 +32,7 @@ def _per_axis(value, ndim, what):
     if not isinstance(value, str) and np.iterable(value):
         values = list(value)
         if len(values) != ndim:
-            raise ValueError(f"{what} must have one value per axis ({ndim}), got {len(values)}")
+            raise SequenceLengthError(f"{what} must have one value per axis ({ndim}), got {len(values)}")
     else:
         values = [value] * ndim
     # A 0-d array counts as its number, as in scipy (np.iterable is False).
@@ -139,12 +140,16 @@ def zoom(input, zoom, output=None, order=3, mode="constant", cval=0.0, prefilter
     """
     a = np.asarray(input)
     if a.ndim < 1:
-        raise ValueError("input must have at least one dimension")
+        raise RankError("input must have at least one dimension")
     zooms = _per_axis(zoom, a.ndim, "zoom")
     out_shape = tuple(int(round(n * z)) for n, z in zip(a.shape, zooms))
     if any(m < 0 for m in out_shape):
         raise ValueError(f"zoom gives a negative output shape {out_shape}")
     spec = _Spec(order, mode, cval, prefilter, tol, threads, exact_edges, nan_policy, compute)
+    try:
+        _reserve_output(a, output, out_shape)
+    except ValueError as e:  # numpy's, for a shape beyond its largest: name the argument
+        raise ValueError(f"zoom={zoom!r} gives the output shape {out_shape}, which numpy cannot make: {e}") from None
     if all(z == 1 for z in zooms) and spec.prefilter:
         return _early_copy(a, output, out_shape)
     grid_mode = _flag(grid_mode, "grid_mode")
@@ -174,7 +179,7 @@ def shift(input, shift, output=None, order=3, mode="constant", cval=0.0, prefilt
     """
     a = np.asarray(input)
     if a.ndim < 1:
-        raise ValueError("input must have at least one dimension")
+        raise RankError("input must have at least one dimension")
     shifts = [-s for s in _per_axis(shift, a.ndim, "shift")]
     spec = _Spec(order, mode, cval, prefilter, tol, threads, exact_edges, nan_policy, compute)
     coords = _zoom_shift_coordinates(a.shape, shifts=shifts)
@@ -187,22 +192,46 @@ def _affine_parts(matrix, offset, ndim, out_ndim):
     the offset (then ``offset`` is ignored, as scipy)."""
     m = np.asarray(matrix, dtype=np.float64)
     if m.ndim not in (1, 2) or m.shape[0] < 1:
-        raise ValueError(f"matrix must be 1-D or 2-D, got shape {m.shape}")
+        raise MatrixShapeError(f"matrix must be 1-D or 2-D, got shape {m.shape}")
     if m.ndim == 2 and m.shape[1] == ndim + 1 and m.shape[0] in (ndim, ndim + 1):
         if m.shape[0] == ndim + 1:
             expected = [0] * ndim + [1]
             if not np.all(m[ndim] == expected):
-                raise ValueError(f"homogeneous matrix of shape {m.shape}: bottom row must be {expected}")
+                raise MatrixShapeError(f"homogeneous matrix of shape {m.shape}: bottom row must be {expected}")
         offset = m[:ndim, ndim]
         m = m[:ndim, :ndim]
     if m.shape[0] != ndim:
-        raise ValueError(f"matrix has {m.shape[0]} rows, expected {ndim} (the input's dimensions)")
+        raise MatrixShapeError(f"matrix has {m.shape[0]} rows, expected {ndim} (the input's dimensions)")
     if m.ndim == 2 and m.shape[1] != out_ndim:
-        raise ValueError(f"matrix has {m.shape[1]} columns, expected {out_ndim} (the output's dimensions)")
+        raise MatrixShapeError(f"matrix has {m.shape[1]} columns, expected {out_ndim} (the output's dimensions)")
     offsets = np.asarray(_per_axis(offset if np.ndim(offset) else float(offset), ndim, "offset"))
-    if not (np.isfinite(m).all() and np.isfinite(offsets).all()):
-        raise ValueError("matrix and offset must be finite")
     return np.ascontiguousarray(m), offsets
+
+
+def _reserve_output(a, output, shape):
+    """Allocates the result and lets it go, as scipy allocates its output
+    before any work: a result numpy cannot allocate, or a shape it cannot
+    make, raises numpy's MemoryError or ValueError (scipy's) at once, before
+    the prefilter runs or the points are formed. Untouched, the pages cost
+    nothing."""
+    if isinstance(output, np.ndarray):
+        return
+    a = _dt.input_array(a)
+    cplx = a.dtype.kind == "c"
+    with warnings.catch_warnings():  # the promotion warning comes with the result
+        warnings.simplefilter("ignore")
+        dtype, _ = _dt.output_dtype(output, a.dtype, _dt.default_output(a.dtype, cplx), cplx)
+    np.empty(shape, dtype)
+
+
+def _affine_points(m, offsets, out_shape):
+    """The points ``m @ o + offset`` of every output index ``o`` as an
+    array ``(ndim, prod(out_shape))``: for a matrix or offset that is not
+    finite, whose NaN and infinite points then get scipy's values there
+    (the engine generates finite points only)."""
+    index = np.indices(out_shape, dtype=np.float64).reshape(len(out_shape), -1)
+    with np.errstate(invalid="ignore", over="ignore"):
+        return m @ index + offsets[:, None]
 
 
 def _output_shape(output_shape, output, default):
@@ -240,19 +269,22 @@ def affine_transform(input, matrix, offset=0.0, output_shape=None, output=None, 
     """
     a = np.asarray(input)
     if a.ndim < 1:
-        raise ValueError("input must have at least one dimension")
+        raise RankError("input must have at least one dimension")
     out_shape = _output_shape(output_shape, output, a.shape)
     if len(out_shape) < 1:
-        raise ValueError("output must have at least one dimension")
+        raise RankError("output must have at least one dimension")
     m, offsets = _affine_parts(matrix, offset, a.ndim, len(out_shape))
     spec = _Spec(order, mode, cval, prefilter, tol, threads, exact_edges, nan_policy, compute)
+    _reserve_output(a, output, out_shape)
     if m.ndim == 1:
         if len(out_shape) != a.ndim:
-            raise ValueError(f"a diagonal matrix needs an output of {a.ndim} dimensions, got {out_shape}")
+            raise MatrixShapeError(f"a diagonal matrix needs an output of {a.ndim} dimensions, got {out_shape}")
         with np.errstate(divide="ignore", invalid="ignore"):
             shifts = offsets / m
         coords = _zoom_shift_coordinates(out_shape, zooms=m, shifts=shifts)
         return spec.on_grid(a, output, out_shape, coords)
+    if not (np.isfinite(m).all() and np.isfinite(offsets).all()):
+        return spec.at_points(a, output, out_shape, lambda _: _affine_points(m, offsets, out_shape))
     return spec.at_points(a, output, out_shape, lambda _: _Affine(m, offsets, out_shape))
 
 
@@ -284,6 +316,9 @@ def _rotation(angle, axes, shape, reshape):
     if not all(0 <= ax < ndim for ax in axes) or axes[0] == axes[1]:
         raise ValueError(f"invalid rotation plane specified: {axes}")
     axes.sort()
+    if not math.isfinite(angle):
+        # scipy's cosdg/sindg give 0 or NaN there: an empty or constant image.
+        raise ValueError(f"angle must be finite, got {angle}")
     c, s = _sincos_degrees(angle)
     rot = np.array([[c, s], [-s, c]])
     img_shape = np.asarray(shape)
@@ -361,27 +396,34 @@ def geometric_transform(input, mapping, output_shape=None, output=None, order=3,
     """
     a = np.asarray(input)
     if a.ndim < 1:
-        raise ValueError("input must have at least one dimension")
+        raise RankError("input must have at least one dimension")
     if not callable(mapping):
-        raise TypeError(f"mapping must be callable, got {type(mapping).__name__}")
+        raise MappingError(f"mapping must be callable, got {type(mapping).__name__}")
     out_shape = _output_shape(output_shape, None, a.shape)
     if len(out_shape) < 1:
-        raise ValueError("output must have at least one dimension")
-    kwargs = {} if extra_keywords is None else dict(extra_keywords)
-    extra = tuple(extra_arguments)
+        raise RankError("output must have at least one dimension")
+    try:
+        kwargs = {} if extra_keywords is None else dict(extra_keywords)
+        extra = tuple(extra_arguments)
+    except (TypeError, ValueError) as e:
+        raise ArgumentTypeError(f"extra_arguments must be a sequence and extra_keywords a mapping: {e}") from None
     spec = _Spec(order, mode, cval, prefilter, tol, threads, exact_edges, nan_policy, compute)
+    _reserve_output(a, output, out_shape)
     if vectorized:
         points = np.asarray(mapping(np.indices(out_shape, dtype=np.float64), *extra, **kwargs), dtype=np.float64)
         if points.shape != (a.ndim, *out_shape):
-            raise ValueError(f"mapping returned shape {points.shape}, expected {(a.ndim, *out_shape)}")
+            raise MappingError(f"mapping returned shape {points.shape}, expected {(a.ndim, *out_shape)}")
         points = points.reshape(a.ndim, -1)
     else:
         points = np.empty((a.ndim, math.prod(out_shape)))
         for k, index in enumerate(np.ndindex(*out_shape)):
             p = mapping(tuple(int(i) for i in index), *extra, **kwargs)
             if len(p) != a.ndim:
-                raise ValueError(f"mapping returned {len(p)} coordinates at {index}, expected {a.ndim}")
-            points[:, k] = p
+                raise MappingError(f"mapping returned {len(p)} coordinates at {index}, expected {a.ndim}")
+            try:
+                points[:, k] = p
+            except (TypeError, ValueError) as e:
+                raise MappingError(f"mapping returned {p!r} at {index}: not {a.ndim} numbers ({e})") from None
     if spec.nan_policy == "raise" and not np.isfinite(points).all():
         raise ValueError("mapping returned a non-finite coordinate")
     return spec.at_points(a, output, out_shape, lambda _: points)

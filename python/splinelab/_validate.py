@@ -7,6 +7,7 @@ import numbers
 import numpy as np
 
 from . import _splinelab as _ext
+from .errors import ArgumentTypeError, OrderError
 
 MAX_DEGREE = 199
 
@@ -17,15 +18,16 @@ MAX_DEGREE = 199
 MAX_INDEX = 2**63 - 1
 
 
-def _int(value, what, lo=None, hi=None):
-    """``value`` as an int, refused (naming ``what``) outside ``lo..hi``."""
+def _int(value, what, lo=None, hi=None, error=ValueError):
+    """``value`` as an int, refused (naming ``what``) outside ``lo..hi``
+    with ``error`` (a ValueError)."""
     if isinstance(value, bool) or not isinstance(value, numbers.Integral):
         raise TypeError(f"{what} must be an integer, got {type(value).__name__}")
     v = int(value)
     if (lo is not None and v < lo) or (hi is not None and v > hi):
         lo_s = "" if lo is None else str(lo)
         hi_s = "" if hi is None else str(hi)
-        raise ValueError(f"{what} {v} is outside {lo_s}..{hi_s}")
+        raise error(f"{what} {v} is outside {lo_s}..{hi_s}")
     return v
 
 
@@ -35,7 +37,7 @@ def _count(value, what):
 
 
 def _degree(order):
-    return _int(order, "order (the spline degree)", 0, MAX_DEGREE)
+    return _int(order, "order (the spline degree)", 0, MAX_DEGREE, OrderError)
 
 
 def _degree_or_order(degree, order, default=3):
@@ -73,7 +75,7 @@ def _threads(threads):
 
 def _mode(mode):
     if not isinstance(mode, str):
-        raise TypeError(f"mode must be a string, got {type(mode).__name__}")
+        raise ArgumentTypeError(f"mode must be a string, got {type(mode).__name__}")
     return mode
 
 

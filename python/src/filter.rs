@@ -22,7 +22,7 @@
 //! the pool first.
 
 use crate::cache;
-use crate::error::value_error;
+use crate::error::{engine_error, value_error};
 use crate::pool::run_with;
 use crate::with_samples;
 use ndarray::{ArrayView1, ArrayViewD, ArrayViewMut1, ArrayViewMutD};
@@ -184,7 +184,7 @@ where
     // pass over the input. On failure `d` holds garbage and the error says why.
     d.copy_from_slice(s);
     f.apply(d, &mut Vec::new());
-    if d[0].is_finite() {
+    if d.first().is_some_and(|x| x.is_finite()) {
         return Ok(());
     }
     if s.iter().any(|x| !x.is_finite()) {
@@ -267,7 +267,7 @@ where
             filter_into::<T, E, O>(src, &mut out, &axes, &spec)
         })
     })?
-    .map_err(value_error)
+    .map_err(engine_error)
 }
 
 /// [`filter_generic`] in float64 into `output` of `O`, from `input` (a

@@ -17,7 +17,7 @@ use crate::error::{engine_error, value_error};
 use crate::pool::run_with;
 use crate::with_samples;
 use ndarray::ArrayViewD;
-use numpy::{Element, PyArray1, PyArrayMethods, PyReadonlyArray2, PyReadonlyArrayDyn};
+use numpy::{Element, PyArrayMethods, PyReadonlyArray2, PyReadonlyArrayDyn};
 use pyo3::prelude::*;
 use splinelab::ndimage::interpolant::PointRule;
 use splinelab::ndimage::samples::{Sample, Stored};
@@ -104,7 +104,8 @@ where
     } else {
         PointRule::Fold
     };
-    let result = PyArray1::<O>::zeros(py, at.ncols(), false);
+    // numpy's allocation: a result it cannot allocate is `MemoryError`.
+    let result = crate::alloc::zeros::<O>(py, &[at.ncols()])?;
     let mut view = result.readwrite();
     let out = view.as_slice_mut()?;
     let run = || {

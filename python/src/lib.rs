@@ -4,16 +4,29 @@
 //!
 //! Every function here takes already-normalised arguments (dtype, axes,
 //! mode name), releases the GIL while it computes, and turns every Rust
-//! error into a Python `ValueError` carrying the Rust message.
+//! error into a Python exception carrying the Rust message (`ValueError`,
+//! or `MemoryError` where an allocation is refused: [`error`]).
+//!
+//! No call may end in a Rust panic (pyo3's `PanicException`, which derives
+//! from `BaseException`, so `except Exception` does not catch it): the
+//! lints below refuse `unwrap`, `expect`, `panic!`, `unreachable!` and
+//! indexing that can panic in this crate, and results are allocated by
+//! numpy ([`alloc`]) or fallibly by the engine. python/tests/test_no_panics.py
+//! checks that they stay denied.
 
+#![deny(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
+#![deny(clippy::indexing_slicing, clippy::unreachable)]
+#![deny(clippy::todo, clippy::unimplemented)]
+
+mod alloc;
 mod cache;
 mod check;
 mod cli;
 mod error;
 mod filter;
 mod interp;
-mod pages;
 mod local;
+mod pages;
 mod pool;
 mod resample;
 mod samples;

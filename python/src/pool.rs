@@ -104,7 +104,7 @@ mod spread {
         };
         (rc == 0).then(|| {
             (0..WORDS * 64)
-                .filter(|&c| mask[c / 64] >> (c % 64) & 1 == 1)
+                .filter(|&c| mask.get(c / 64).is_some_and(|w| w >> (c % 64) & 1 == 1))
                 .collect()
         })
     }
@@ -112,8 +112,11 @@ mod spread {
     #[cfg(target_os = "linux")]
     fn restrict(cpus: &[usize]) {
         let mut mask = [0u64; WORDS];
+        // CPUs beyond the mask's 1024 are left out (a hint, not a promise).
         for &c in cpus {
-            mask[c / 64] |= 1 << (c % 64);
+            if let Some(w) = mask.get_mut(c / 64) {
+                *w |= 1 << (c % 64);
+            }
         }
         // SAFETY: the kernel reads `size_of_val(&mask)` bytes from `mask`;
         // a refusal leaves the thread's affinity as it was (a hint).

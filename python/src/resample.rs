@@ -13,9 +13,7 @@ use crate::interp::{Coefficients, interpolant, options};
 use crate::pool::run_with;
 use crate::with_samples;
 use ndarray::ArrayViewD;
-use numpy::{
-    Element, PyArrayDyn, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2, PyReadonlyArrayDyn,
-};
+use numpy::{Element, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2, PyReadonlyArrayDyn};
 use pyo3::prelude::*;
 use splinelab::ndimage::interpolant::PointRule;
 use splinelab::ndimage::samples::{Sample, Stored};
@@ -43,7 +41,9 @@ where
         .map(|c| c.as_slice())
         .collect::<Result<_, _>>()?;
     let shape: Vec<usize> = axes.iter().map(|x| x.len()).collect();
-    let result = PyArrayDyn::<O>::zeros(py, shape, false);
+    // numpy's allocation (huge pages where it can); one it cannot
+    // allocate is `MemoryError`, as scipy's.
+    let result = crate::alloc::zeros::<O>(py, &shape)?;
     let mut view = result.readwrite();
     let out = view.as_slice_mut()?;
     let run = || {
@@ -146,7 +146,7 @@ where
     E: Sample<T>,
     O: Stored<T> + Element,
 {
-    let result = PyArrayDyn::<O>::zeros(py, map.out_shape.clone(), false);
+    let result = crate::alloc::zeros::<O>(py, &map.out_shape)?;
     let mut view = result.readwrite();
     let out = view.as_slice_mut()?;
     let run = || {

@@ -194,7 +194,15 @@ fn npy_bytes<A: ndarray_npy::WritableElement>(
 ) -> Result<Vec<u8>, CliError> {
     use ndarray_npy::WriteNpyExt;
     let a = ArrayD::from_shape_vec(shape.to_vec(), data).map_err(CliError::numerical)?;
+    // The header (under 128 bytes for any shape the engine writes) and the values.
+    let size = a
+        .len()
+        .saturating_mul(std::mem::size_of::<A>())
+        .saturating_add(128);
     let mut bytes = Vec::new();
+    bytes.try_reserve_exact(size).map_err(|_| {
+        CliError::numerical(format!("cannot allocate {size} bytes for the .npy output"))
+    })?;
     a.write_npy(&mut bytes).map_err(CliError::numerical)?;
     Ok(bytes)
 }
@@ -244,13 +252,12 @@ pub fn read_samples_as(path: &Path, finite: bool) -> Result<(ArrayD<f64>, UserFo
             format!("no samples (shape {:?})", a.shape),
         ));
     }
-    if finite && let Some(i) = a.data.iter().position(|x| !x.is_finite()) {
+    if finite && let Some((i, x)) = a.data.iter().enumerate().find(|(_, x)| !x.is_finite()) {
         return Err(input_error(
             path,
             format!(
-                "sample {:?} is {} (every sample must be finite)",
+                "sample {:?} is {x} (every sample must be finite)",
                 unravel(i, &a.shape),
-                a.data[i]
             ),
         ));
     }
@@ -262,8 +269,8 @@ pub fn read_samples_as(path: &Path, finite: bool) -> Result<(ArrayD<f64>, UserFo
 /// The multi-index of flat C-order position `i` in `shape`.
 pub fn unravel(mut i: usize, shape: &[usize]) -> Vec<usize> {
     let mut idx = vec![0; shape.len()];
-    for (k, &n) in shape.iter().enumerate().rev() {
-        idx[k] = i % n.max(1);
+    for (k, &n) in idx.iter_mut().zip(shape).rev() {
+        *k = i % n.max(1);
         i /= n.max(1);
     }
     idx
@@ -297,12 +304,13 @@ pub fn interp_input(
             ));
         }
     };
-    let data = &c.data;
+    // `c.data` holds `dims` rows of `count` (its shape says so); made point-major.
+    let rows: Vec<&[f64]> = c.data.chunks_exact(count.max(1)).take(dims).collect();
     Ok(InterpInput {
         samples: samples_arr.data,
         shape: samples_arr.shape,
         points: (0..count)
-            .flat_map(|k| (0..dims).map(move |a| data[a * count + k]))
+            .flat_map(|k| rows.iter().filter_map(move |row| row.get(k).copied()))
             .collect(),
         user,
         format,

@@ -180,8 +180,8 @@ pub fn excerpt(text: &str) -> String {
     if shown.len() <= QUOTE_CAP {
         return shown.into_iter().collect();
     }
-    let head: String = shown[..QUOTE_CAP - 20].iter().collect();
-    let tail: String = shown[shown.len() - 12..].iter().collect();
+    let head: String = shown.iter().take(QUOTE_CAP - 20).collect();
+    let tail: String = shown.iter().skip(shown.len() - 12).collect();
     format!("{head}…[{} characters]…{tail}", shown.len() - QUOTE_CAP + 8)
 }
 

@@ -75,13 +75,16 @@ pub struct NpyLayout {
 /// (one line, printable: the header's own text is shown escaped).
 pub fn validate(bytes: &[u8]) -> Result<NpyLayout, String> {
     let (prefix, header_len) = header_span(bytes)?;
-    let dict = &bytes[prefix..prefix + header_len];
+    // `header_span` checked that the header lies inside `bytes`.
+    let truncated = || format!("truncated .npy header: {header_len} bytes claimed");
+    let head = bytes.get(..prefix + header_len).ok_or_else(truncated)?;
+    let dict = head.get(prefix..).ok_or_else(truncated)?;
     if nesting(dict) > MAX_HEADER_NESTING {
         return Err(format!(
             "malformed .npy header: brackets nested deeper than {MAX_HEADER_NESTING}"
         ));
     }
-    let header = Header::from_reader(&mut &bytes[..prefix + header_len]).map_err(|e| {
+    let header = Header::from_reader(&mut &head[..]).map_err(|e| {
         let why = e.to_string();
         let why = why
             .lines()

@@ -56,8 +56,7 @@ impl PendingFiles {
 
     /// Renames every temporary over its target.
     pub fn commit(mut self) -> Result<(), CliError> {
-        while !self.moves.is_empty() {
-            let (path, tmp) = &self.moves[0];
+        while let Some((path, tmp)) = self.moves.first() {
             std::fs::rename(tmp, path).map_err(|e| output_error(path, e))?;
             self.moves.remove(0);
         }
@@ -304,8 +303,11 @@ pub fn cap_echo(message: &str) -> String {
         let n = word.chars().count();
         if n > ECHO_CAP {
             let head: String = word.chars().take(40).collect();
-            let tail: String = word.chars().skip(n - 16).collect();
-            out.push_str(&format!("{head}…[{} characters omitted]…{tail}", n - 56));
+            let tail: String = word.chars().skip(n.saturating_sub(16)).collect();
+            out.push_str(&format!(
+                "{head}…[{} characters omitted]…{tail}",
+                n.saturating_sub(56)
+            ));
         } else {
             out.push_str(word);
         }

@@ -6,6 +6,7 @@
 
 use super::NdimageError;
 use crate::scalar::Real;
+use ndarray::{Array, ArrayBase, CowArray, Data, Dimension};
 use rayon::prelude::*;
 
 /// `n` copies of `value` in a new vector, or [`NdimageError::OutOfMemory`]
@@ -21,9 +22,126 @@ pub fn try_filled<T: Clone>(
     value: T,
     what: &'static str,
 ) -> Result<Vec<T>, NdimageError> {
-    let mut v = try_capacity(n, what)?;
+    let mut v = try_with_capacity(n, what)?;
     v.resize(n, value);
     Ok(v)
+}
+
+/// An empty vector with room for `n` elements, or
+/// [`NdimageError::OutOfMemory`] naming `what` (for vectors filled by
+/// `extend` or `push` rather than with one value).
+///
+/// ```
+/// use splinelab::ndimage::alloc::try_with_capacity;
+/// assert!(try_with_capacity::<f64>(10, "test").unwrap().capacity() >= 10);
+/// assert!(try_with_capacity::<f64>(usize::MAX / 4, "test").is_err());
+/// ```
+pub fn try_with_capacity<T>(n: usize, what: &'static str) -> Result<Vec<T>, NdimageError> {
+    let mut v = Vec::new();
+    v.try_reserve_exact(n)
+        .map_err(|_| out_of_memory::<T>(n, what))?;
+    Ok(v)
+}
+
+/// The number of elements of an array of `shape`, or
+/// [`NdimageError::OutOfMemory`] naming `what` where the product overflows
+/// `usize` (an array that large cannot be allocated either).
+///
+/// ```
+/// use splinelab::ndimage::alloc::checked_len;
+/// assert_eq!(checked_len(&[3, 4, 5], "test").unwrap(), 60);
+/// assert!(checked_len(&[1 << 40, 1 << 40], "test").is_err());
+/// ```
+pub fn checked_len(shape: &[usize], what: &'static str) -> Result<usize, NdimageError> {
+    shape
+        .iter()
+        .try_fold(1usize, |n, &k| n.checked_mul(k))
+        .ok_or(NdimageError::OutOfMemory {
+            bytes: usize::MAX,
+            what,
+        })
+}
+
+/// An array of `shape` (C order) filled with `value`, allocated fallibly
+/// ([`try_filled`]; a shape whose size overflows is
+/// [`NdimageError::OutOfMemory`] too).
+///
+/// ```
+/// use splinelab::ndimage::alloc::try_array;
+/// let a = try_array(ndarray::Ix2(2, 3), 1.5f64, "test").unwrap();
+/// assert_eq!(a, ndarray::Array2::from_elem((2, 3), 1.5));
+/// assert!(try_array(ndarray::IxDyn(&[1 << 40, 1 << 40]), 0.0f64, "test").is_err());
+/// ```
+pub fn try_array<T: Clone, D: Dimension>(
+    shape: D,
+    value: T,
+    what: &'static str,
+) -> Result<Array<T, D>, NdimageError> {
+    let n = checked_len(shape.slice(), what)?;
+    shaped(shape, try_filled(n, value, what)?)
+}
+
+/// An owned copy of `a` in C order, allocated fallibly (ndarray's
+/// `to_owned` aborts where the allocator refuses; a zero-stride view from
+/// `np.broadcast_to` can ask for far more than the memory it occupies).
+///
+/// ```
+/// use splinelab::ndimage::alloc::try_to_owned;
+/// let a = ndarray::array![[1.0, 2.0], [3.0, 4.0]];
+/// assert_eq!(try_to_owned(&a.t(), "test").unwrap(), a.t().to_owned());
+/// ```
+pub fn try_to_owned<T, S, D>(
+    a: &ArrayBase<S, D>,
+    what: &'static str,
+) -> Result<Array<T, D>, NdimageError>
+where
+    T: Clone,
+    S: Data<Elem = T>,
+    D: Dimension,
+{
+    let mut v = try_with_capacity(a.len(), what)?;
+    v.extend(a.iter().cloned());
+    shaped(a.raw_dim(), v)
+}
+
+/// `a` itself where it is in C order, else a C-ordered copy allocated
+/// fallibly ([`try_to_owned`]): ndarray's `as_standard_layout` with the
+/// copy's allocation failure an error instead of an abort.
+///
+/// ```
+/// use splinelab::ndimage::alloc::try_standard_layout;
+/// let a = ndarray::array![[1.0, 2.0], [3.0, 4.0]];
+/// let t = a.t();
+/// let c = try_standard_layout(&t, "test").unwrap();
+/// assert!(c.is_standard_layout() && c == t);
+/// ```
+pub fn try_standard_layout<'a, T, S, D>(
+    a: &'a ArrayBase<S, D>,
+    what: &'static str,
+) -> Result<CowArray<'a, T, D>, NdimageError>
+where
+    T: Clone,
+    S: Data<Elem = T>,
+    D: Dimension,
+{
+    if a.is_standard_layout() {
+        return Ok(CowArray::from(a.view()));
+    }
+    try_to_owned(a, what).map(CowArray::from)
+}
+
+/// `v` (C order) as an array of `shape`; a length that does not match is
+/// [`NdimageError::BufferLength`] (the callers build `v` from `shape`).
+fn shaped<T, D: Dimension>(shape: D, v: Vec<T>) -> Result<Array<T, D>, NdimageError> {
+    let (expected, got) = (shape.size(), v.len());
+    Array::from_shape_vec(shape, v).map_err(|_| NdimageError::BufferLength { expected, got })
+}
+
+fn out_of_memory<T>(n: usize, what: &'static str) -> NdimageError {
+    NdimageError::OutOfMemory {
+        bytes: n.saturating_mul(std::mem::size_of::<T>()),
+        what,
+    }
 }
 
 /// `n` zeros in a new vector for a large work array the engine writes
@@ -41,7 +159,7 @@ pub fn try_filled<T: Clone>(
 /// assert!(try_zeros::<f64>(usize::MAX / 4, "coefficients").is_err());
 /// ```
 pub fn try_zeros<T: Real>(n: usize, what: &'static str) -> Result<Vec<T>, NdimageError> {
-    let mut v: Vec<T> = try_capacity(n, what)?;
+    let mut v: Vec<T> = try_with_capacity(n, what)?;
     advise_huge_pages(
         v.as_ptr().cast(),
         n.saturating_mul(std::mem::size_of::<T>()),
@@ -80,17 +198,6 @@ pub fn try_padded_zeros<T: Real>(
         .try_fold(1usize, |t, &n| t.checked_mul(n))
         .ok_or(too_large)?;
     Ok((padded, try_zeros(total, what)?))
-}
-
-/// An empty vector with room for exactly `n` values, or the error.
-fn try_capacity<T>(n: usize, what: &'static str) -> Result<Vec<T>, NdimageError> {
-    let mut v = Vec::new();
-    v.try_reserve_exact(n)
-        .map_err(|_| NdimageError::OutOfMemory {
-            bytes: n.saturating_mul(std::mem::size_of::<T>()),
-            what,
-        })?;
-    Ok(v)
 }
 
 #[cfg(target_os = "linux")]

@@ -35,7 +35,8 @@ pub enum NdimageError {
     /// Samples so large that the coefficients could overflow the scalar.
     #[error(
         "samples up to {max:e} could overflow: the filter forms values up to {growth:e} × max|s| per axis; \
-         scale the data below {limit:e} (or use --prec / an MPFR scalar)"
+         scale the data below {limit:e}, use a lower degree, or compute in MPFR (the command \
+         line's --prec BITS, an Mp scalar in Rust)"
     )]
     Overflow {
         /// The largest |sample| (or |cval|).
@@ -44,6 +45,20 @@ pub enum NdimageError {
         growth: f64,
         /// The largest safe |sample|.
         limit: f64,
+    },
+    /// A degree whose filter's growth bound alone exceeds the scalar's
+    /// range along `axes` axes (no data is safe): `fits` a lower degree that
+    /// the data fits, if any; MPFR has the range for any degree.
+    #[error("{}", describe_degree_range(*degree, *axes, *bits, *fits))]
+    DegreeRange {
+        /// The degree asked for.
+        degree: u32,
+        /// The axes filtered.
+        axes: usize,
+        /// The scalar's significand bits (24: f32, 53: f64).
+        bits: u32,
+        /// A degree whose filter the data fits (the largest such, as found by bisection).
+        fits: Option<u32>,
     },
     /// A point has the wrong number of coordinates.
     #[error("a point has {got} coordinates, the array has {expected} dimensions")]
@@ -149,6 +164,20 @@ pub enum NdimageError {
     /// rules: mirror, reflect, grid-wrap).
     #[error("the prefilter's mode {0} is not one of mirror, reflect, grid-wrap")]
     FilterMode(Mode),
+}
+
+fn describe_degree_range(degree: u32, axes: usize, bits: u32, fits: Option<u32>) -> String {
+    let scalar = if bits <= 24 { "float32" } else { "float64" };
+    let plural = if axes == 1 { "axis" } else { "axes" };
+    let lower = match fits {
+        Some(d) => format!("degree {d} and below fit {scalar} for this data"),
+        None => format!("no degree above 1 fits {scalar} for this data"),
+    };
+    format!(
+        "degree {degree} cannot be filtered in {scalar} along {axes} {plural}: the bound on its \
+         filter's growth exceeds {scalar}'s range whatever the data; {lower}, and MPFR fits every \
+         degree (the command line's --prec BITS, an Mp scalar in Rust)"
+    )
 }
 
 impl From<PrefilterError> for NdimageError {

@@ -211,17 +211,18 @@ impl<T: Real> LineFilter<T> {
     /// Generous (cubic: 44.8), so that data below `MAX / growth` can never
     /// overflow. `O(p)`.
     pub fn growth(&self) -> f64 {
-        let r = &self.recursive;
-        r.poles().iter().fold(r.gain().to_f64().abs(), |g, z| {
-            g * (2.0 / (1.0 - z.to_f64().abs())).powi(2)
-        })
+        growth_of(&self.recursive)
     }
 
     /// Refuses data of largest magnitude `max_abs` that the filter could
     /// overflow along `axes` axes: for scalars of at most 53 bits (f32,
     /// f64), `max(max_abs, |cval|) · growth^axes` must stay below the
-    /// largest finite value ([`Self::growth`]); MPFR's exponent range makes
-    /// overflow unreachable. `O(p)`.
+    /// largest finite value ([`Self::growth`]; `cval` only under
+    /// `grid-constant`, the one mode that extends by it); MPFR's exponent
+    /// range makes overflow unreachable. `O(p)`; where `growth^axes` alone
+    /// exceeds the range (a high degree), [`NdimageError::DegreeRange`]
+    /// names a degree that fits, found by bisection over the degrees
+    /// (`O(log d)` pole computations, on this error path only).
     ///
     /// **Method**: compares `max(max_abs, |cval|) · growth^axes` with the scalar's largest
     /// value. **Accuracy**: a sufficient bound (never refuses data that cannot overflow by more
@@ -266,12 +267,35 @@ impl<T: Real> LineFilter<T> {
         top: f64,
     ) -> Result<(), NdimageError> {
         let growth = self.growth();
-        let limit = top / growth.powi(axes as i32);
-        let max = max_abs.max(self.cval.to_f64().abs());
+        let axes_i = i32::try_from(axes).unwrap_or(i32::MAX);
+        let limit = top / growth.powi(axes_i);
+        let max = match self.mode {
+            Mode::GridConstant => max_abs.max(self.cval.to_f64().abs()),
+            _ => max_abs,
+        };
         if max <= limit {
             return Ok(());
         }
-        Err(NdimageError::Overflow { max, growth, limit })
+        if limit > 0.0 {
+            return Err(NdimageError::Overflow { max, growth, limit });
+        }
+        // No data is safe at this degree: say which degree is.
+        let SplineFamily::Order(order) = *self.recursive.family() else {
+            return Err(NdimageError::Overflow { max, growth, limit });
+        };
+        let degree = order.saturating_sub(1);
+        let fits = |d: u32| {
+            SplineFamily::order(d + 1)
+                .ok()
+                .and_then(|f| RecursivePrefilter::<f64>::new(&f).ok())
+                .is_some_and(|r| max.max(f64::MIN_POSITIVE) * growth_of(&r).powi(axes_i) <= top)
+        };
+        Err(NdimageError::DegreeRange {
+            degree,
+            axes,
+            bits: T::BITS,
+            fits: largest_true(2, degree, fits),
+        })
     }
 
     /// The certified half-width `W` of `tol` (the convolution's half-width,
@@ -1289,9 +1313,98 @@ fn anticausal_start<T: Real>(c: &[T], z: &T, horizon: usize, mode: Mode) -> T {
     }
 }
 
+/// [`LineFilter::growth`] of a recursive filter.
+fn growth_of<T: Real>(r: &RecursivePrefilter<T>) -> f64 {
+    r.poles().iter().fold(r.gain().to_f64().abs(), |g, z| {
+        g * (2.0 / (1.0 - z.to_f64().abs())).powi(2)
+    })
+}
+
+/// The largest `d` in `lo..hi` with `holds(d)`, by bisection (assuming
+/// `holds` is true up to some degree and false above it, as the growth of
+/// the filters rises with the degree; what is returned holds in any case),
+/// `None` where `holds(lo)` is false.
+fn largest_true(lo: u32, hi: u32, holds: impl Fn(u32) -> bool) -> Option<u32> {
+    if lo >= hi || !holds(lo) {
+        return None;
+    }
+    let (mut good, mut bad) = (lo, hi);
+    while bad - good > 1 {
+        let mid = good + (bad - good) / 2;
+        if holds(mid) {
+            good = mid;
+        } else {
+            bad = mid;
+        }
+    }
+    Some(good)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    fn exact(order: u32, mode: Mode, cval: f64) -> LineFilter<f64> {
+        LineFilter::new(&SplineFamily::Order(order), mode, cval, Route::Exact).unwrap()
+    }
+
+    /// Degree 199's growth bound overflows f64 along two axes whatever the
+    /// data: the refusal names the degree 199, the axes, and a degree the
+    /// data fits — one whose check passes while the next one's does not —
+    /// and the MPFR route; never "scale the data below 0e0".
+    #[test]
+    fn a_degree_beyond_the_range_names_one_that_fits() {
+        let e = exact(200, Mode::Mirror, 0.0)
+            .check_magnitude(0.5, 2)
+            .unwrap_err();
+        let NdimageError::DegreeRange {
+            degree: 199,
+            axes: 2,
+            bits: 53,
+            fits: Some(d),
+        } = e
+        else {
+            panic!("{e}");
+        };
+        assert!(
+            exact(d + 1, Mode::Mirror, 0.0)
+                .check_magnitude(0.5, 2)
+                .is_ok()
+        );
+        assert!(
+            exact(d + 2, Mode::Mirror, 0.0)
+                .check_magnitude(0.5, 2)
+                .is_err()
+        );
+        let message = e.to_string();
+        assert!(
+            message.contains(&format!("degree {d} and below fit float64"))
+                && message.contains("--prec")
+        );
+        assert!(!message.contains("0e0"), "{message}");
+    }
+
+    /// `cval` counts towards the overflow check only under `grid-constant`,
+    /// the one mode whose extension holds it (scipy's 'constant' filters
+    /// with the mirror rule and puts `cval` outside, even infinite).
+    #[test]
+    fn cval_counts_only_where_the_mode_extends_by_it() {
+        for mode in [Mode::Mirror, Mode::Reflect, Mode::GridWrap, Mode::Nearest] {
+            assert!(
+                exact(4, mode, f64::INFINITY)
+                    .check_magnitude(1.0, 1)
+                    .is_ok(),
+                "{mode}"
+            );
+        }
+        let e = exact(4, Mode::GridConstant, 1e308)
+            .check_magnitude(1.0, 1)
+            .unwrap_err();
+        assert!(
+            matches!(e, NdimageError::Overflow { max, .. } if max == 1e308),
+            "{e}"
+        );
+    }
 
     /// The two poles' passes as one pass down and one up ([`Cascade`]:
     /// its starts derived from the symmetry of the result) against 128-bit

@@ -56,6 +56,7 @@
 
 use super::NdimageError;
 use super::alloc::try_padded_zeros;
+use super::alloc::try_to_owned;
 use super::block_filter::BlockPrefilter;
 use super::lanes;
 use super::line_filter::{LineFilter, RowCheck};
@@ -191,7 +192,7 @@ where
     S: DataMut<Elem = O>,
     D: Dimension,
 {
-    let src = a.to_owned();
+    let src = try_to_owned(a, "a copy of the samples with missing ones")?;
     filter_missing(&src, a, axes, filter)
 }
 
@@ -1213,7 +1214,8 @@ fn padded_array<T: Real, D: Dimension>(
 ) -> Result<Array<T, D>, NdimageError> {
     let (padded, v) = try_padded_zeros(dim.slice(), pad, "padded coefficients")?;
     dim.slice_mut().copy_from_slice(&padded);
-    Ok(Array::from_shape_vec(dim, v).expect("the padded shape"))
+    let (expected, got) = (dim.size(), v.len());
+    Array::from_shape_vec(dim, v).map_err(|_| NdimageError::BufferLength { expected, got })
 }
 
 /// The elements of the padded array `c` away from its pads.

@@ -247,6 +247,11 @@ impl<T: Real> RecursivePrefilter<T> {
         self.amplification * (-(T::BITS as f64)).exp2()
     }
 
+    /// The spline family this filter inverts.
+    pub fn family(&self) -> &SplineFamily {
+        &self.family
+    }
+
     /// The poles `ξ_r ∈ (−1, 0)`, nearest 0 first.
     pub fn poles(&self) -> &[T] {
         &self.poles

@@ -172,22 +172,58 @@ fn row<T: Real>(prec: Prec, value: &T, bound: &T, extrapolated: bool) -> Row {
 /// Compares each row with the exact value of the Bernstein polynomial of the
 /// f64 inputs (rational de Casteljau, [`de_casteljau_exact`]): an independent
 /// reference, since no rounding enters it.
-pub fn accuracy(input: &BezierEvalInput, rows: &[Row], prec: Prec) -> Vec<Accuracy> {
-    let q = |x: f64| Rational::from_f64(x).expect("inputs are finite (JSON)");
-    let b: Vec<Rational> = input.coeffs.iter().map(|&c| q(c)).collect();
+pub fn accuracy(
+    input: &BezierEvalInput,
+    rows: &[Row],
+    prec: Prec,
+) -> Result<Vec<Accuracy>, CliError> {
+    // JSON numbers are finite; the check keeps a non-finite one an error.
+    let q = |x: f64| {
+        Rational::from_f64(x).ok_or_else(|| CliError::numerical(format!("input {x} is not finite")))
+    };
+    let b: Vec<Rational> = input
+        .coeffs
+        .iter()
+        .map(|&c| q(c))
+        .collect::<Result<_, _>>()?;
     input
         .t
         .par_iter()
         .zip(rows.par_iter())
-        .map(|(&t, r)| compare_exact(&de_casteljau_exact(&b, &q(t)), &r.exact, prec))
+        .map(|(&t, r)| {
+            Ok(compare_exact(
+                &de_casteljau_exact(&b, &q(t)?),
+                &r.exact,
+                prec,
+            ))
+        })
         .collect()
 }
 
 fn compare_exact(exact: &Rational, value: &Float, prec: Prec) -> Accuracy {
     let max_digits = prec.digits() as f64;
-    let v = value.to_rational().expect("finite value");
-    let err = Rational::from(&v - exact).abs();
-    let abs = Float::with_val(64, &err);
+    // A value that overflowed (a non-finite result of finite inputs) is
+    // infinitely far from the exact one.
+    let err = value
+        .to_rational()
+        .map(|v| Rational::from(&v - exact).abs());
+    let abs = err.as_ref().map_or_else(
+        || Float::with_val(64, Special::Infinity),
+        |e| Float::with_val(64, e),
+    );
+    let reference = decimal_string(
+        &Float::with_val(prec.working_bits() + 64, exact),
+        prec.digits(),
+    );
+    let Some(err) = err else {
+        let inf = decimal_string(&abs, 4);
+        return Accuracy {
+            reference,
+            abs_error: inf.clone(),
+            rel_error: inf,
+            digits: 0.0,
+        };
+    };
     let (rel, digits) = if exact.cmp0() == Ordering::Equal {
         if err.cmp0() == Ordering::Equal {
             (Float::with_val(64, 0), max_digits)
@@ -204,10 +240,7 @@ fn compare_exact(exact: &Rational, value: &Float, prec: Prec) -> Accuracy {
         (rel, d)
     };
     Accuracy {
-        reference: decimal_string(
-            &Float::with_val(prec.working_bits() + 64, exact),
-            prec.digits(),
-        ),
+        reference,
         abs_error: decimal_string(&abs, 4),
         rel_error: decimal_string(&rel, 4),
         digits,
@@ -259,7 +292,7 @@ pub fn estimate(
 pub fn run(args: &BezierEvalArgs) -> Result<(), CliError> {
     let input = parse_input(&args.input, &read_text(&args.input)?)?;
     let prec = args.prec;
-    let degree = input.coeffs.len() - 1;
+    let degree = input.coeffs.len().saturating_sub(1);
     let e = estimate(
         degree,
         input.t.len(),
@@ -269,7 +302,10 @@ pub fn run(args: &BezierEvalArgs) -> Result<(), CliError> {
     );
     let _spinner = args.budget.check(&e)?;
     let rows = with_real!(prec, T => evaluate::<T>(&input, args.method, prec)?);
-    let acc = args.reference.then(|| accuracy(&input, &rows, prec));
+    let acc = args
+        .reference
+        .then(|| accuracy(&input, &rows, prec))
+        .transpose()?;
     if args.json {
         print_json(&to_json(args.method, prec, &input, &rows, acc.as_deref()))?;
     } else {
@@ -279,6 +315,9 @@ pub fn run(args: &BezierEvalArgs) -> Result<(), CliError> {
 }
 
 /// The `--json` object (schema in the module documentation).
+// Justified: serde_json's `Value` index, on an object built by `json!({…})`
+// here: reading gives Null when a key is absent, writing inserts it.
+#[allow(clippy::indexing_slicing)]
 fn to_json(
     method: Method,
     prec: Prec,
@@ -290,7 +329,7 @@ fn to_json(
         "method": method.name(),
         "prec": prec.to_string(),
         "working_bits": prec.working_bits(),
-        "degree": input.coeffs.len() - 1,
+        "degree": input.coeffs.len().saturating_sub(1),
         "t": input.t,
         "values": rows.iter().map(|r| r.value.clone()).collect::<Vec<_>>(),
         "bounds": rows.iter().map(|r| r.bound.clone()).collect::<Vec<_>>(),
@@ -325,7 +364,7 @@ fn to_text(
     outln!(
         text,
         "method {method}, degree {}, precision {prec}",
-        input.coeffs.len() - 1
+        input.coeffs.len().saturating_sub(1)
     );
     for (i, (t, r)) in input.t.iter().zip(rows).enumerate() {
         let flag = if r.extrapolated {
@@ -334,10 +373,11 @@ fn to_text(
             ""
         };
         let digits = acc
+            .and_then(|a| a.get(i))
             .map(|a| {
                 format!(
                     "  {:.1} correct digits (rel. error {})",
-                    a[i].digits, a[i].rel_error
+                    a.digits, a.rel_error
                 )
             })
             .unwrap_or_default();

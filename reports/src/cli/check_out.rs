@@ -50,10 +50,11 @@ fn finite_or(v: f64, or: f64) -> f64 {
 fn finite_stats(ulps: impl Iterator<Item = f64>) -> (f64, f64) {
     let mut u: Vec<f64> = ulps.filter(|x| x.is_finite()).collect();
     u.sort_by(f64::total_cmp);
+    let mid = |k: usize| u.get(k).copied().unwrap_or(0.0);
     let median = match u.len() {
         0 => 0.0,
-        n if n % 2 == 1 => u[n / 2],
-        n => 0.5 * (u[n / 2 - 1] + u[n / 2]),
+        n if n % 2 == 1 => mid(n / 2),
+        n => 0.5 * (mid(n / 2 - 1) + mid(n / 2)),
     };
     (u.last().copied().unwrap_or(0.0), median)
 }

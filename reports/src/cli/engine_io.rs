@@ -24,6 +24,7 @@ use clap::Args;
 use clap::builder::{PossibleValuesParser, TypedValueParser};
 use ndarray::ArrayD;
 use serde_json::json;
+use splinelab::ndimage::alloc::try_with_capacity;
 use splinelab::prelude::{
     Mode, NanPolicy, NdimageError, Options, PrefilterError, RecursivePrefilter, Route, SplineFamily,
 };
@@ -381,12 +382,14 @@ pub fn write_values<T: Real>(
     header: serde_json::Value,
 ) -> Result<(), CliError> {
     let bytes = match output {
-        OutputKind::Npy(UserFormat::F64) => {
-            write_npy_f64(shape, values.iter().map(round_f64).collect())?
-        }
-        OutputKind::Npy(UserFormat::F32) => {
-            write_npy_f32(shape, values.iter().map(round_f32).collect())?
-        }
+        OutputKind::Npy(UserFormat::F64) => write_npy_f64(
+            shape,
+            try_collect(values.len(), values.iter().map(round_f64))?,
+        )?,
+        OutputKind::Npy(UserFormat::F32) => write_npy_f32(
+            shape,
+            try_collect(values.len(), values.iter().map(round_f32))?,
+        )?,
         OutputKind::Json => {
             let strings: Vec<String> = values.iter().map(|x| decimal(working, x)).collect();
             let mut doc = json!({
@@ -403,6 +406,14 @@ pub fn write_values<T: Real>(
         }
     };
     write_atomic(path, &bytes)
+}
+
+/// The `n` items of `items` in a vector allocated fallibly (an output the
+/// machine cannot hold twice is an error naming it, not an abort).
+fn try_collect<U>(n: usize, items: impl Iterator<Item = U>) -> Result<Vec<U>, CliError> {
+    let mut v = try_with_capacity(n, "the output file's values").map_err(CliError::numerical)?;
+    v.extend(items);
+    Ok(v)
 }
 
 /// A value as decimal text: the shortest round-trip string in f32/f64,
@@ -438,6 +449,7 @@ pub fn engine_error(input: &Path, e: NdimageError) -> CliError {
             CliError::Numerical(format!("{e} (or accept it with --max-error)"))
         }
         NdimageError::LocalNeedsTol => CliError::invalid("--tol", e.to_string()),
+        NdimageError::DegreeRange { .. } => CliError::invalid("--degree", e.to_string()),
         e => CliError::numerical(e),
     }
 }

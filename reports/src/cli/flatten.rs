@@ -161,10 +161,10 @@ pub fn parse_points(path: &Path, text: &str) -> Result<Vec<Vec<f64>>, CliError> 
             "points must be 2-D or 3-D, points[0] has {dim} coordinates"
         )));
     }
-    if let Some(i) = points.iter().position(|p| p.len() != dim) {
+    if let Some((i, p)) = points.iter().enumerate().find(|(_, p)| p.len() != dim) {
         return Err(bad(format!(
             "points[{i}] has {} coordinates, points[0] has {dim}",
-            points[i].len()
+            p.len()
         )));
     }
     Ok(points)
@@ -191,6 +191,9 @@ pub fn flatten_points(
     }
 }
 
+// Justified: serde_json's `Value` index, on an object built by `json!({…})`
+// here: reading gives Null when a key is absent, writing inserts it.
+#[allow(clippy::indexing_slicing)]
 fn run_dim<const D: usize>(
     points: &[Vec<f64>],
     tol: f64,
@@ -284,6 +287,9 @@ fn set_measured(out: &mut Value, key: &str, value: f64) {
 }
 
 /// Runs `splinelab flatten`.
+// Justified: serde_json's `Value` index, on an object built by `json!({…})`
+// here: reading gives Null when a key is absent, writing inserts it.
+#[allow(clippy::indexing_slicing)]
 pub fn run(args: &FlattenArgs) -> Result<(), CliError> {
     let points = parse_points(&args.input, &read_text(&args.input)?)?;
     let out = flatten_points(&points, args.tol, args.method, !args.no_uniform)?;

@@ -150,14 +150,13 @@ pub fn read_points(path: &Path, ndim: usize) -> Result<Array2<f64>, CliError> {
             ));
         }
     };
-    if let Some(i) = a.data.iter().position(|x| !x.is_finite()) {
+    if let Some((i, x)) = a.data.iter().enumerate().find(|(_, x)| !x.is_finite()) {
         return Err(input_error(
             path,
             format!(
-                "point {} coordinate {} is {} (coordinates must be finite)",
-                i / ndim,
-                i % ndim,
-                a.data[i]
+                "point {} coordinate {} is {x} (coordinates must be finite)",
+                i / ndim.max(1),
+                i % ndim.max(1),
             ),
         ));
     }

@@ -51,6 +51,8 @@ pub const LADDER: &[u32] = precision_ladder!(ladder_slice {});
 /// Smallest accepted `BITS`.
 pub const MIN_BITS: u32 = 16;
 /// Largest accepted `BITS`: the top of the ladder.
+// Justified: evaluated at compile time (an index outside `LADDER` would not compile).
+#[allow(clippy::indexing_slicing)]
 pub const MAX_BITS: u32 = LADDER[LADDER.len() - 1];
 
 /// A requested precision: IEEE double or an MPFR bit count.
@@ -141,7 +143,8 @@ pub fn invalid_prec(why: String) -> CliError {
 
 /// Runs `$body` with `$T` bound to the scalar type for `$prec`:
 /// `f64`, or `Mp<W>` with `W = $prec.working_bits()` (arms generated from
-/// [`precision_ladder!`]).
+/// [`precision_ladder!`]). Used in functions returning `Result<_,
+/// CliError>`: a precision off the ladder returns an error from them.
 ///
 /// ```ignore
 /// let s = with_real!(prec, T => compute::<T>(&args)?);
@@ -170,7 +173,13 @@ macro_rules! dispatch_real {
                     $body
                 }
             )+
-            w => unreachable!("working_bits {w} is on the ladder by construction"),
+            // On the ladder by construction (`Prec` is validated); an error,
+            // not a panic, should that ever change.
+            w => {
+                return Err($crate::error::CliError::numerical(format!(
+                    "working precision {w} bits is not on the ladder"
+                )))
+            }
         }
     }};
 }
@@ -202,7 +211,7 @@ mod tests {
     /// Every accepted request runs at most 2× its bits (128 for the
     /// smallest), on an entry that `with_real!` dispatches.
     #[test]
-    fn working_precision_is_at_most_twice_the_request() {
+    fn working_precision_is_at_most_twice_the_request() -> Result<(), CliError> {
         assert!(LADDER.windows(2).all(|w| w[0] < w[1]));
         for b in MIN_BITS..=MAX_BITS {
             let w = Prec::Bits(b).working_bits();
@@ -210,5 +219,6 @@ mod tests {
             let dispatched = crate::with_real!(Prec::Bits(b), T => <T as Real>::BITS);
             assert_eq!(dispatched, w);
         }
+        Ok(())
     }
 }

@@ -16,6 +16,7 @@ use crate::path_text::path_text;
 use crate::with_real;
 use clap::Args;
 use serde_json::json;
+use splinelab::ndimage::alloc::try_standard_layout;
 use splinelab::ndimage::missing::local_bound;
 use splinelab::prelude::{LineFilter, NanPolicy, Real, spline_filter, spline_filter1d};
 
@@ -84,8 +85,11 @@ fn compute<T: Real + Send + Sync>(
         }
         .map_err(|err| engine_error(&e.input, err))?;
     }
-    let values = a.as_standard_layout();
-    let values = values.as_slice().expect("standard layout");
+    let values =
+        try_standard_layout(&a, "the coefficients").map_err(|err| engine_error(&e.input, err))?;
+    let values = values.as_slice().ok_or_else(|| {
+        CliError::numerical("the coefficients are not in C order after the copy into C order")
+    })?;
     let nan = NanSummary::of(
         plan,
         values,

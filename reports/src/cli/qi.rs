@@ -88,8 +88,8 @@ impl Coord {
 /// Parses a decimal `[-+]digits[.digits][e[-+]digits]` exactly.
 fn parse_decimal(s: &str) -> Option<Rational> {
     let s = s.trim();
-    let (mant, exp) = match s.find(['e', 'E']) {
-        Some(k) => (&s[..k], s[k + 1..].parse::<i32>().ok()?),
+    let (mant, exp) = match s.split_once(['e', 'E']) {
+        Some((mant, exp)) => (mant, exp.parse::<i32>().ok()?),
         None => (s, 0),
     };
     let (neg, mant) = match mant.strip_prefix('-') {
@@ -105,7 +105,10 @@ fn parse_decimal(s: &str) -> Option<Rational> {
         return None;
     }
     let m = Integer::from_str_radix(&digits, 10).ok()?;
-    let e = exp - frac.len() as i32;
+    // Digits after the point count as a negative exponent; as many as the
+    // exponent's own bound (a longer fraction is refused, not a power of
+    // ten of millions of digits).
+    let e = exp.checked_sub(i32::try_from(frac.len()).ok().filter(|&f| f <= 100_000)?)?;
     let p = Integer::from(Integer::u_pow_u(10, e.unsigned_abs()));
     let q = if e >= 0 {
         Rational::from(m * p)
@@ -142,15 +145,10 @@ fn coord(v: &Value, what: &str) -> Result<Coord, String> {
 }
 
 fn triple(v: &Value, what: &str) -> Result<[Coord; 3], String> {
-    let a = v
-        .as_array()
-        .filter(|a| a.len() == 3)
-        .ok_or(format!("{what} must be [x, y, z]"))?;
-    Ok([
-        coord(&a[0], what)?,
-        coord(&a[1], what)?,
-        coord(&a[2], what)?,
-    ])
+    let Some([x, y, z]) = v.as_array().map(Vec::as_slice) else {
+        return Err(format!("{what} must be [x, y, z]"));
+    };
+    Ok([coord(x, what)?, coord(y, what)?, coord(z, what)?])
 }
 
 /// The keys of the input object.
@@ -218,15 +216,13 @@ pub fn solve<T: Real>(
         ..Default::default()
     };
     let prec = args.prec;
-    let mut obj = json!({
-        "prec": prec.to_string(),
-        "working_bits": prec.working_bits(),
-        "damped": args.damped,
-        "points": points.len(),
-        "tol": out(prec, &opts.tol),
-        "convention": CONVENTION,
-    });
-    let m = obj.as_object_mut().expect("object");
+    let mut m = serde_json::Map::new();
+    m.insert("prec".into(), json!(prec.to_string()));
+    m.insert("working_bits".into(), json!(prec.working_bits()));
+    m.insert("damped".into(), json!(args.damped));
+    m.insert("points".into(), json!(points.len()));
+    m.insert("tol".into(), out(prec, &opts.tol));
+    m.insert("convention".into(), json!(CONVENTION));
     match interpolate(&points, &opts) {
         Ok(fit) => {
             let segs: Vec<Value> = fit
@@ -257,28 +253,29 @@ pub fn solve<T: Real>(
                 out(prec, &fit.quad_error),
             );
             m.insert("segments".into(), json!(segs));
-            Ok((obj, None))
+            Ok((Value::Object(m), None))
         }
-        Err(e @ QiError::NotConverged { .. }) => {
-            let QiError::NotConverged {
-                reason,
-                residuals,
-                steps,
-            } = &e
-            else {
-                unreachable!()
-            };
+        Err(QiError::NotConverged {
+            reason,
+            residuals,
+            steps,
+        }) => {
             m.insert("converged".into(), json!(false));
             m.insert(
                 "iterations".into(),
                 json!(residuals.len().saturating_sub(1)),
             );
             // Newton's failure history is kept in f64 whatever the precision.
-            m.insert("residuals".into(), out_all(Prec::F64, residuals));
-            m.insert("steps".into(), out_all(Prec::F64, steps));
+            m.insert("residuals".into(), out_all(Prec::F64, &residuals));
+            m.insert("steps".into(), out_all(Prec::F64, &steps));
             m.insert("failure".into(), json!(reason.to_string()));
             m.insert("segments".into(), json!([]));
-            Ok((obj, Some(e)))
+            let e = QiError::NotConverged {
+                reason,
+                residuals,
+                steps,
+            };
+            Ok((Value::Object(m), Some(e)))
         }
         Err(e) => Err(CliError::numerical(e)),
     }

@@ -26,9 +26,10 @@ use crate::output::emit;
 use crate::path_text::path_text;
 use clap::{ArgGroup, Args};
 use serde_json::json;
+use splinelab::ndimage::alloc::{checked_len, try_filled, try_with_capacity};
 use splinelab::ndimage::interpolant::PointRule;
 use splinelab::prelude::{Interpolant, Real};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 /// Arguments of `splinelab resample`.
 #[derive(Debug, Args)]
@@ -61,9 +62,10 @@ pub struct ResampleArgs {
     pub output_shape: Option<Vec<usize>>,
 }
 
-/// What to evaluate: per-axis coordinate vectors, or an affine map.
+/// What to evaluate: per-axis coordinate vectors (formed only after the
+/// budget has accepted their size), or an affine map.
 enum Points {
-    Grid(Vec<Vec<f64>>),
+    Grid(Vec<Axis>),
     Affine {
         matrix: Vec<f64>,
         offset: Vec<f64>,
@@ -74,7 +76,7 @@ enum Points {
 impl Points {
     fn shape(&self) -> Vec<usize> {
         match self {
-            Points::Grid(axes) => axes.iter().map(Vec::len).collect(),
+            Points::Grid(axes) => axes.iter().map(|a| a.count).collect(),
             Points::Affine { shape, .. } => shape.clone(),
         }
     }
@@ -91,13 +93,15 @@ pub fn run(args: &ResampleArgs) -> Result<(), CliError> {
     }
     let points = points(args, plan.data.shape())?;
     let shape = points.shape();
-    let m = (plan.degree + 1) as f64;
-    let count: usize = shape.iter().product();
+    let m = f64::from(plan.degree) + 1.0;
+    // As a float: an output too large to count is refused by the budget
+    // (or by the allocation), not by an overflow.
+    let count: f64 = shape.iter().map(|&n| n as f64).product();
     let what = format!("resampling to {shape:?}");
     let _spinner = args.engine.budget.check(&estimate(
         &plan,
         shape.len(),
-        count as f64 * m.powi(shape.len() as i32),
+        count * m.powi(i32::try_from(shape.len()).unwrap_or(i32::MAX)),
         &what,
     ))?;
     let nan = match plan.working {
@@ -131,9 +135,15 @@ fn compute<T: Real + Copy + Send + Sync>(
     }
     let f = Interpolant::new(&to_working::<T>(&plan.data), options(plan, e))
         .map_err(|err| engine_error(&e.input, err))?;
-    let mut out = vec![T::zero(); shape.iter().product()];
+    let mut out = checked_len(shape, OUT)
+        .and_then(|n| try_filled(n, T::zero(), OUT))
+        .map_err(|err| engine_error(&e.input, err))?;
     let done = match points {
         Points::Grid(axes) => {
+            let axes = axes
+                .iter()
+                .map(Axis::coordinates)
+                .collect::<Result<Vec<_>, _>>()?;
             let axes: Vec<&[f64]> = axes.iter().map(Vec::as_slice).collect();
             f.resample_grid(&axes, &vec![0; axes.len()], &mut out)
         }
@@ -170,22 +180,48 @@ fn per_axis(values: &[f64], ndim: usize, arg: &'static str) -> Result<Vec<f64>, 
     })
 }
 
-/// scipy's `NI_ZoomShift` coordinate of output index `k`: `k + shift`, then
-/// `· zoom` (`grid_mode`: `+ ½`, `· zoom`, `− ½`).
-fn zoom_shift_axis(count: usize, zoom: Option<f64>, shift: Option<f64>, grid: bool) -> Vec<f64> {
-    (0..count)
-        .map(|k| {
+/// What the output array holds (named where it cannot be allocated).
+const OUT: &str = "the resampled values";
+
+/// One output axis of a zoom or shift: `count` indices `k`, whose
+/// coordinates are scipy's `NI_ZoomShift` ones, `k + shift`, then `· zoom`
+/// (`grid`: `+ ½`, `· zoom`, `− ½`).
+struct Axis {
+    count: usize,
+    zoom: Option<f64>,
+    shift: Option<f64>,
+    grid: bool,
+}
+
+impl Axis {
+    /// The coordinates, in a vector allocated fallibly (an axis too long
+    /// to hold is an error, not an abort).
+    fn coordinates(&self) -> Result<Vec<f64>, CliError> {
+        let mut axis = try_with_capacity(self.count, "the output's coordinates")
+            .map_err(CliError::numerical)?;
+        axis.extend((0..self.count).map(|k| {
             let mut c = k as f64;
-            if let Some(s) = shift {
+            if let Some(s) = self.shift {
                 c += s;
             }
-            match zoom {
-                Some(z) if grid => (c + 0.5) * z - 0.5,
+            match self.zoom {
+                Some(z) if self.grid => (c + 0.5) * z - 0.5,
                 Some(z) => c * z,
                 None => c,
             }
-        })
-        .collect()
+        }));
+        Ok(axis)
+    }
+}
+
+/// The [`Axis`] of `count` indices, `zoom`, `shift` and `grid` mode.
+fn zoom_shift_axis(count: usize, zoom: Option<f64>, shift: Option<f64>, grid: bool) -> Axis {
+    Axis {
+        count,
+        zoom,
+        shift,
+        grid,
+    }
 }
 
 fn points(args: &ResampleArgs, shape: &[usize]) -> Result<Points, CliError> {
@@ -224,44 +260,65 @@ fn points(args: &ResampleArgs, shape: &[usize]) -> Result<Points, CliError> {
     if let Some(angle) = args.rotate {
         return rotation(angle, shape);
     }
-    let path = args.matrix.as_ref().expect("one transform (clap group)");
+    // clap's group requires one of the four; the error keeps it a message.
+    let Some(path) = args.matrix.as_ref() else {
+        return Err(CliError::invalid(
+            "--matrix",
+            "give one of --zoom, --shift, --rotate or --matrix",
+        ));
+    };
     let a = read_array(path)?;
     let out_shape = args.output_shape.clone().unwrap_or_else(|| shape.to_vec());
     let offset = per_axis(args.offset.as_deref().unwrap_or(&[0.0]), ndim, "--offset")?;
-    affine_points(&a.shape, &a.data, offset, out_shape, ndim).map_err(|why| input_error(path, why))
+    affine_points(path, &a.shape, &a.data, offset, out_shape, ndim)
 }
 
 /// scipy's matrix forms (the homogeneous ones carry the offset); a
 /// diagonal (ndim,) matrix is evaluated as scipy does, `(o + offset/m)·m`.
+/// A matrix of another shape, or not finite, is refused naming `path`.
 fn affine_points(
+    path: &Path,
     dims: &[usize],
     m: &[f64],
     offset: Vec<f64>,
     out: Vec<usize>,
     ndim: usize,
-) -> Result<Points, String> {
+) -> Result<Points, CliError> {
     if m.iter().any(|v| !v.is_finite()) {
-        return Err("the matrix must be finite".into());
+        return Err(input_error(path, "the matrix must be finite"));
     }
+    // The shape's rows of `m` (C order), each `c` long.
+    let rows = |c: usize| m.chunks_exact(c.max(1));
     match *dims {
-        [n] if n == ndim && out.len() == ndim => {
+        [n] if n == ndim && out.len() == ndim && m.len() == ndim && offset.len() == ndim => {
             let axes = out
                 .iter()
-                .enumerate()
-                .map(|(a, &k)| zoom_shift_axis(k, Some(m[a]), Some(offset[a] / m[a]), false))
+                .zip(m)
+                .zip(&offset)
+                .map(|((&k, &mk), &o)| zoom_shift_axis(k, Some(mk), Some(o / mk), false))
                 .collect();
             Ok(Points::Grid(axes))
         }
-        [r, c] if c == ndim + 1 && (r == ndim || r == ndim + 1) => {
+        [r, c] if c == ndim + 1 && (r == ndim || r == ndim + 1) && m.len() == r * c => {
+            let bottom: Vec<f64> = (0..=ndim).map(|j| f64::from(u8::from(j == ndim))).collect();
             if r == ndim + 1
-                && (0..=ndim).any(|j| m[ndim * c + j] != if j == ndim { 1.0 } else { 0.0 })
+                && rows(c)
+                    .nth(ndim)
+                    .is_some_and(|row| row != bottom.as_slice())
             {
-                return Err("homogeneous matrix: the bottom row must be [0, …, 0, 1]".into());
+                return Err(input_error(
+                    path,
+                    "homogeneous matrix: the bottom row must be [0, …, 0, 1]",
+                ));
             }
-            let matrix = (0..ndim)
-                .flat_map(|h| m[h * c..h * c + ndim].to_vec())
+            let matrix = rows(c)
+                .take(ndim)
+                .flat_map(|row| row.iter().take(ndim).copied())
                 .collect();
-            let offset = (0..ndim).map(|h| m[h * c + ndim]).collect();
+            let offset = rows(c)
+                .take(ndim)
+                .filter_map(|row| row.get(ndim).copied())
+                .collect();
             Ok(Points::Affine {
                 matrix,
                 offset,
@@ -273,14 +330,17 @@ fn affine_points(
             offset,
             shape: out,
         }),
-        _ => Err(format!(
-            "matrix of shape {dims:?} for a {ndim}-D input and a {}-D output: expected ({ndim},), \
-             ({ndim}, {}), ({ndim}, {}) or ({}, {})",
-            out.len(),
-            out.len(),
-            ndim + 1,
-            ndim + 1,
-            ndim + 1
+        _ => Err(input_error(
+            path,
+            format!(
+                "matrix of shape {dims:?} for a {ndim}-D input and a {}-D output: expected \
+                 ({ndim},), ({ndim}, {}), ({ndim}, {}) or ({}, {})",
+                out.len(),
+                out.len(),
+                ndim + 1,
+                ndim + 1,
+                ndim + 1
+            ),
         )),
     }
 }

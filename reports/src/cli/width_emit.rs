@@ -64,7 +64,7 @@ pub fn parse_name(s: &str) -> Result<String, String> {
     let ok = !s.is_empty()
         && s.len() <= 64
         && s.bytes().all(|b| b.is_ascii_alphanumeric() || b == b'_')
-        && !s.as_bytes()[0].is_ascii_digit();
+        && !s.starts_with(|c: char| c.is_ascii_digit());
     if ok {
         Ok(s.to_string())
     } else {

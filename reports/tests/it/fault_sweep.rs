@@ -942,6 +942,69 @@ fn engine_cases(fx: &Fixture, v: &mut Vec<Case>) {
         );
         v.push(c);
     }
+    // resample (issue 42): outputs too large to count or allocate, huge and
+    // non-finite factors and angles, a degree beyond f64's range — an error
+    // naming the flag or the memory, never a panic or an abort.
+    let matrix = fx.file(
+        "e_matrix.npy",
+        &npy("<f8", false, "(2, 2)", &f64_bytes(&[1.0, 0.0, 0.0, 1.0])),
+    );
+    let hostile: [&[&str]; 14] = [
+        &["--zoom", "1e300"],
+        &["--zoom", "1e9"],
+        &["--zoom", "1e5,1"],
+        &["--zoom", "0"],
+        &["--zoom", "0.01"],
+        &["--zoom", "-1"],
+        &["--zoom", "nan"],
+        &["--shift", "1e300"],
+        &["--rotate", "1e300"],
+        &["--rotate", "inf"],
+        &[
+            "--matrix",
+            &matrix,
+            "--output-shape",
+            "4294967296,4294967296",
+        ],
+        &["--matrix", &matrix, "--output-shape", "0,5"],
+        &["--zoom", "2", "--degree", "199"],
+        &[
+            "--zoom",
+            "2",
+            "--degree",
+            "6",
+            "--mode",
+            "grid-constant",
+            "--cval",
+            "1e308",
+        ],
+    ];
+    for (k, flags) in hostile.iter().enumerate() {
+        let out = fx.path(&format!("e_resample_{k}.npy"));
+        let mut c = case(
+            "engine resample",
+            &["resample", "--input", &good],
+            &[
+                "--zoom",
+                "--shift",
+                "--rotate",
+                "--matrix",
+                "--output-shape",
+                "--degree",
+                "--cval",
+                "--budget",
+                "allocate",
+                "--prec",
+                "--max-error",
+            ],
+        );
+        c.args.extend(flags.iter().map(OsString::from));
+        if !flags.contains(&"--degree") {
+            c.args.extend(["--degree".into(), "3".into()]);
+        }
+        c.args.extend(["--output".into(), out.into()]);
+        v.push(c);
+    }
     // Budget: a large array at high precision is refused before any work.
     let big = fx.file(
         "e_big.npy",

@@ -23,6 +23,7 @@
 use super::batch::PointSource;
 use super::{Interpolant, PointRule};
 use crate::ndimage::NdimageError;
+use crate::ndimage::alloc::checked_len;
 use crate::ndimage::samples::Stored;
 use crate::scalar::Real;
 
@@ -84,7 +85,7 @@ impl<T: Real + Copy + Send + Sync> Interpolant<T> {
                 got: if offset.len() != n { offset.len() } else { k },
             });
         }
-        let count: usize = out_shape.iter().product();
+        let count = checked_len(out_shape, "the affine resampling's output")?;
         if out.len() != count {
             return Err(NdimageError::BufferLength {
                 expected: count,
@@ -93,6 +94,10 @@ impl<T: Real + Copy + Send + Sync> Interpolant<T> {
         }
         if let Some(i) = matrix.iter().chain(offset).position(|v| !v.is_finite()) {
             return Err(NdimageError::NonFiniteCoordinate(i));
+        }
+        if out.is_empty() {
+            // An output axis of length 0: no points (scipy returns the empty array).
+            return Ok(());
         }
         let src = self.affine_points(matrix, offset, out_shape, shift, rule);
         // `const`: wider MPFR builds compile no run kernels (`Real::FITS_F64`).

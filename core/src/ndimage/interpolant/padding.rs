@@ -26,7 +26,7 @@
 //! `in_place_extension_equals_the_copying_one`).
 
 use crate::ndimage::NdimageError;
-use crate::ndimage::alloc::try_padded_zeros;
+use crate::ndimage::alloc::{try_padded_zeros, try_standard_layout, try_with_capacity};
 use crate::ndimage::mode::Mode;
 use crate::ndimage::nd_prefilter::scan_block;
 use crate::ndimage::samples::Sample;
@@ -52,12 +52,24 @@ where
     D: Dimension,
 {
     if a.ndim() == 0 {
-        let c = a.map(Sample::widen).into_dyn();
-        let finite = c.iter().all(|x| x.is_finite());
+        // Allocated fallibly: a zero-stride view can ask for far more
+        // than the memory it occupies (issue 42).
+        let mut v = try_with_capacity(a.len(), "the spline coefficients")?;
+        v.extend(a.iter().map(Sample::widen));
+        let finite = v.iter().all(|x: &T| x.is_finite());
+        let c = ArrayD::from_shape_vec(IxDyn(a.shape()), v).map_err(|_| {
+            NdimageError::BufferLength {
+                expected: a.len(),
+                got: 0,
+            }
+        })?;
         return Ok((c, finite));
     }
-    let a = a.as_standard_layout();
-    let src = a.as_slice().expect("standard layout");
+    let a = try_standard_layout(a, "a C-ordered copy of the input")?;
+    let src = a.as_slice().ok_or(NdimageError::BufferLength {
+        expected: a.len(),
+        got: 0,
+    })?;
     let shape = a.shape();
     let nd = shape.len();
     let (padded, mut out) = try_padded_zeros::<T>(shape, pad, "padded coefficients")?;
@@ -99,7 +111,9 @@ where
             scan_block(&row[pad..pad + n_last]).0
         })
         .reduce(|| true, |a, b| a & b);
-    let out = ArrayD::from_shape_vec(IxDyn(&padded), out).expect("padded shape");
+    let expected = out.len();
+    let out = ArrayD::from_shape_vec(IxDyn(&padded), out)
+        .map_err(|_| NdimageError::BufferLength { expected, got: 0 })?;
     Ok((out, finite))
 }
 

@@ -33,10 +33,14 @@
 
 use super::Interpolant;
 use crate::ndimage::NdimageError;
+use crate::ndimage::alloc::{checked_len, try_filled, try_with_capacity};
 use crate::ndimage::samples::Stored;
 use crate::scalar::Real;
 use crate::sspline::bspline_uniform::centred_cell;
 use rayon::prelude::*;
+
+/// What the resampling's work arrays hold (named where one cannot be allocated).
+const WHAT: &str = "the separable resampling's intermediate values";
 
 /// One axis of the resampling: for each output index the `m` window
 /// indices into the padded coefficients (`None`: outside, reads `cval`)
@@ -158,11 +162,16 @@ impl<T: Real + Copy + Send + Sync> Interpolant<T> {
         out: &mut [O],
     ) -> Result<(), NdimageError> {
         self.check_grid(coordinates, deriv, out.len())?;
+        if out.is_empty() {
+            // An axis of no points (scipy's zoom to a length of 0): nothing
+            // to evaluate (and no chunks of 0 values to split the work into).
+            return Ok(());
+        }
         let plans: Vec<AxisPlan<T>> = coordinates
             .iter()
             .enumerate()
             .map(|(a, xs)| self.axis_plan(a, xs, deriv[a]))
-            .collect();
+            .collect::<Result<_, _>>()?;
         let shape: Vec<usize> = self.coeffs.shape().to_vec();
         let coeffs = self.coeffs.as_slice().expect("standard layout");
         if self.ndim() == 1 {
@@ -298,11 +307,12 @@ impl<T: Real + Copy + Send + Sync> Interpolant<T> {
 
     /// Window indices (into the padded axis) and weights of every output
     /// index on axis `a`, as [`Interpolant::eval`] forms them.
-    fn axis_plan(&self, a: usize, xs: &[f64], deriv: u32) -> AxisPlan<T> {
+    fn axis_plan(&self, a: usize, xs: &[f64], deriv: u32) -> Result<AxisPlan<T>, NdimageError> {
         let m = self.order as usize;
         let padded = self.shape[a] + 2 * self.pad;
-        let mut index = Vec::with_capacity(xs.len() * m);
-        let mut weight = vec![T::zero(); xs.len() * m];
+        let n = checked_len(&[xs.len(), m], WHAT)?;
+        let mut index = try_with_capacity(n, WHAT)?;
+        let mut weight = try_filled(n, T::zero(), WHAT)?;
         for (k, &x) in xs.iter().enumerate() {
             let w = &mut weight[k * m..(k + 1) * m];
             if m == 1 {
@@ -321,7 +331,7 @@ impl<T: Real + Copy + Send + Sync> Interpolant<T> {
                 index.push(usize::try_from(i).ok().filter(|&i| i < padded));
             }
         }
-        AxisPlan { m, index, weight }
+        Ok(AxisPlan { m, index, weight })
     }
 
     /// `B[o, k, i] = Σ_l w[k, l] · A[o, index[k, l], i]` (`cval` where the
