@@ -672,6 +672,12 @@ class _Affine(_Points):
     def wrapped(self, shape):
         return _Affine(self.matrix, self.offset, self.out_shape, self.shift, True)
 
+    def explicit(self):
+        """The points as an array ``(ndim, count)`` (``matrix @ o + offset``
+        in numpy: the engine's values to rounding), for the local route."""
+        index = np.indices(self.out_shape, dtype=np.float64).reshape(len(self.out_shape), -1)
+        return self.matrix @ index + np.asarray(self.offset, dtype=np.float64)[:, None]
+
     def run(self, a, d, mode, cv, tol, prefilter, threads, deriv, cval_outside=False, nan_policy="propagate",
             work=_F64, filter_rule=None):
         if deriv:
@@ -703,13 +709,32 @@ def _map_real(a, flat, d, mode, cv, prefilter, tol, threads, exact_edges, deriv=
         return _at_non_finite(a, points, *args)
 
 
+#: The largest affine output offered to the local route: its points are
+#: formed explicitly to price it (16 bytes per point and axis).
+_AFFINE_LOCAL_MAX = 1 << 16
+
+
+def _local_candidates(points):
+    """The explicit points ``(ndim, k)`` the local route may take
+    (:mod:`splinelab._local` decides by cost): map_coordinates' points, and
+    those of an affine map (affine_transform, rotate) with a small output,
+    whose few samples a large input gives from their windows alone (issue
+    45); None for grids (zoom, shift: outputs as large as the input)."""
+    if type(points) is _Points:
+        return points.flat
+    if type(points) is _Affine and not points.shift and not points.wrap and points.count() <= _AFFINE_LOCAL_MAX:
+        return points.explicit()
+    return None
+
+
 def _map_points(a, points, d, mode, cv, prefilter, tol, threads, exact_edges, deriv, nan_policy, work=_F64):
     """:func:`_map_real` at finite points: on the local route where it
     reads less than the global one (:mod:`splinelab._local`; float64
     arithmetic only, and float32 samples only for float32 results, which
     it rounds once as the global route does)."""
-    if type(points) is _Points and not work.f32 and (a.dtype == np.float64 or work.out32):
-        local = _local.try_map(a, points.flat, d, mode, cv, prefilter, tol, threads, exact_edges, deriv, nan_policy)
+    flat = _local_candidates(points)
+    if flat is not None and not work.f32 and (a.dtype == np.float64 or work.out32):
+        local = _local.try_map(a, flat, d, mode, cv, prefilter, tol, threads, exact_edges, deriv, nan_policy)
         if local is not None:
             return local.astype(work.dtype, copy=False)
     if prefilter and 1 < d <= 5 and mode in _EXACT_EDGES and not exact_edges:
