@@ -350,14 +350,13 @@ fn check_axis<D: Dimension>(dim: &D, axis: usize) -> Result<(), NdimageError> {
 /// filtered, and stored rounded once, as scipy filters a float32 array
 /// into a float32 output (float64 line buffers).
 ///
-///
 /// **Accuracy**: the [`LineFilter`] route's per line; scipy 1.17.1's output within 16 ulps
 /// of max|value| (`verify/tests/it/engine_scipy.rs::spline_filter_matches_scipy`).
 ///
 /// ```
 /// use splinelab::prelude::*;
 /// let f = LineFilter::<f64>::new(&SplineFamily::Order(4), Mode::Mirror, 0.0, Route::Exact).unwrap();
-/// let mut a = ndarray::array![[1.0, 2.0, 0.0], [3.0, 1.0, 5.0]];
+/// let mut a: ndarray::Array2<f64> = ndarray::array![[1.0, 2.0, 0.0], [3.0, 1.0, 5.0]];
 /// spline_filter1d(&mut a, 1, &f).unwrap();
 /// // Mirror ends: (4 D_0 + 2 D_1)/6 = s_0 on every row.
 /// assert!(((4.0 * a[[1, 0]] + 2.0 * a[[1, 1]]) / 6.0 - 3.0).abs() < 1e-15);
