@@ -19,7 +19,7 @@
 
 use super::NdimageError;
 use crate::scalar::Real;
-use ndarray::{ArrayBase, Data, Dimension, IxDyn, SliceInfoElem};
+use ndarray::{ArrayBase, Axis, Data, Dimension, IxDyn, SliceInfoElem};
 
 /// An element type the engine reads samples of, widened into the compute
 /// type `T` by [`Sample::widen`]: exactly (`f32 → f64`, `f32 → f32`,
@@ -206,8 +206,25 @@ where
             window.raw_dim(),
             IxDyn(&hi.iter().zip(lo).map(|(h, l)| h - l).collect::<Vec<_>>())
         );
-        for (o, s) in out.iter_mut().zip(window.iter()) {
-            *o = s.widen();
+        // Row by row along the last axis: a contiguous row is widened as
+        // a slice (a dynamic-dimension element iterator costs several
+        // times the copy itself on the boxes of the local route).
+        let Some(last) = ndim.checked_sub(1) else {
+            for (o, s) in out.iter_mut().zip(window.iter()) {
+                *o = s.widen();
+            }
+            return Ok(());
+        };
+        let row = hi[last] - lo[last];
+        for (o, lane) in out.chunks_mut(row).zip(window.lanes(Axis(last))) {
+            match lane.as_slice() {
+                Some(s) => E::widen_into(s, o),
+                None => {
+                    for (o, s) in o.iter_mut().zip(lane.iter()) {
+                        *o = s.widen();
+                    }
+                }
+            }
         }
         Ok(())
     }

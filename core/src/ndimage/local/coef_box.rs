@@ -247,13 +247,24 @@ impl<T: Real> LocalSpec<T> {
     /// index in the array), ±∞ as NaN under [`NanPolicy::Local`]; the
     /// largest finite magnitude against the filter's growth.
     fn check_samples(&self, samples: &mut [T], lists: &[Vec<usize>]) -> Result<(), NdimageError> {
-        let mut max = 0.0f64;
+        // One branch-free sweep (it vectorises) where every magnitude is
+        // a finite f64, the usual case; else the exact rule, sample by
+        // sample (finite in `T`, first non-finite one).
+        let (mut max, any_bad) = samples.iter().fold((0.0f64, false), |(m, bad), x| {
+            let v = x.to_f64().abs();
+            let finite = v.is_finite();
+            let m = if finite && v > m { v } else { m };
+            (m, bad | !finite)
+        });
         let mut first_bad = None;
-        for (k, x) in samples.iter().enumerate() {
-            if x.is_finite() {
-                max = max.max(x.to_f64().abs());
-            } else if first_bad.is_none() {
-                first_bad = Some(k);
+        if any_bad {
+            max = 0.0;
+            for (k, x) in samples.iter().enumerate() {
+                if x.is_finite() {
+                    max = max.max(x.to_f64().abs());
+                } else if first_bad.is_none() {
+                    first_bad = Some(k);
+                }
             }
         }
         if let Some(k) = first_bad {
@@ -300,11 +311,48 @@ fn convolve_axis<T: Real>(
     let inner: usize = shape[axis + 1..].iter().product();
     out.clear();
     out.resize(outer * v * inner, T::zero());
+    if inner == 1 && v < SHORT_ROWS && outer > 1 {
+        convolve_transposed(conv, x, outer, l, v, out);
+        return;
+    }
     for (src, dst) in x.chunks(l * inner).zip(out.chunks_mut(v * inner)) {
         if inner == 1 {
             conv.apply_extended(src, dst);
         } else {
             convolve_rows(conv.coefficients(), src, dst, inner);
+        }
+    }
+}
+
+/// Outputs per row below which the pass along the last axis runs on the
+/// transposed rows: a point's box gives `order + 1` outputs per row, and
+/// the tap loop over so few of them does not vectorise.
+const SHORT_ROWS: usize = 16;
+
+/// The pass along the last axis of the `outer × l` rows `x` into the
+/// `outer × v` rows `out`, on their transpose: the rows side by side, the
+/// taps swept over all of them at once by [`convolve_rows`] (the same
+/// operations per value as [`ConvolutionPrefilter::apply_extended`],
+/// `c_0 s_k` then `+ c_j (s_{k−j} + s_{k+j})` for `j = 1..n`: the same bits).
+fn convolve_transposed<T: Real>(
+    conv: &crate::sspline::prefilter::ConvolutionPrefilter<T>,
+    x: &[T],
+    outer: usize,
+    l: usize,
+    v: usize,
+    out: &mut [T],
+) {
+    let mut xt = vec![T::zero(); outer * l];
+    for (r, row) in x.chunks_exact(l).enumerate() {
+        for (k, s) in row.iter().enumerate() {
+            xt[k * outer + r] = s.clone();
+        }
+    }
+    let mut yt = vec![T::zero(); v * outer];
+    convolve_rows(conv.coefficients(), &xt, &mut yt, outer);
+    for (r, row) in out.chunks_mut(v).enumerate() {
+        for (k, o) in row.iter_mut().enumerate() {
+            *o = yt[k * outer + r].clone();
         }
     }
 }

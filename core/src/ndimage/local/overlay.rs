@@ -60,12 +60,14 @@ impl<T: Real> Overlay<T> {
     }
 
     /// Sets the sample at `idx` (inside the grid) to `value`, its block
-    /// read from `base` on its first change.
-    pub(crate) fn set<S: SampleSource<T> + ?Sized>(
+    /// read from `base` on its first change; what [`Self::revert`] needs
+    /// to undo it is pushed on `undo`.
+    fn set<S: SampleSource<T> + ?Sized>(
         &mut self,
         base: &S,
         idx: &[usize],
         value: T,
+        undo: &mut Undo<T>,
     ) -> Result<(), NdimageError> {
         let key: Vec<usize> = idx.iter().zip(&self.edge).map(|(i, e)| i / e).collect();
         let (lo, hi) = self.block_box(&key);
@@ -73,14 +75,55 @@ impl<T: Real> Overlay<T> {
             let mut data = vec![T::zero(); lo.iter().zip(&hi).map(|(l, h)| h - l).product()];
             base.read_box(&lo, &hi, &mut data)?;
             self.blocks.insert(key.clone(), data);
+            undo.added.push(key.clone());
         }
         let block = self.blocks.get_mut(&key).expect("inserted");
         let at = idx
             .iter()
             .zip(lo.iter().zip(&hi))
             .fold(0, |s, (&i, (&l, &h))| s * (h - l) + (i - l));
-        block[at] = value;
+        let old = std::mem::replace(&mut block[at], value);
+        undo.old.push((key, at, old));
         Ok(())
+    }
+
+    /// Sets the samples `changes` in order (a repeated index keeps the
+    /// last value), in place: no copy of the blocks already held. On a
+    /// failed read nothing is changed; the [`Undo`] returned takes the
+    /// changes back ([`Self::revert`]) where a later step fails.
+    pub(crate) fn set_all<'i, S: SampleSource<T> + ?Sized>(
+        &mut self,
+        base: &S,
+        changes: impl Iterator<Item = (&'i [usize], &'i T)>,
+    ) -> Result<Undo<T>, NdimageError>
+    where
+        T: 'i,
+    {
+        let mut undo = Undo {
+            added: Vec::new(),
+            old: Vec::new(),
+        };
+        for (idx, v) in changes {
+            if let Err(e) = self.set(base, idx, v.clone(), &mut undo) {
+                self.revert(undo);
+                return Err(e);
+            }
+        }
+        Ok(undo)
+    }
+
+    /// Takes back the changes of one [`Self::set_all`]: the old values in
+    /// reverse order (the first change's old value last), then the blocks
+    /// it added.
+    pub(crate) fn revert(&mut self, undo: Undo<T>) {
+        for (key, at, old) in undo.old.into_iter().rev() {
+            if let Some(block) = self.blocks.get_mut(&key) {
+                block[at] = old;
+            }
+        }
+        for key in undo.added {
+            self.blocks.remove(&key);
+        }
     }
 
     /// The boxes of the blocks of `indices` not held yet (what
@@ -148,6 +191,13 @@ impl<T: Real> Overlay<T> {
         self.blocks.insert(key, data);
         Ok(())
     }
+}
+
+/// What one [`Overlay::set_all`] changed: the blocks it added, and per
+/// change its block, position and old value.
+pub(crate) struct Undo<T> {
+    added: Vec<Vec<usize>>,
+    old: Vec<(Vec<usize>, usize, T)>,
 }
 
 /// A source read through an [`Overlay`] of changed samples.

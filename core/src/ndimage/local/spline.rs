@@ -243,16 +243,12 @@ impl<T: Real + Send + Sync> LocalInterpolant<T> {
                 return Err(NdimageError::NonFinite { index, value });
             }
         }
-        // Blocks are read before any is changed: a failing read leaves the
+        // Changed in place; a failing read (of a block, or of what the
+        // recomputed coefficients need) takes the changes back, leaving the
         // overlay as it was.
-        let mut next = self.overlay.clone();
-        for (idx, v) in indices.chunks(d).zip(values) {
-            next.set(source, idx, v.clone())?;
-        }
-        let src = Overlaid {
-            base: source,
-            overlay: &next,
-        };
+        let undo = self
+            .overlay
+            .set_all(source, indices.chunks(d).zip(values))?;
         let hits = self.hit_tiles(indices);
         let mut stats = UpdateStats::default();
         if hits.len() > EAGER_TILES {
@@ -262,11 +258,19 @@ impl<T: Real + Send + Sync> LocalInterpolant<T> {
                 self.cache.remove(key);
             }
             stats.dropped = hits.len();
-            self.overlay = next;
             return Ok(stats);
         }
-        let redone = self.recompute(&src, &hits)?;
-        self.overlay = next;
+        let src = Overlaid {
+            base: source,
+            overlay: &self.overlay,
+        };
+        let redone = match self.recompute(&src, &hits) {
+            Ok(redone) => redone,
+            Err(e) => {
+                self.overlay.revert(undo);
+                return Err(e);
+            }
+        };
         for (key, tile, count) in redone {
             stats.tiles += 1;
             stats.coefficients += count;
@@ -379,21 +383,26 @@ impl<T: Real + Send + Sync> LocalInterpolant<T> {
             return Vec::new();
         }
         let d = self.spec.ndim();
-        self.cache
-            .tiles()
-            .into_iter()
-            .filter_map(|(key, tile)| {
-                let hit: Vec<&[usize]> = indices
-                    .chunks(d)
-                    .filter(|idx| {
-                        idx.iter()
-                            .zip(&tile.reach)
-                            .all(|(&i, &(lo, hi))| lo <= i && i < hi)
-                    })
-                    .collect();
-                (!hit.is_empty()).then_some((key, tile, hit))
-            })
-            .collect()
+        // Sorted by the first axis, a tile's candidates are one range of
+        // them (found by bisection): the cost is the tiles' count plus the
+        // hits, not their product.
+        let mut sorted: Vec<&[usize]> = indices.chunks(d).collect();
+        sorted.sort_unstable_by_key(|idx| idx[0]);
+        self.cache.select(|tile| {
+            let (lo, hi) = tile.reach[0];
+            let from = sorted.partition_point(|idx| idx[0] < lo);
+            let to = sorted.partition_point(|idx| idx[0] < hi);
+            let hit: Vec<&[usize]> = sorted[from..to]
+                .iter()
+                .filter(|idx| {
+                    idx.iter()
+                        .zip(&tile.reach)
+                        .all(|(&i, &(lo, hi))| lo <= i && i < hi)
+                })
+                .copied()
+                .collect();
+            (!hit.is_empty()).then_some(hit)
+        })
     }
 
     /// The source boxes that evaluating at `points` under `rule` reads

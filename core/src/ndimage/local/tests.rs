@@ -400,3 +400,57 @@ fn refused_updates_change_nothing() {
         other => panic!("{:?}", other.map(|_| ())),
     }
 }
+
+/// A source whose reads of more than `limit` samples fail (the boxes an
+/// update's recomputation reads, not the changed samples' blocks).
+struct SmallReadsOnly<'a> {
+    inner: ndarray::ArrayViewD<'a, f64>,
+    limit: usize,
+}
+
+impl SampleSource<f64> for SmallReadsOnly<'_> {
+    fn shape(&self) -> &[usize] {
+        self.inner.shape()
+    }
+    fn read_box(&self, lo: &[usize], hi: &[usize], out: &mut [f64]) -> Result<(), NdimageError> {
+        if out.len() > self.limit {
+            return Err(NdimageError::NotFetched {
+                lo: lo.to_vec(),
+                hi: hi.to_vec(),
+            });
+        }
+        self.inner.read_box(lo, hi, out)
+    }
+}
+
+/// An update whose recomputation fails to read takes its changes back
+/// (in place, a repeated index included) and keeps the earlier updates:
+/// the values equal a rebuild of the samples as they were.
+#[test]
+fn an_update_that_fails_to_read_changes_nothing() {
+    let data = data_of::<f64>(&[40, 40], 5);
+    let opts = LocalOptions::new(3, Mode::Mirror);
+    let mut f = LocalInterpolant::<f64>::new(&[40, 40], opts, 1 << 24).unwrap();
+    let at = Array2::from_shape_vec((2, 2), vec![5.5, 6.5, 30.25, 12.0]).unwrap();
+    let mut out = [0.0; 2];
+    f.eval_many(&data, at.view(), PointRule::Fold, None, &mut out)
+        .unwrap();
+    f.update(&data, &[5, 7], &[3.0]).unwrap();
+    let failing = SmallReadsOnly {
+        inner: data.view(),
+        limit: 256,
+    };
+    let e = f.update(&failing, &[5, 6, 5, 7, 5, 6], &[1.0, 4.0, 2.0]);
+    assert!(matches!(e, Err(NdimageError::NotFetched { .. })));
+    let mut changed = data.clone();
+    changed[[5, 7]] = 3.0;
+    let fresh = LocalInterpolant::<f64>::new(&[40, 40], opts, 1 << 24).unwrap();
+    let (mut got, mut want) = ([0.0; 2], [0.0; 2]);
+    f.eval_many(&data, at.view(), PointRule::Fold, None, &mut got)
+        .unwrap();
+    fresh
+        .eval_many(&changed, at.view(), PointRule::Fold, None, &mut want)
+        .unwrap();
+    assert_eq!(got.map(f64::to_bits), want.map(f64::to_bits));
+    assert_ne!(got[0].to_bits(), out[0].to_bits());
+}

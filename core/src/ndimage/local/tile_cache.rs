@@ -99,12 +99,17 @@ impl<T> TileCache<T> {
         t.map.insert(key, Entry { tile, used });
     }
 
-    /// The keys and tiles held now (for an update to go through).
-    pub(crate) fn tiles(&self) -> Vec<(Vec<i64>, Arc<CoefBox<T>>)> {
+    /// The keys and tiles held now for which `pick` says `Some`, with
+    /// what it says (an update's tiles within reach: only those are
+    /// copied out of the lock, not every key).
+    pub(crate) fn select<X>(
+        &self,
+        mut pick: impl FnMut(&CoefBox<T>) -> Option<X>,
+    ) -> Vec<(Vec<i64>, Arc<CoefBox<T>>, X)> {
         self.lock()
             .map
             .iter()
-            .map(|(k, e)| (k.clone(), e.tile.clone()))
+            .filter_map(|(k, e)| pick(&e.tile).map(|x| (k.clone(), e.tile.clone(), x)))
             .collect()
     }
 
