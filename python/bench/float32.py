@@ -17,7 +17,9 @@ Cases: map_coordinates at 10^6 random points, zoom by 2, shift, rotate by
 output, and output=float32) and spline_filter1d, all cubic on a float32
 image of SIZE^2 normal noise (map_coordinates: mode='constant', the
 others their defaults). Speed columns: scipy, splinelab with threads=1
-and with every core (the default), their ratios; with --base, the base
+and with every core (the default), their ratios, splinelab's
+compute="float32" opt-in on every core and the default's time over it;
+with --base, the base
 build's default, splinelab's compute="float32" and their ratio. Memory
 columns: the input's and the result's size, scipy's and splinelab's peak
 above the resident size before the call (so the result included).
@@ -70,7 +72,8 @@ def speed(args):
     print(f"float32 {args.size}^2, cubic, min of {args.rounds} alternated rounds (wall ms; "
           f"{os.cpu_count()} cores)")
     if base is None:
-        print(f"{'case':<20}{'scipy':>9}{'sl 1 thr':>10}{'sl all':>9}{'scipy/1':>9}{'scipy/all':>10}")
+        print(f"{'case':<20}{'scipy':>9}{'sl 1 thr':>10}{'sl all':>9}{'scipy/1':>9}{'scipy/all':>10}"
+              f"{'sl f32':>9}{'all/f32':>9}")
     else:
         print(f"{'case':<20}{'base f32':>10}{'compute=f32':>13}{'ratio':>8}")
     for name in names:
@@ -81,13 +84,15 @@ def speed(args):
                 best(lambda: call(ndi, img), times, "scipy")
                 best(lambda: call(splinelab, img, threads=1), times, "one")
                 best(lambda: call(splinelab, img), times, "all")
+                best(lambda: call(splinelab, img, compute="float32"), times, "f32")
             else:
                 best(lambda: call(base, img), times, "base")
                 best(lambda: call(splinelab, img, compute="float32"), times, "opt")
         m = {k: 1e3 * min(v) for k, v in times.items()}
         if base is None:
             print(f"{name:<20}{m['scipy']:>9.1f}{m['one']:>10.1f}{m['all']:>9.1f}"
-                  f"{m['scipy'] / m['one']:>9.2f}{m['scipy'] / m['all']:>10.2f}")
+                  f"{m['scipy'] / m['one']:>9.2f}{m['scipy'] / m['all']:>10.2f}"
+                  f"{m['f32']:>9.1f}{m['all'] / m['f32']:>9.2f}")
         else:
             print(f"{name:<20}{m['base']:>10.1f}{m['opt']:>13.1f}{m['base'] / m['opt']:>8.2f}")
 

@@ -23,6 +23,8 @@ only a missing sample that some window reads.
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from . import _splinelab as _ext
@@ -90,15 +92,41 @@ def _is_dask(x):
 def fetch(src, boxes, work):
     """The blocks ``[(first index, samples)]`` of the boxes ``(lo, hi)``, in
     ``work``'s dtype: one ``__getitem__`` per box; for a dask array one
-    graph (``dask.compute``) computing only the chunks under the boxes."""
+    graph (``dask.compute``) computing only the chunks under the boxes, or,
+    where the bounding box holds fewer samples than the boxes and their
+    slices' graph work (:data:`_DASK_SLICE` each), that box computed once
+    and the boxes cut from it."""
     keys = [tuple(slice(lo, hi) for lo, hi in zip(l, h)) for l, h in boxes]
-    if _is_dask(src):
+    if _is_dask(src) and len(keys) > 1 and _size(_bounds(boxes)) <= sum(_size(b) + _DASK_SLICE for b in boxes):
+        # Many boxes: one slice, its graph culled once, the boxes cut from
+        # it (a slice per box culls the graph per box: 45 s for 10^4 cubic
+        # points of a 35x250x150 dask-image spline_filter, scipy 66 ms).
+        lo, hi = _bounds(boxes)
+        whole = np.asarray(src[tuple(slice(a, b) for a, b in zip(lo, hi))].compute())
+        parts = [whole[tuple(slice(k.start - o, k.stop - o) for k, o in zip(key, lo))] for key in keys]
+    elif _is_dask(src):
         import dask
 
         parts = dask.compute(*[src[k] for k in keys]) if keys else []
     else:
         parts = [src[k] for k in keys]
     return [(list(l), np.ascontiguousarray(np.asarray(p), dtype=work)) for (l, _), p in zip(boxes, parts)]
+
+
+#: A dask slice's own graph work, in samples computed in the same time
+#: (measured: 1.6 ms a box in the case above, ~10 ns a sample).
+_DASK_SLICE = 10**5
+
+
+def _bounds(boxes):
+    """The bounding box ``(lo, hi)`` of boxes ``[(lo, hi)]``."""
+    return [min(b[0][a] for b in boxes) for a in range(len(boxes[0][0]))], \
+        [max(b[1][a] for b in boxes) for a in range(len(boxes[0][0]))]
+
+
+def _size(box):
+    """The number of samples in the box ``(lo, hi)``."""
+    return math.prod(h - l for l, h in zip(*box))
 
 
 def evaluate_array_like(src, flat, d, mode, cval, prefilter, tol, threads, exact_edges, deriv, nan_policy, work):

@@ -363,6 +363,10 @@ def map_coordinates(
     tol, threads = _tol_for(tol, nan_policy, d if prefilter else 0), _threads(threads)
     deriv = _derivative(derivative, at.shape[0])
     sign = _reflection_sign(flat, np.shape(input), mode, deriv) if deriv else None
+    if _local.is_array_like(input) and math.prod(input.shape) == 0:
+        # Nothing to read: the in-memory rules, as scipy reads it (cval
+        # under the constant modes; reproject passes empty dask blocks).
+        input = np.empty(input.shape, np.dtype(input.dtype))
     if _local.is_array_like(input):
         # Not in memory (zarr, h5py, dask): read only the windows' boxes.
         return _map_array_like(input, flat, shape, output, d, mode, cval, prefilter, tol, threads, exact_edges,

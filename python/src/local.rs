@@ -71,10 +71,14 @@ where
     let deriv = nonzero(deriv);
     let run = || -> Result<Option<Vec<f64>>, NdimageError> {
         let spec = LocalSpec::<f64>::new(data.shape(), opts)?;
-        let plan = LocalPlan::new(&spec, at.t(), rule, None)?;
-        if !force && !plan.cost().prefer_local() {
-            return Ok(None);
-        }
+        let plan = if force {
+            LocalPlan::new(&spec, at.t(), rule, None)?
+        } else {
+            match LocalPlan::new_if_local(&spec, at.t(), rule)? {
+                Some(plan) => plan,
+                None => return Ok(None),
+            }
+        };
         let mut out = vec![0.0; at.ncols()];
         plan.evaluate(&spec, &data, deriv.as_deref(), &mut out)?;
         Ok(Some(out))

@@ -193,6 +193,41 @@ def test_sources_give_the_same_bits(tmp_path):
                 np.testing.assert_array_equal(got, want, err_msg=f"{type(s).__name__} {mode}")
 
 
+def test_dask_with_many_points_reads_the_bounding_box_once():
+    # Many boxes (1000 cubic points, prefilter=False): one slice of their
+    # bounding box, the boxes cut from it: the values of the in-memory call.
+    import dask.array as da
+
+    rng = np.random.default_rng(5)
+    a = rng.uniform(-1, 1, (35, 250, 150))
+    src = Counting(a)
+    d = da.from_array(src, chunks=(35, 100, 100), asarray=False)
+    at = np.stack([rng.uniform(-1, n, 1000) for n in a.shape])
+    for kw in (dict(order=3, prefilter=False), dict(order=1), dict(order=3, mode="mirror")):
+        src.read = 0
+        got = splinelab.map_coordinates(d, at, **kw)
+        want = _route("local", lambda: splinelab.map_coordinates(a, at, **kw))
+        np.testing.assert_array_equal(got, want, err_msg=str(kw))
+        assert src.read <= a.size, (kw, src.read)
+
+
+@pytest.mark.parametrize("shape", [(0, 5), (5, 0), (0,)])
+@pytest.mark.parametrize("order", [0, 1, 3])
+def test_empty_array_like_gives_cval_as_scipy(shape, order):
+    # reproject's dask_map_coordinates passes empty dask blocks with
+    # cval=nan (its test_reproject_order_method): scipy reads them whole
+    # and returns cval under the constant modes.
+    import dask.array as da
+
+    at = np.array([[0.5, 1.2], [0.3, 2.0]])[: len(shape)]
+    for mode in ("constant", "grid-constant"):
+        for src in (da.zeros(shape), Counting(np.zeros(shape))):
+            kw = dict(order=order, mode=mode, cval=np.nan, prefilter=False)
+            got = splinelab.map_coordinates(src, at, **kw)
+            want = ndi.map_coordinates(np.zeros(shape), at, **kw)
+            np.testing.assert_array_equal(got, want, err_msg=f"{type(src).__name__} {mode}")
+
+
 def test_dask_with_few_points_computes_only_their_chunks():
     import dask.array as da
 

@@ -68,6 +68,61 @@ impl LocalPlan {
         rule: PointRule,
         tile: Option<usize>,
     ) -> Result<Self, NdimageError> {
+        let mut plan = Self::located(spec, points, rule)?;
+        plan.group(spec, tile);
+        Ok(plan)
+    }
+
+    /// The plan for `points` where the local route is the cheaper (the
+    /// decision of `LocalPlan::new(.., None).cost().prefer_local()`),
+    /// `None` where the global route is. Pricing and grouping cost more
+    /// per point than either route at many points (measured: 1.9 s for
+    /// 10^6 points on a 2048^2 array, whose global route takes 0.1 s), so
+    /// a floor of the local cost comes first (`local_floor_ns`); where it
+    /// already reaches the global cost, the local route cannot win and
+    /// nothing is grouped.
+    pub fn new_if_local<T: Real>(
+        spec: &LocalSpec<T>,
+        points: ArrayView2<'_, f64>,
+        rule: PointRule,
+    ) -> Result<Option<Self>, NdimageError> {
+        let mut plan = Self::located(spec, points, rule)?;
+        let global = global_ns(
+            spec.shape().iter().product(),
+            plan.ndim,
+            spec.filter.is_some(),
+        );
+        if plan.local_floor_ns(spec) >= global {
+            return Ok(None);
+        }
+        plan.group(spec, None);
+        Ok(plan.cost.prefer_local().then_some(plan))
+    }
+
+    /// A lower bound of [`group`](Self::group)'s local cost at every tile
+    /// edge: `C_POINT` per evaluated point and one tile of edge 1 (a
+    /// tile's cost grows with its edge; one tile at least where a point is
+    /// evaluated); without a prefilter, the cost itself.
+    fn local_floor_ns<T: Real>(&self, spec: &LocalSpec<T>) -> f64 {
+        let live = self.cval_at.iter().filter(|&&c| !c).count();
+        let (d, m) = (self.ndim, spec.order as usize);
+        if spec.filter.is_none() {
+            return live as f64 * (C_POINT + C_READ * (m as f64).powi(d as i32));
+        }
+        let one_tile = if live > 0 {
+            tile_ns(d, spec.degree(), spec.half_width(), 1)
+        } else {
+            0.0
+        };
+        one_tile + live as f64 * C_POINT
+    }
+
+    /// The points located (cells, `cval` points), not yet grouped.
+    fn located<T: Real>(
+        spec: &LocalSpec<T>,
+        points: ArrayView2<'_, f64>,
+        rule: PointRule,
+    ) -> Result<Self, NdimageError> {
         let ndim = spec.ndim();
         if points.ncols() != ndim {
             return Err(NdimageError::PointDimension {
@@ -87,7 +142,7 @@ impl LocalPlan {
             .try_for_each(|(p, ((x, f), c))| {
                 locate(spec, points.row(p).iter().copied(), rule, p, x, f, c)
             })?;
-        let mut plan = LocalPlan {
+        Ok(LocalPlan {
             ndim,
             xs,
             firsts,
@@ -99,9 +154,7 @@ impl LocalPlan {
                 tile: 1,
                 tiles: 0,
             },
-        };
-        plan.group(spec, tile);
-        Ok(plan)
+        })
     }
 
     /// The estimated cost of each route ([`RouteCost`]).

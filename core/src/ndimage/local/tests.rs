@@ -454,3 +454,38 @@ fn an_update_that_fails_to_read_changes_nothing() {
     assert_eq!(got.map(f64::to_bits), want.map(f64::to_bits));
     assert_ne!(got[0].to_bits(), out[0].to_bits());
 }
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(64))]
+
+    /// `new_if_local` takes the route `new(.., None).cost().prefer_local()`
+    /// takes, on arrays where either route wins (from a few points on a
+    /// large array to many points on a small one), its plan the same.
+    #[test]
+    fn new_if_local_decides_as_the_priced_plan(
+        (shape, degree, (mode, pad, rule), prefilter, _, _, seed) in case(),
+        scale in prop::sample::select(vec![1usize, 20, 200]),
+        k in prop_oneof![0usize..=4, 100usize..=3000],
+    ) {
+        let shape: Vec<usize> = shape.iter().map(|&n| n * scale).collect();
+        let opts = LocalOptions { prefilter, scipy_pad: pad, ..LocalOptions::new(degree, mode) };
+        let spec = LocalSpec::<f64>::new(&shape, opts).unwrap();
+        let d = shape.len();
+        let mut state = seed | 1;
+        let coords: Vec<f64> = (0..k * d)
+            .map(|i| {
+                state = state.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+                let u = (state >> 11) as f64 / (1u64 << 53) as f64;
+                u * (shape[i % d] as f64 + 6.0) - 3.0
+            })
+            .collect();
+        let points = Array2::from_shape_vec((k, d), coords).unwrap();
+        let priced = LocalPlan::new(&spec, points.view(), rule, None).unwrap();
+        let chosen = LocalPlan::new_if_local(&spec, points.view(), rule).unwrap();
+        prop_assert_eq!(chosen.is_some(), priced.cost().prefer_local(), "{:?}", priced.cost());
+        if let Some(plan) = chosen {
+            prop_assert_eq!(plan.cost(), priced.cost());
+            prop_assert_eq!(plan.groups.len(), priced.groups.len());
+        }
+    }
+}
