@@ -40,8 +40,6 @@ root_doc = "index"
 exclude_patterns = ["_build", "_generated", "_intersphinx", "examples", "README.md", "**/README.md", "_templates",
                     "auto_examples/*.ipynb", "auto_examples/*.py", "auto_examples/*.zip"]
 templates_path = ["_templates"]
-# The pages the faults branch adds are included where they exist (see
-# coming_from_scipy.md); nothing else is optional.
 nitpicky = True
 
 # -- MyST (Markdown pages) ---------------------------------------------------
@@ -134,19 +132,6 @@ nitpick_ignore = [
     # _ndimage.map_coordinates refers to the private module that rounds results.
     ("py:mod", "splinelab._dtypes"),
 ]
-_TOLERATED = []
-# scipy_differences.md comes from the exception-class work; the index's toctree
-# takes it by a glob, which matches nothing on a branch without it.
-if not (HERE / "scipy_differences.md").is_file():
-    _TOLERATED.append("toctree glob pattern 'scipy_differences*' didn't match any documents")
-
-
-class _Phase1Tolerance:
-    """Drops the known warnings of _TOLERATED (by their exact text)."""
-
-    def filter(self, record):
-        message = record.getMessage()
-        return not any(m in message for m in _TOLERATED)
 
 
 def _phase1_docstrings(app, what, name, obj, options, lines):
@@ -158,9 +143,4 @@ def _phase1_docstrings(app, what, name, obj, options, lines):
 
 
 def setup(app):
-    import logging
-
     app.connect("autodoc-process-docstring", _phase1_docstrings, priority=400)
-
-    for handler in logging.getLogger("sphinx").handlers:
-        handler.filters.insert(0, _Phase1Tolerance())

@@ -252,27 +252,6 @@ class PytestPluginOptions(SphinxDirective):
         return [out]
 
 
-class ScipyDifferences(SphinxDirective):
-    """A link to ``scipy_differences.md`` (every difference from scipy,
-    written with the exception-class work) where this tree has it; the
-    index's toctree takes it by a glob, so the site builds either way."""
-
-    def run(self):
-        from sphinx import addnodes
-
-        if not (HERE / "scipy_differences.md").is_file():
-            return [nodes.paragraph("", "The page listing every difference from scipy one by one "
-                                        "(docs/scipy_differences.md) is not part of this build.")]
-        ref = addnodes.pending_xref("", refdomain="std", reftype="doc", reftarget="/scipy_differences",
-                                    refexplicit=False, refwarn=True, refdoc=self.env.docname)
-        ref += nodes.inline("", "")
-        para = nodes.paragraph("", "Every difference from scipy, one by one, with the exception each "
-                                   "bad argument raises: ")
-        para += ref
-        para += nodes.Text(".")
-        return [para]
-
-
 def generate_cli_docs(app):
     """``splinelab cli-docs``: the --help page and the man pages."""
     from splinelab.__main__ import main
@@ -288,7 +267,6 @@ def setup(app):
     app.add_directive("report-chart", ReportChart)
     app.add_directive("cli-man-pages", ManPages)
     app.add_directive("pytest-plugin-options", PytestPluginOptions)
-    app.add_directive("scipy-differences", ScipyDifferences)
     app.add_role("baseline", BaselineRole())
     app.connect("builder-inited", generate_cli_docs)
     return {"version": "1", "parallel_read_safe": True, "parallel_write_safe": True}
