@@ -13,6 +13,10 @@
   scripts/docs.sh ran for this build (``_generated/extra/report/NAME.svg``),
   shown with its caption; a missing chart is a build error.
 - ``cli-man-pages`` (directive): links to the man pages this build wrote.
+- ``scipy-arguments`` (directive): every argument and default of the eight
+  functions beside scipy.ndimage's, from ``inspect.signature`` of both;
+  splinelab's own keywords marked; a scipy argument splinelab lacks, or a
+  shared default that differs, is a build error.
 
 At ``builder-inited`` it runs the command line's hidden ``cli-docs``
 subcommand (through the Python package's entry point) to write
@@ -252,6 +256,87 @@ class PytestPluginOptions(SphinxDirective):
         return [out]
 
 
+class ScipyArguments(SphinxDirective):
+    """Every argument and default of the eight functions beside scipy.ndimage's,
+    read from ``inspect.signature`` of both at build time: a table per function,
+    splinelab's own keywords marked, any scipy argument splinelab lacks (or a
+    default that differs) a build error, so the table cannot drift from either."""
+
+    OURS = "no: splinelab's own"
+    FUNCTIONS = ("spline_filter1d", "spline_filter", "map_coordinates", "affine_transform", "shift", "zoom",
+                 "rotate", "geometric_transform")
+
+    def run(self):
+        import inspect
+
+        import scipy
+        import scipy.ndimage
+        import splinelab
+
+        out = [nodes.paragraph("", f"Read at build time from inspect.signature of scipy {scipy.__version__}'s "
+                                   f"scipy.ndimage and of splinelab {splinelab.__version__}.")]
+        for name in self.FUNCTIONS:
+            theirs = inspect.signature(getattr(scipy.ndimage, name)).parameters
+            ours = inspect.signature(getattr(splinelab, name)).parameters
+            missing = [a for a in theirs if a not in ours]
+            if missing:
+                raise self.error(f"scipy-arguments: splinelab.{name} lacks scipy's {missing}")
+            rows = []
+            for arg, p in ours.items():
+                mine = self._default(p)
+                if arg in theirs:
+                    scipys = self._default(theirs[arg])
+                    if (scipys, self._kind(theirs[arg])) != (mine, self._kind(p)):
+                        raise self.error(f"scipy-arguments: {name}({arg}=) is {self._kind(p)}, default {mine}; "
+                                         f"scipy's {self._kind(theirs[arg])}, default {scipys}")
+                    rows.append([arg, mine, self._kind(p), "yes, the same"])
+                else:
+                    rows.append([arg, mine, self._kind(p), self.OURS])
+            out.append(self._section(name, rows))
+        return out
+
+    @staticmethod
+    def _default(p):
+        import inspect
+
+        if p.default is inspect.Parameter.empty:
+            return "(required)"
+        d = p.default
+        return f"numpy.{d.__name__}" if isinstance(d, type) else repr(d)
+
+    @staticmethod
+    def _kind(p):
+        import inspect
+
+        return "keyword-only" if p.kind is inspect.Parameter.KEYWORD_ONLY else "positional or keyword"
+
+    def _section(self, name, rows):
+        from sphinx import addnodes
+
+        ref = addnodes.pending_xref("", refdomain="py", reftype="func", reftarget=f"splinelab.{name}",
+                                    refexplicit=False, refwarn=True, refdoc=self.env.docname)
+        ref += nodes.literal("", f"splinelab.{name}")
+        title = nodes.paragraph("", "", nodes.strong("", "", ref))
+        head = ["argument", "default", "passed", "in scipy.ndimage"]
+        table = nodes.table(classes=["scipy-arguments"])
+        group = nodes.tgroup(cols=len(head))
+        table += group
+        for _ in head:
+            group += nodes.colspec(colwidth=1)
+        thead = nodes.thead()
+        group += thead
+        thead += BaselineFigures._row(head)
+        body = nodes.tbody()
+        group += body
+        for row in rows:
+            tr = BaselineFigures._row(row, literal_first=True)
+            if row[-1] == self.OURS:
+                tr["classes"].append("splinelab-only")
+                tr.children[-1].children[0].children[0] = nodes.strong("", row[-1])
+            body += tr
+        return nodes.container("", title, table, classes=["scipy-arguments"])
+
+
 def generate_cli_docs(app):
     """``splinelab cli-docs``: the --help page and the man pages."""
     from splinelab.__main__ import main
@@ -267,6 +352,7 @@ def setup(app):
     app.add_directive("report-chart", ReportChart)
     app.add_directive("cli-man-pages", ManPages)
     app.add_directive("pytest-plugin-options", PytestPluginOptions)
+    app.add_directive("scipy-arguments", ScipyArguments)
     app.add_role("baseline", BaselineRole())
     app.connect("builder-inited", generate_cli_docs)
     return {"version": "1", "parallel_read_safe": True, "parallel_write_safe": True}
