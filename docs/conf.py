@@ -52,8 +52,8 @@ autodoc_default_options = {"members": False}
 autodoc_typehints = "none"  # the docstrings state the types (numpydoc)
 numpydoc_show_class_members = False
 numpydoc_xref_param_type = False
-# Phase 1 renders the docstrings as they are; numpydoc's validation (GL01,
-# PR01, ...) is switched on in phase 2 with the numpydoc rewrite.
+# numpydoc's validation (GL01, PR01, ...) stays off until every public
+# docstring is numpydoc (docs/README.md lists the ones that are not yet).
 numpydoc_validation_checks = set()
 
 # -- intersphinx: inventories bundled in the repository ----------------------
@@ -123,24 +123,3 @@ html_last_updated_fmt = None
 # extension writes the man pages at builder-inited.
 (HERE / "_generated" / "extra").mkdir(parents=True, exist_ok=True)
 html_extra_path = ["_generated/extra"]
-
-# -- Phase-1 tolerances: what the docstrings of the engine's modules say today ----
-# Those docstrings are rewritten to numpydoc in phase 2 (after the branches that
-# change those files merge); until then these exact, known issues are not errors.
-# Each is listed in docs/README.md with its fix.
-nitpick_ignore = [
-    # _ndimage.map_coordinates refers to the private module that rounds results.
-    ("py:mod", "splinelab._dtypes"),
-]
-
-
-def _phase1_docstrings(app, what, name, obj, options, lines):
-    """autosummary looks for the first sentence of a summary at ". ", and
-    coefficients()'s first line has one inside a literal (``c_0 .. c_{count-1}``):
-    shown as ``c_0, ..., c_{count-1}`` until the phase-2 docstring says so."""
-    if name == "splinelab.coefficients" and lines:
-        lines[0] = lines[0].replace("``c_0 .. c_{count-1}``", "``c_0, ..., c_{count-1}``")
-
-
-def setup(app):
-    app.connect("autodoc-process-docstring", _phase1_docstrings, priority=400)

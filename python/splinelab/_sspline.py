@@ -54,7 +54,7 @@ def truncation_width(degree=None, order=None, tension=None, *, tol, criterion="u
 
 
 def coefficients(degree=None, order=None, tension=None, *, count=10, bits=None):
-    """The S-spline coefficients ``c_0 .. c_{count-1}`` (``splinelab coeffs``).
+    """The S-spline coefficients ``c_0, ..., c_{count-1}`` (``splinelab coeffs``).
 
     ``order`` is the papers' ``m = degree + 1`` (default cubic). With
     ``bits=None``: a float64 array, each correctly rounded (partial
