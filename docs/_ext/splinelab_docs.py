@@ -80,6 +80,33 @@ def provenance() -> nodes.paragraph:
     return para
 
 
+def table(head, classes):
+    """An empty docutils table with header ``head``: ``(table, tbody)``."""
+    out = nodes.table(classes=classes)
+    group = nodes.tgroup(cols=len(head))
+    out += group
+    for _ in head:
+        group += nodes.colspec(colwidth=1)
+    thead = nodes.thead()
+    group += thead
+    thead += row(head)
+    body = nodes.tbody()
+    group += body
+    return out, body
+
+
+def row(cells, literal_first=False):
+    """A table row of text cells (the first as code with ``literal_first``)."""
+    tr = nodes.row()
+    for i, text in enumerate(cells):
+        entry = nodes.entry()
+        para = nodes.paragraph()
+        para += nodes.literal(text, text) if literal_first and i == 0 else nodes.Text(str(text))
+        entry += para
+        tr += entry
+    return tr
+
+
 class BaselineFigures(SphinxDirective):
     """The table (and chart) of the baseline figures matching ``:match:``."""
 
@@ -105,38 +132,17 @@ class BaselineFigures(SphinxDirective):
         return out
 
     def _table(self, found, strip):
-        head = ["figure", "value", "unit", "tolerance"]
-        table = nodes.table(classes=["baseline-figures"])
-        group = nodes.tgroup(cols=len(head))
-        table += group
-        for _ in head:
-            group += nodes.colspec(colwidth=1)
-        thead = nodes.thead()
-        group += thead
-        thead += self._row(head)
-        body = nodes.tbody()
-        group += body
+        figures_table, body = table(["figure", "value", "unit", "tolerance"], ["baseline-figures"])
         for f in found:
             name = f["name"][len(strip):] if strip and f["name"].startswith(strip) else f["name"]
             tolerance = fmt(f["tolerance"]) if f.get("tolerance") is not None else "-"
             if f.get("better"):
                 tolerance += f" ({f['better']} is better)"
-            body += self._row([name, fmt(f["value"]), f.get("unit", ""), tolerance], literal_first=True)
+            body += row([name, fmt(f["value"]), f.get("unit", ""), tolerance], literal_first=True)
         if "caption" in self.options:
             title = nodes.title("", self.options["caption"])
-            table.insert(0, title)
-        return table
-
-    @staticmethod
-    def _row(cells, literal_first=False):
-        row = nodes.row()
-        for i, text in enumerate(cells):
-            entry = nodes.entry()
-            para = nodes.paragraph()
-            para += nodes.literal(text, text) if literal_first and i == 0 else nodes.Text(str(text))
-            entry += para
-            row += entry
-        return row
+            figures_table.insert(0, title)
+        return figures_table
 
     def _chart(self, found, strip):
         import matplotlib
@@ -317,24 +323,14 @@ class ScipyArguments(SphinxDirective):
                                     refexplicit=False, refwarn=True, refdoc=self.env.docname)
         ref += nodes.literal("", f"splinelab.{name}")
         title = nodes.paragraph("", "", nodes.strong("", "", ref))
-        head = ["argument", "default", "passed", "in scipy.ndimage"]
-        table = nodes.table(classes=["scipy-arguments"])
-        group = nodes.tgroup(cols=len(head))
-        table += group
-        for _ in head:
-            group += nodes.colspec(colwidth=1)
-        thead = nodes.thead()
-        group += thead
-        thead += BaselineFigures._row(head)
-        body = nodes.tbody()
-        group += body
-        for row in rows:
-            tr = BaselineFigures._row(row, literal_first=True)
-            if row[-1] == self.OURS:
+        arguments, body = table(["argument", "default", "passed", "in scipy.ndimage"], ["scipy-arguments"])
+        for cells in rows:
+            tr = row(cells, literal_first=True)
+            if cells[-1] == self.OURS:
                 tr["classes"].append("splinelab-only")
-                tr.children[-1].children[0].children[0] = nodes.strong("", row[-1])
+                tr.children[-1].children[0].children[0] = nodes.strong("", cells[-1])
             body += tr
-        return nodes.container("", title, table, classes=["scipy-arguments"])
+        return nodes.container("", title, arguments, classes=["scipy-arguments"])
 
 
 def generate_cli_docs(app):

@@ -186,6 +186,13 @@ splinelab.errors.SequenceLengthError
 }
 
 BLOCKS = {**_FILTER, **_INTERP, **_COMMON}
+# The runs of parameters most functions list in the same order.
+_RUNS = {
+    "filter_keywords": ("filter_tol", "threads", "exact_edges", "filter_nan_policy", "filter_compute"),
+    "interp_keywords": ("interp_tol", "threads", "exact_edges", "interp_nan_policy", "interp_compute"),
+    "interp_args": ("interp_output", "interp_order", "interp_mode", "cval", "prefilter"),
+}
+BLOCKS.update({run: "\n".join(BLOCKS[name].strip("\n") for name in names) for run, names in _RUNS.items()})
 
 _LINE = re.compile(r"^([ \t]*)%\((\w+)\)s[ \t]*$", re.M)
 

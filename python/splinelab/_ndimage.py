@@ -166,11 +166,7 @@ def spline_filter1d(
         The axis to filter (negative counts from the end). Default -1.
     %(filter_output)s
     %(filter_mode)s
-    %(filter_tol)s
-    %(threads)s
-    %(exact_edges)s
-    %(filter_nan_policy)s
-    %(filter_compute)s
+    %(filter_keywords)s
 
     Returns
     -------
@@ -221,11 +217,7 @@ def spline_filter(input, order=3, output=np.float64, mode="mirror", *, tol=DEFAU
     %(filter_order)s
     %(filter_output)s
     %(filter_mode)s
-    %(filter_tol)s
-    %(threads)s
-    %(exact_edges)s
-    %(filter_nan_policy)s
-    %(filter_compute)s
+    %(filter_keywords)s
 
     Returns
     -------
@@ -314,9 +306,7 @@ def map_coordinates(
         overlap; 'grid-wrap' is the periodic spline, period ``n``).
     %(cval)s
     %(prefilter)s
-    %(interp_tol)s
-    %(threads)s
-    %(exact_edges)s
+    %(interp_keywords)s
     derivative : sequence of int, optional
         ``(k_0, k_1, ...)``, one order per axis, each ``k_a <= order``: the
         partial derivative ``d^(k_0 + k_1 + ...) f / dx_0^k_0 dx_1^k_1 ...``
@@ -328,8 +318,6 @@ def map_coordinates(
         against 5-point central differences of scipy's values
         (python/tests/test_gradient.py). splinelab's own keyword; see also
         :func:`spline_gradient`.
-    %(interp_nan_policy)s
-    %(interp_compute)s
 
     Returns
     -------
@@ -480,11 +468,7 @@ def spline_gradient(
     %(interp_mode)s
     %(cval)s
     %(prefilter)s
-    %(interp_tol)s
-    %(threads)s
-    %(exact_edges)s
-    %(interp_nan_policy)s
-    %(interp_compute)s
+    %(interp_keywords)s
 
     Returns
     -------

@@ -126,20 +126,12 @@ def zoom(input, zoom, output=None, order=3, mode="constant", cval=0.0, prefilter
     %(interp_input)s
     zoom : float or sequence of float
         The factor along every axis, or one per axis.
-    %(interp_output)s
-    %(interp_order)s
-    %(interp_mode)s
-    %(cval)s
-    %(prefilter)s
+    %(interp_args)s
     grid_mode : bool, optional
         False (default): the first and last samples' centres aligned. True:
         the pixel edges aligned (scipy warns, and so does this, for
         'constant' and 'wrap': 'grid-constant' / 'grid-wrap' are meant).
-    %(interp_tol)s
-    %(threads)s
-    %(exact_edges)s
-    %(interp_nan_policy)s
-    %(interp_compute)s
+    %(interp_keywords)s
 
     Returns
     -------
@@ -211,16 +203,8 @@ def shift(input, shift, output=None, order=3, mode="constant", cval=0.0, prefilt
     %(interp_input)s
     shift : float or sequence of float
         The shift along every axis, or one per axis.
-    %(interp_output)s
-    %(interp_order)s
-    %(interp_mode)s
-    %(cval)s
-    %(prefilter)s
-    %(interp_tol)s
-    %(threads)s
-    %(exact_edges)s
-    %(interp_nan_policy)s
-    %(interp_compute)s
+    %(interp_args)s
+    %(interp_keywords)s
 
     Returns
     -------
@@ -331,16 +315,8 @@ def affine_transform(input, matrix, offset=0.0, output_shape=None, output=None, 
         Added to ``matrix @ o``; one value or one per axis. Default 0.0.
     output_shape : tuple of int, optional
         Defaults to ``output``'s shape or the input's.
-    %(interp_output)s
-    %(interp_order)s
-    %(interp_mode)s
-    %(cval)s
-    %(prefilter)s
-    %(interp_tol)s
-    %(threads)s
-    %(exact_edges)s
-    %(interp_nan_policy)s
-    %(interp_compute)s
+    %(interp_args)s
+    %(interp_keywords)s
 
     Returns
     -------
@@ -462,16 +438,8 @@ def rotate(input, angle, axes=(1, 0), reshape=True, output=None, order=3, mode="
     reshape : bool, optional
         True (default): the plane enlarged to hold the whole rotated input
         (``(extent + 0.5)`` truncated, as scipy).
-    %(interp_output)s
-    %(interp_order)s
-    %(interp_mode)s
-    %(cval)s
-    %(prefilter)s
-    %(interp_tol)s
-    %(threads)s
-    %(exact_edges)s
-    %(interp_nan_policy)s
-    %(interp_compute)s
+    %(interp_args)s
+    %(interp_keywords)s
 
     Returns
     -------
@@ -542,11 +510,7 @@ def geometric_transform(input, mapping, output_shape=None, output=None, order=3,
         output sample as scipy does.
     output_shape : tuple of int, optional
         Defaults to the input's shape.
-    %(interp_output)s
-    %(interp_order)s
-    %(interp_mode)s
-    %(cval)s
-    %(prefilter)s
+    %(interp_args)s
     extra_arguments : tuple, optional
         Passed to ``mapping`` after the index.
     extra_keywords : dict, optional
@@ -557,11 +521,7 @@ def geometric_transform(input, mapping, output_shape=None, output=None, order=3,
         indices (``numpy.indices``) and returns an array of shape
         ``(input.ndim, *output_shape)``: one call, no Python loop. Default
         False.
-    %(interp_tol)s
-    %(threads)s
-    %(exact_edges)s
-    %(interp_nan_policy)s
-    %(interp_compute)s
+    %(interp_keywords)s
 
     Returns
     -------
