@@ -51,7 +51,16 @@ autosummary_generate = True
 autodoc_default_options = {"members": False}
 autodoc_typehints = "none"  # the docstrings state the types (numpydoc)
 numpydoc_show_class_members = False
-numpydoc_xref_param_type = False
+# Types in Parameters / Returns / Raises link where they name something
+# documented (numpy's, Python's, ours); the plain words below stay text.
+numpydoc_xref_param_type = True
+# numpydoc links array_like and scalar to numpy's glossary and scalar page by
+# default; the bundled numpy.inv has neither (docs/_intersphinx/README.md), so
+# they map to themselves and stay text.
+numpydoc_xref_aliases = {"ndarray": "numpy.ndarray", "dtype": "numpy.dtype", "callable": "callable",
+                         "array_like": "array_like", "scalar": "scalar"}
+numpydoc_xref_ignore = {"optional", "or", "of", "array_like", "scalar", "sequence", "index", "ints", "type",
+                        "default"}
 # numpydoc's validation (GL01, PR01, ...) stays off until every public
 # docstring is numpydoc (docs/README.md lists the ones that are not yet).
 numpydoc_validation_checks = set()
