@@ -189,6 +189,8 @@ BLOCKS = {**_FILTER, **_INTERP, **_COMMON}
 # The runs of parameters most functions list in the same order.
 _RUNS = {
     "filter_keywords": ("filter_tol", "threads", "exact_edges", "filter_nan_policy", "filter_compute"),
+    "interp_engine": ("interp_tol", "threads", "exact_edges"),
+    "interp_tail": ("interp_nan_policy", "interp_compute"),
     "interp_keywords": ("interp_tol", "threads", "exact_edges", "interp_nan_policy", "interp_compute"),
     "interp_args": ("interp_output", "interp_order", "interp_mode", "cval", "prefilter"),
 }

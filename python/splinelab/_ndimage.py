@@ -306,7 +306,7 @@ def map_coordinates(
         overlap; 'grid-wrap' is the periodic spline, period ``n``).
     %(cval)s
     %(prefilter)s
-    %(interp_keywords)s
+    %(interp_engine)s
     derivative : sequence of int, optional
         ``(k_0, k_1, ...)``, one order per axis, each ``k_a <= order``: the
         partial derivative ``d^(k_0 + k_1 + ...) f / dx_0^k_0 dx_1^k_1 ...``
@@ -318,6 +318,7 @@ def map_coordinates(
         against 5-point central differences of scipy's values
         (python/tests/test_gradient.py). splinelab's own keyword; see also
         :func:`spline_gradient`.
+    %(interp_tail)s
 
     Returns
     -------
