@@ -65,10 +65,9 @@ numpydoc_xref_ignore = {"optional", "or", "of", "array_like", "scalar", "sequenc
 # extended summary and an example everywhere, one-line summaries, closing
 # quotes on their own line, capitalised descriptions, infinitive verbs), so
 # every parameter is documented, in the signature's order, with a type, and
-# every docstring has its sections. splinelab.dask's docstrings are not
-# numpydoc yet (docs/README.md); MAX_DEGREE is an int (its doc is int's).
+# every docstring has its sections. MAX_DEGREE is an int (its doc is int's).
 numpydoc_validation_checks = {"all", "SA01", "EX01", "ES01", "SS06", "GL02", "PR08", "SS02", "SS05"}
-numpydoc_validation_exclude = {r"^splinelab\.dask\.", r"^splinelab\.MAX_DEGREE$"}
+numpydoc_validation_exclude = {r"^splinelab\.MAX_DEGREE$"}
 
 # -- intersphinx: inventories bundled in the repository ----------------------
 # Provenance of each file: docs/_intersphinx/README.md.

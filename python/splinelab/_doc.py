@@ -185,7 +185,63 @@ splinelab.errors.SequenceLengthError
     A per-axis argument without one value per axis.""",
 }
 
-BLOCKS = {**_FILTER, **_INTERP, **_COMMON}
+# -- splinelab.dask -------------------------------------------------------------------
+_DASK = {
+    "dask_order": """
+order : int, optional
+    The spline **degree**, 0..199 (scipy's ``order``). Default 3.""",
+    "dask_mode": """
+mode : str, optional
+    scipy's names, as the function of the same name in ``splinelab``
+    (its default too).""",
+    "dask_cval": """
+cval : scalar, optional
+    The value outside the grid in 'constant' and 'grid-constant'. Default
+    0.0.""",
+    "dask_tol": """
+tol : float, optional
+    The certified per-axis truncation tolerance, in (0, 1) (default 1e-12):
+    the overlap is the half-width certified for it plus the spline's
+    support (:func:`depth`). None is refused (no certified overlap).""",
+    "dask_output": """
+output : dtype, optional
+    The result's dtype, as the function of the same name in
+    ``splinelab``.""",
+    "dask_chunks": """
+chunks : tuple or str, optional
+    The output's chunks (default: the input's chunk size).""",
+    "dask_threads": """
+threads : int, optional
+    Threads per block (default 1: dask already runs blocks in parallel).""",
+    "dask_route": """
+route : {'truncated', 'recursive'}, optional
+    'truncated' (default: the recursion per padded block with zeros beyond
+    it, bound ``b`` per axis) or 'recursive' (the block's own mirror
+    extension, ``2 b`` at half the tolerance); the module documentation
+    says why, :func:`bound` gives the certified error of either.""",
+    "dask_nan_policy": """
+nan_policy : {'propagate', 'raise', 'local'}, optional
+    'propagate' (default, scipy's whole-array pattern by a global
+    reduction), 'raise' (when the block holding the sample is computed) or
+    'local' (the unchunked pattern whatever the chunking); module
+    documentation.""",
+    "dask_compute": """
+compute : {'float64', 'float32'}, optional
+    'float64' (default: every block computed in float64, float32 blocks
+    read as they lie, float32 results rounded as the unchunked functions
+    round them) or 'float32' (the opt-in float32 arithmetic, as
+    :func:`splinelab.spline_filter`).""",
+    "dask_raises": """
+ValueError
+    ``tol=None`` or outside (0, 1), an unknown ``route`` or ``nan_policy``,
+    and the bad values :func:`splinelab.map_coordinates` refuses.
+splinelab.errors.OrderError
+    ``order`` outside 0..199.
+splinelab.errors.ModeError
+    ``mode`` is not one of scipy's eight.""",
+}
+
+BLOCKS = {**_FILTER, **_INTERP, **_COMMON, **_DASK}
 # The runs of parameters most functions list in the same order.
 _RUNS = {
     "filter_keywords": ("filter_tol", "threads", "exact_edges", "filter_nan_policy", "filter_compute"),
@@ -193,6 +249,10 @@ _RUNS = {
     "interp_tail": ("interp_nan_policy", "interp_compute"),
     "interp_keywords": ("interp_tol", "threads", "exact_edges", "interp_nan_policy", "interp_compute"),
     "interp_args": ("interp_output", "interp_order", "interp_mode", "cval", "prefilter"),
+    "dask_tail": ("dask_threads", "dask_route", "dask_nan_policy", "dask_compute"),
+    "dask_resample": ("dask_order", "dask_mode", "dask_cval"),
+    "dask_resample_keywords": ("dask_tol", "dask_output", "dask_chunks", "dask_threads", "dask_route",
+                               "dask_nan_policy", "dask_compute"),
 }
 BLOCKS.update({run: "\n".join(BLOCKS[name].strip("\n") for name in names) for run, names in _RUNS.items()})
 
