@@ -40,8 +40,6 @@ root_doc = "index"
 exclude_patterns = ["_build", "_generated", "_intersphinx", "examples", "README.md", "**/README.md", "_templates",
                     "auto_examples/*.ipynb", "auto_examples/*.py", "auto_examples/*.zip"]
 templates_path = ["_templates"]
-# The pages the faults branch adds are included where they exist (see
-# coming_from_scipy.md); nothing else is optional.
 nitpicky = True
 
 # -- MyST (Markdown pages) ---------------------------------------------------
@@ -53,10 +51,23 @@ autosummary_generate = True
 autodoc_default_options = {"members": False}
 autodoc_typehints = "none"  # the docstrings state the types (numpydoc)
 numpydoc_show_class_members = False
-numpydoc_xref_param_type = False
-# Phase 1 renders the docstrings as they are; numpydoc's validation (GL01,
-# PR01, ...) is switched on in phase 2 with the numpydoc rewrite.
-numpydoc_validation_checks = set()
+# Types in Parameters / Returns / Raises link where they name something
+# documented (numpy's, Python's, ours); the plain words below stay text.
+numpydoc_xref_param_type = True
+# numpydoc links array_like and scalar to numpy's glossary and scalar page by
+# default; the bundled numpy.inv has neither (docs/_intersphinx/README.md), so
+# they map to themselves and stay text.
+numpydoc_xref_aliases = {"ndarray": "numpy.ndarray", "dtype": "numpy.dtype", "callable": "callable",
+                         "array_like": "array_like", "scalar": "scalar"}
+numpydoc_xref_ignore = {"optional", "or", "of", "array_like", "scalar", "sequence", "index", "ints", "type",
+                        "default"}
+# numpydoc's validation: every check but the ones listed (See Also, an
+# extended summary and an example everywhere, one-line summaries, closing
+# quotes on their own line, capitalised descriptions, infinitive verbs), so
+# every parameter is documented, in the signature's order, with a type, and
+# every docstring has its sections. MAX_DEGREE is an int (its doc is int's).
+numpydoc_validation_checks = {"all", "SA01", "EX01", "ES01", "SS06", "GL02", "PR08", "SS02", "SS05"}
+numpydoc_validation_exclude = {r"^splinelab\.MAX_DEGREE$"}
 
 # -- intersphinx: inventories bundled in the repository ----------------------
 # Provenance of each file: docs/_intersphinx/README.md.
@@ -125,42 +136,3 @@ html_last_updated_fmt = None
 # extension writes the man pages at builder-inited.
 (HERE / "_generated" / "extra").mkdir(parents=True, exist_ok=True)
 html_extra_path = ["_generated/extra"]
-
-# -- Phase-1 tolerances: what the docstrings of the engine's modules say today ----
-# Those docstrings are rewritten to numpydoc in phase 2 (after the branches that
-# change those files merge); until then these exact, known issues are not errors.
-# Each is listed in docs/README.md with its fix.
-nitpick_ignore = [
-    # _ndimage.map_coordinates refers to the private module that rounds results.
-    ("py:mod", "splinelab._dtypes"),
-]
-_TOLERATED = []
-# scipy_differences.md comes from the exception-class work; the index's toctree
-# takes it by a glob, which matches nothing on a branch without it.
-if not (HERE / "scipy_differences.md").is_file():
-    _TOLERATED.append("toctree glob pattern 'scipy_differences*' didn't match any documents")
-
-
-class _Phase1Tolerance:
-    """Drops the known warnings of _TOLERATED (by their exact text)."""
-
-    def filter(self, record):
-        message = record.getMessage()
-        return not any(m in message for m in _TOLERATED)
-
-
-def _phase1_docstrings(app, what, name, obj, options, lines):
-    """autosummary looks for the first sentence of a summary at ". ", and
-    coefficients()'s first line has one inside a literal (``c_0 .. c_{count-1}``):
-    shown as ``c_0, ..., c_{count-1}`` until the phase-2 docstring says so."""
-    if name == "splinelab.coefficients" and lines:
-        lines[0] = lines[0].replace("``c_0 .. c_{count-1}``", "``c_0, ..., c_{count-1}``")
-
-
-def setup(app):
-    import logging
-
-    app.connect("autodoc-process-docstring", _phase1_docstrings, priority=400)
-
-    for handler in logging.getLogger("sphinx").handlers:
-        handler.filters.insert(0, _Phase1Tolerance())

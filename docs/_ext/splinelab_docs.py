@@ -13,6 +13,10 @@
   scripts/docs.sh ran for this build (``_generated/extra/report/NAME.svg``),
   shown with its caption; a missing chart is a build error.
 - ``cli-man-pages`` (directive): links to the man pages this build wrote.
+- ``scipy-arguments`` (directive): every argument and default of the eight
+  functions beside scipy.ndimage's, from ``inspect.signature`` of both;
+  splinelab's own keywords marked; a scipy argument splinelab lacks, or a
+  shared default that differs, is a build error.
 
 At ``builder-inited`` it runs the command line's hidden ``cli-docs``
 subcommand (through the Python package's entry point) to write
@@ -76,6 +80,33 @@ def provenance() -> nodes.paragraph:
     return para
 
 
+def table(head, classes):
+    """An empty docutils table with header ``head``: ``(table, tbody)``."""
+    out = nodes.table(classes=classes)
+    group = nodes.tgroup(cols=len(head))
+    out += group
+    for _ in head:
+        group += nodes.colspec(colwidth=1)
+    thead = nodes.thead()
+    group += thead
+    thead += row(head)
+    body = nodes.tbody()
+    group += body
+    return out, body
+
+
+def row(cells, literal_first=False):
+    """A table row of text cells (the first as code with ``literal_first``)."""
+    tr = nodes.row()
+    for i, text in enumerate(cells):
+        entry = nodes.entry()
+        para = nodes.paragraph()
+        para += nodes.literal(text, text) if literal_first and i == 0 else nodes.Text(str(text))
+        entry += para
+        tr += entry
+    return tr
+
+
 class BaselineFigures(SphinxDirective):
     """The table (and chart) of the baseline figures matching ``:match:``."""
 
@@ -101,38 +132,17 @@ class BaselineFigures(SphinxDirective):
         return out
 
     def _table(self, found, strip):
-        head = ["figure", "value", "unit", "tolerance"]
-        table = nodes.table(classes=["baseline-figures"])
-        group = nodes.tgroup(cols=len(head))
-        table += group
-        for _ in head:
-            group += nodes.colspec(colwidth=1)
-        thead = nodes.thead()
-        group += thead
-        thead += self._row(head)
-        body = nodes.tbody()
-        group += body
+        figures_table, body = table(["figure", "value", "unit", "tolerance"], ["baseline-figures"])
         for f in found:
             name = f["name"][len(strip):] if strip and f["name"].startswith(strip) else f["name"]
             tolerance = fmt(f["tolerance"]) if f.get("tolerance") is not None else "-"
             if f.get("better"):
                 tolerance += f" ({f['better']} is better)"
-            body += self._row([name, fmt(f["value"]), f.get("unit", ""), tolerance], literal_first=True)
+            body += row([name, fmt(f["value"]), f.get("unit", ""), tolerance], literal_first=True)
         if "caption" in self.options:
             title = nodes.title("", self.options["caption"])
-            table.insert(0, title)
-        return table
-
-    @staticmethod
-    def _row(cells, literal_first=False):
-        row = nodes.row()
-        for i, text in enumerate(cells):
-            entry = nodes.entry()
-            para = nodes.paragraph()
-            para += nodes.literal(text, text) if literal_first and i == 0 else nodes.Text(str(text))
-            entry += para
-            row += entry
-        return row
+            figures_table.insert(0, title)
+        return figures_table
 
     def _chart(self, found, strip):
         import matplotlib
@@ -252,25 +262,75 @@ class PytestPluginOptions(SphinxDirective):
         return [out]
 
 
-class ScipyDifferences(SphinxDirective):
-    """A link to ``scipy_differences.md`` (every difference from scipy,
-    written with the exception-class work) where this tree has it; the
-    index's toctree takes it by a glob, so the site builds either way."""
+class ScipyArguments(SphinxDirective):
+    """Every argument and default of the eight functions beside scipy.ndimage's,
+    read from ``inspect.signature`` of both at build time: a table per function,
+    splinelab's own keywords marked, any scipy argument splinelab lacks (or a
+    default that differs) a build error, so the table cannot drift from either."""
+
+    OURS = "no: splinelab's own"
+    FUNCTIONS = ("spline_filter1d", "spline_filter", "map_coordinates", "affine_transform", "shift", "zoom",
+                 "rotate", "geometric_transform")
 
     def run(self):
+        import inspect
+
+        import scipy
+        import scipy.ndimage
+        import splinelab
+
+        out = [nodes.paragraph("", f"Read at build time from inspect.signature of scipy {scipy.__version__}'s "
+                                   f"scipy.ndimage and of splinelab {splinelab.__version__}.")]
+        for name in self.FUNCTIONS:
+            theirs = inspect.signature(getattr(scipy.ndimage, name)).parameters
+            ours = inspect.signature(getattr(splinelab, name)).parameters
+            missing = [a for a in theirs if a not in ours]
+            if missing:
+                raise self.error(f"scipy-arguments: splinelab.{name} lacks scipy's {missing}")
+            rows = []
+            for arg, p in ours.items():
+                mine = self._default(p)
+                if arg in theirs:
+                    scipys = self._default(theirs[arg])
+                    if (scipys, self._kind(theirs[arg])) != (mine, self._kind(p)):
+                        raise self.error(f"scipy-arguments: {name}({arg}=) is {self._kind(p)}, default {mine}; "
+                                         f"scipy's {self._kind(theirs[arg])}, default {scipys}")
+                    rows.append([arg, mine, self._kind(p), "yes, the same"])
+                else:
+                    rows.append([arg, mine, self._kind(p), self.OURS])
+            out.append(self._section(name, rows))
+        return out
+
+    @staticmethod
+    def _default(p):
+        import inspect
+
+        if p.default is inspect.Parameter.empty:
+            return "(required)"
+        d = p.default
+        return f"numpy.{d.__name__}" if isinstance(d, type) else repr(d)
+
+    @staticmethod
+    def _kind(p):
+        import inspect
+
+        return "keyword-only" if p.kind is inspect.Parameter.KEYWORD_ONLY else "positional or keyword"
+
+    def _section(self, name, rows):
         from sphinx import addnodes
 
-        if not (HERE / "scipy_differences.md").is_file():
-            return [nodes.paragraph("", "The page listing every difference from scipy one by one "
-                                        "(docs/scipy_differences.md) is not part of this build.")]
-        ref = addnodes.pending_xref("", refdomain="std", reftype="doc", reftarget="/scipy_differences",
+        ref = addnodes.pending_xref("", refdomain="py", reftype="func", reftarget=f"splinelab.{name}",
                                     refexplicit=False, refwarn=True, refdoc=self.env.docname)
-        ref += nodes.inline("", "")
-        para = nodes.paragraph("", "Every difference from scipy, one by one, with the exception each "
-                                   "bad argument raises: ")
-        para += ref
-        para += nodes.Text(".")
-        return [para]
+        ref += nodes.literal("", f"splinelab.{name}")
+        title = nodes.paragraph("", "", nodes.strong("", "", ref))
+        arguments, body = table(["argument", "default", "passed", "in scipy.ndimage"], ["scipy-arguments"])
+        for cells in rows:
+            tr = row(cells, literal_first=True)
+            if cells[-1] == self.OURS:
+                tr["classes"].append("splinelab-only")
+                tr.children[-1].children[0].children[0] = nodes.strong("", cells[-1])
+            body += tr
+        return nodes.container("", title, arguments, classes=["scipy-arguments"])
 
 
 def generate_cli_docs(app):
@@ -288,7 +348,7 @@ def setup(app):
     app.add_directive("report-chart", ReportChart)
     app.add_directive("cli-man-pages", ManPages)
     app.add_directive("pytest-plugin-options", PytestPluginOptions)
-    app.add_directive("scipy-differences", ScipyDifferences)
+    app.add_directive("scipy-arguments", ScipyArguments)
     app.add_role("baseline", BaselineRole())
     app.connect("builder-inited", generate_cli_docs)
     return {"version": "1", "parallel_read_safe": True, "parallel_write_safe": True}

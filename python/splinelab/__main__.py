@@ -11,7 +11,25 @@ import sys
 
 
 def main(argv: list[str] | None = None) -> int:
-    """Runs ``splinelab ARGS`` and returns its exit status."""
+    """Run ``splinelab ARGS`` and return its exit status.
+
+    Parameters
+    ----------
+    argv : list of str, optional
+        The arguments after ``splinelab`` (default: ``sys.argv[1:]``).
+
+    Returns
+    -------
+    int
+        The exit status, as the Rust binary's (``splinelab --help``).
+
+    Examples
+    --------
+    >>> from splinelab.__main__ import main
+    >>> main(["--version"])  # doctest: +ELLIPSIS
+    splinelab ...
+    0
+    """
     from . import _splinelab as _ext
 
     args = sys.argv[1:] if argv is None else list(argv)

@@ -120,43 +120,74 @@ _KINDS = {
 def check(kind, **kwargs):
     """Checks your own numbers against certified references (``splinelab check KIND --json``).
 
-    Returns the same dict as the command line's ``--json`` (``kind``, ``n``,
-    ``reference_bits``, ``worst``, ``regions``, ``digits_min``, ``failed``,
-    ``verdict``, ...). The default verdict is 'fail' when any element's
-    error exceeds ``bound_factor`` (8) times the error a backward-stable
-    computation would make there from the problem's own conditioning:
-    ``verdict_basis`` ('stable-bound', or 'max-ulps'/'finite-only' for a kind
-    without a bound, with ``no_verdict_reason``), ``stable_bound`` (the
-    bound and its source), ``over_bound``, ``worst_excess`` (``index``,
-    ``excess`` = error / bound, ``error``, ``bound``) and ``digits_lost``
-    (log10 of the worst excess: the digits lost beyond what the conditioning
-    explains). Keywords per kind (as the command's options):
+    Parameters
+    ----------
+    kind : {'prefilter', 'coeffs', 'bspline-eval', 'bezier-eval', 'knot-insertion', 'interp', 'cond'}
+        What the numbers are.
+    **kwargs
+        The keywords of ``kind`` (as the command's options):
 
-    - 'prefilter': ``samples, coeffs, degree=3`` (or ``order=degree+1``),
-      ``mode='mirror'`` (scipy's names; 'constant' and 'wrap' filter with
-      the mirror rule, as spline_filter1d does); degree 1..15;
-    - 'coeffs': ``values, order=/degree=/tension=``;
-    - 'bspline-eval': ``knots, coeffs, degree, x, values, extrapolate=True``;
-    - 'bezier-eval': ``coeffs, t, values``;
-    - 'knot-insertion': ``before=(t, c, k), after=(t, c, k)``;
-    - 'interp': ``samples`` (any number of dimensions), ``coordinates``
-      (shape (ndim, count), as map_coordinates), ``values``, ``degree=3``,
-      ``mode='mirror'`` (every map_coordinates mode: 'constant' — the mirror
-      spline inside [0, n - 1], ``cval`` outside —, 'nearest', 'reflect',
-      'mirror', 'grid-wrap', 'wrap' — period n - 1 —, 'grid-constant'),
-      ``cval=0.0``;
-    - 'cond': ``nodes`` (one node set, or a list of sets), ``values`` (one
-      condition number per set), ``basis='bernstein'`` or 'monomial',
-      ``norm='2'`` or 'inf'.
+        - 'prefilter': ``samples, coeffs, degree=3`` (or
+          ``order=degree+1``), ``mode='mirror'`` (scipy's names; 'constant'
+          and 'wrap' filter with the mirror rule, as spline_filter1d does);
+          degree 1..15;
+        - 'coeffs': ``values, order=/degree=/tension=``;
+        - 'bspline-eval': ``knots, coeffs, degree, x, values,
+          extrapolate=True``;
+        - 'bezier-eval': ``coeffs, t, values``;
+        - 'knot-insertion': ``before=(t, c, k), after=(t, c, k)``;
+        - 'interp': ``samples`` (any number of dimensions), ``coordinates``
+          (shape (ndim, count), as map_coordinates), ``values``,
+          ``degree=3``, ``mode='mirror'`` (every map_coordinates mode:
+          'constant' — the mirror spline inside [0, n - 1], ``cval``
+          outside —, 'nearest', 'reflect', 'mirror', 'grid-wrap', 'wrap' —
+          period n - 1 —, 'grid-constant'), ``cval=0.0``;
+        - 'cond': ``nodes`` (one node set, or a list of sets), ``values``
+          (one condition number per set), ``basis='bernstein'`` or
+          'monomial', ``norm='2'`` or 'inf'.
 
-    Every kind takes ``max_ulps=`` (verdict 'fail' when an element exceeds
-    it), ``format=`` ('f64'/'f32'; default: the values' dtype) and
-    ``out=`` (a folder: the command line's ``--out`` page, SVG charts,
-    ``reference.npy``/``error.npy``/``bound.npy`` and a ``summary.json``
-    whose ``figures`` ``splinelab compare`` reads; the folder is replaced).
-    For pytest, :func:`splinelab.testing.assert_check` raises with the
-    summary instead of returning it.
+        Every kind takes ``max_ulps=`` (verdict 'fail' when an element
+        exceeds it), ``format=`` ('f64'/'f32'; default: the values' dtype)
+        and ``out=`` (a folder: the command line's ``--out`` page, SVG
+        charts, ``reference.npy``/``error.npy``/``bound.npy`` and a
+        ``summary.json`` whose ``figures`` ``splinelab compare`` reads; the
+        folder is replaced).
 
+    Returns
+    -------
+    dict
+        The command line's ``--json``: ``kind``, ``n``, ``reference_bits``,
+        ``worst``, ``regions``, ``digits_min``, ``failed``, ``verdict``,
+        ``verdict_basis`` ('stable-bound', or 'max-ulps'/'finite-only' for
+        a kind without a bound, with ``no_verdict_reason``),
+        ``stable_bound`` (the bound and its source), ``over_bound``,
+        ``worst_excess`` (``index``, ``excess`` = error / bound, ``error``,
+        ``bound``) and ``digits_lost`` (log10 of the worst excess: the
+        digits lost beyond what the conditioning explains), ...
+
+    Raises
+    ------
+    ValueError
+        An unknown ``kind``, arrays of mismatched lengths, a degree outside
+        the kind's range.
+    TypeError
+        A keyword ``kind`` does not take, or a required one missing.
+
+    See Also
+    --------
+    splinelab.testing.assert_check : For pytest: raises with the summary
+        instead of returning it.
+
+    Notes
+    -----
+    The references are computed in MPFR or exact rational arithmetic
+    (``reference_bits``). The default verdict is 'fail' when any
+    element's error exceeds ``bound_factor`` (8) times the error a
+    backward-stable computation would make there from the problem's own
+    conditioning.
+
+    Examples
+    --------
     >>> import numpy as np, splinelab
     >>> s = np.array([1.0, 2.0, 0.5, 3.0, 1.0, 0.0, 2.0, 1.0])
     >>> r = splinelab.check("prefilter", samples=s, coeffs=splinelab.spline_filter1d(s), max_ulps=16)

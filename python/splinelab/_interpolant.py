@@ -31,50 +31,87 @@ def _selected(shape, key):
 
 
 class Interpolant:
-    """A spline over one array, evaluated at points as
-    :func:`splinelab.map_coordinates` evaluates it, on the local route.
-
-    ``Interpolant(input, order=3, mode="mirror", cval=0.0, tol=None,
-    nan_policy="propagate", threads=None, cache_bytes=256 MiB)``;
-    ``ip(coordinates, derivative=None)`` takes ``map_coordinates``' layout
-    (``(ndim, ...)``) and returns float64 values (float32 for float32
-    input) of shape ``coordinates.shape[1:]``; ``derivative`` as in
-    :func:`splinelab.map_coordinates`.
-
-    ``input``: a numpy array (a memory map is read from its buffer, only
-    the pages under the points' windows), or an array-like that is not in
-    memory — anything with ``shape``, ``dtype``, ``ndim`` and basic-slice
-    ``__getitem__`` (zarr, h5py, dask): read one ``__getitem__`` per box the
-    windows need (a dask array: one graph computing only the chunks under
-    them). Real dtypes; integers and booleans are computed in float64.
-    Modes: scipy's eight, mapped as :func:`splinelab.map_coordinates` maps
-    them. ``tol=None``: the half-width certified below the global route's
-    own rounding error; a float: that tolerance.
+    """A spline over one array, evaluated as :func:`splinelab.map_coordinates` evaluates it, on the local route.
 
     Coefficients are computed per tile (``32**2`` cells in 2-D) when a point
     first needs them and kept in a cache of ``cache_bytes`` bytes (least
-    recently used first out); a budget below one tile is a ValueError
-    naming the smallest that works. A value is a function of the current
-    samples only: the same bits whatever the cache held.
+    recently used first out). A value is a function of the current samples
+    only: the same bits whatever the cache held. ``ip(coordinates,
+    derivative=None)`` evaluates (:meth:`__call__`); :meth:`update` changes
+    samples in place of a rebuild. splinelab's own class (scipy has none).
 
-    ``ip.update(key, values)`` changes the samples as ``a[key] = values``
-    would (numpy's IndexError / ValueError, the object unchanged on error;
-    a non-finite value follows ``nan_policy``: refused under 'raise') and
-    recomputes the coefficients within reach of the changed samples in the
-    cached tiles, by the same operations as a rebuild (so the same bits).
-    The caller's array is never written: changed samples are kept beside it
-    in blocks. The interpolant pickles (its input pickles as the input
-    does: a memory map pickles its data, a zarr array its store's address).
+    Parameters
+    ----------
+    input : array_like
+        A numpy array (a memory map is read from its buffer, only the pages
+        under the points' windows), or an array-like that is not in memory —
+        anything with ``shape``, ``dtype``, ``ndim`` and basic-slice
+        ``__getitem__`` (zarr, h5py, dask): read one ``__getitem__`` per box
+        the windows need (a dask array: one graph computing only the chunks
+        under them). Real dtypes; integers and booleans are computed in
+        float64, float32 samples in float64 (each result rounded once to
+        float32). The caller's array is never written.
+    order : int, optional
+        The spline degree, 0..199. Default 3.
+    mode : str, optional
+        scipy's eight, mapped as :func:`splinelab.map_coordinates` maps
+        them. Default 'mirror'.
+    cval : float, optional
+        The value outside the grid in 'constant' and 'grid-constant'.
+        Default 0.0.
+    tol : float or None, optional
+        None (default): the half-width certified below the global route's
+        own rounding error; a float: that tolerance.
+    nan_policy : {'propagate', 'raise', 'local'}, optional
+        On this route a NaN reaches only the points whose windows read it
+        (under every policy); 'raise' refuses a missing sample when a window
+        reads it. Default 'propagate'.
+    threads : int or None, optional
+        None (default: one per core) or the number of threads, 1..256.
+    cache_bytes : int, optional
+        The tile cache's budget in bytes (default 256 MiB).
 
-    Missing samples: on this route a NaN reaches only the points whose
-    windows read it (under every policy; ``'raise'`` refuses a missing
-    sample when a window reads it). A non-finite coordinate is a ValueError.
+    Raises
+    ------
+    TypeError
+        An input that is not of a real dtype.
+    ValueError
+        An input without a sample on some axis; a ``cache_bytes`` below one
+        tile (the message names the smallest that works); bad ``tol``,
+        ``threads`` or ``nan_policy``.
+    splinelab.errors.OrderError
+        ``order`` outside 0..199.
+    splinelab.errors.ModeError
+        ``mode`` is not one of scipy's eight.
 
+    See Also
+    --------
+    splinelab.map_coordinates : The same values, one call at a time.
+
+    Notes
+    -----
+    Method: the prefilter as the truncated convolution of half-width
+    :func:`splinelab.truncation_width` (certified for ``tol``), computed per
+    tile from the samples within that half-width, then the B-spline weights
+    of each point. Error: with ``tol=None`` below the global route's own
+    rounding error; with a ``tol``, at most ``bound * max|input|`` per
+    axis beyond it (:meth:`truncation`). Cost: per new tile, the samples it
+    reads with a margin of the half-width convolved; per point,
+    ``(order + 1)**ndim`` multiply-adds. The interpolant pickles (its input
+    pickles as the input does: a memory map pickles its data, a zarr array
+    its store's address).
+
+    Examples
+    --------
     >>> import numpy as np, splinelab
     >>> a = np.add.outer(np.arange(50.0), np.arange(60.0) ** 2)
     >>> ip = splinelab.Interpolant(a, order=3, mode="mirror")
     >>> bool(abs(ip([[10.0], [20.0]])[0] - a[10, 20]) < 1e-12)
     True
+
+    An update gives the bits of an interpolant rebuilt on the changed
+    samples:
+
     >>> ip.update((10, 20), 0.0)
     >>> b = a.copy(); b[10, 20] = 0.0
     >>> bool(np.array_equal(ip([[10.5], [19.25]]), splinelab.Interpolant(b)([[10.5], [19.25]])))
@@ -110,6 +147,7 @@ class Interpolant:
 
     @property
     def ndim(self):
+        """The number of axes of the sample grid."""
         return len(self._src.shape)
 
     @property
@@ -118,20 +156,57 @@ class Interpolant:
         return self._degree
 
     def truncation(self):
-        """``{'half_width', 'bound', 'tol'}``: the certified convolution's
-        half-width, its per-axis bound ``sum_{|j|>n} |c_j|`` and the
-        tolerance it was certified for."""
+        """The certified truncation of the prefilter.
+
+        Returns
+        -------
+        dict
+            ``{'half_width', 'bound', 'tol'}``: the convolution's half-width
+            ``n``, its per-axis bound ``sum_{|j|>n} |c_j|`` and the tolerance
+            it was certified for.
+        """
         n, b, t = self._engine.truncation()
         return {"half_width": n, "bound": b, "tol": t}
 
     def cache_info(self):
-        """``{'budget', 'bytes', 'tiles', 'changed_bytes'}`` now."""
+        """The tile cache now.
+
+        Returns
+        -------
+        dict
+            ``{'budget', 'bytes', 'tiles', 'changed_bytes'}``: the budget,
+            the bytes and tiles of coefficients held, and the bytes of
+            changed samples kept beside the input (:meth:`update`).
+        """
         return dict(zip(("budget", "bytes", "tiles", "changed_bytes"), self._engine.cache_info()))
 
     def _direct(self):
         return isinstance(self._src, np.ndarray) and self._src.dtype == self._work
 
     def __call__(self, coordinates, derivative=None):
+        """The spline's values (or a partial derivative) at the points.
+
+        Parameters
+        ----------
+        coordinates : array_like
+            ``map_coordinates``' layout: shape ``(ndim, ...)``, one row per
+            axis.
+        derivative : sequence of int, optional
+            One order per axis, as in :func:`splinelab.map_coordinates`.
+
+        Returns
+        -------
+        ndarray
+            Shape ``coordinates.shape[1:]``; float64 (float32 for float32
+            input).
+
+        Raises
+        ------
+        splinelab.errors.CoordinateShapeError
+            ``coordinates`` without one row per axis.
+        ValueError
+            A non-finite coordinate, or a bad ``derivative``.
+        """
         at = _coordinates(coordinates, self.ndim)
         flat = np.ascontiguousarray(at.reshape(at.shape[0], -1))
         deriv = _derivative(derivative, self.ndim)
@@ -146,8 +221,30 @@ class Interpolant:
         return values.reshape(at.shape[1:])
 
     def update(self, key, values):
-        """Changes the samples as ``a[key] = values`` would and recomputes
-        the coefficients within reach (class documentation)."""
+        """Change the samples as ``a[key] = values`` would.
+
+        The coefficients within reach of the changed samples are recomputed
+        in the cached tiles, by the same operations as a rebuild (so the
+        same bits). The caller's array is never written: changed samples
+        are kept beside it in blocks (:meth:`cache_info`'s
+        ``changed_bytes``).
+
+        Parameters
+        ----------
+        key : index
+            Any numpy index of the sample grid (basic or advanced).
+        values : array_like
+            Broadcast to the selection, as numpy assigns. A non-finite value
+            follows ``nan_policy``: refused under 'raise'.
+
+        Raises
+        ------
+        IndexError
+            ``key`` outside the grid (numpy's); the object is unchanged.
+        ValueError
+            ``values`` that do not broadcast (numpy's), or a non-finite value
+            under ``nan_policy='raise'``; the object is unchanged.
+        """
         idx, shape = _selected(self.shape, key)
         new = np.empty(shape, self._src.dtype)
         new[...] = values

@@ -10,6 +10,7 @@ import numpy as np
 from . import _splinelab as _ext
 from . import _dtypes as _dt
 from . import _local
+from ._doc import fill
 from .errors import CoordinateShapeError, ModeError
 from ._validate import DEFAULT_TOL, _degree, _int, _mode, _nan_policy, _opt_float, _real_array, _threads, _tol_for
 
@@ -146,89 +147,51 @@ def _axis(axis, ndim):
     return axis % ndim
 
 
+@fill
 def spline_filter1d(
     input, order=3, axis=-1, output=np.float64, mode="mirror", *, tol=DEFAULT_TOL, threads=None, exact_edges=False,
     nan_policy="propagate", compute="float64",
 ):
     """Interpolation coefficients along one axis (``scipy.ndimage.spline_filter1d``).
 
-    ``order`` is the spline **degree**, 0..199 (scipy: 2..5; degrees 0 and 1
-    return the input, as in scipy). The coefficients ``c`` satisfy
-    ``sum_i c_i B(j - i) = input_j`` at every sample ``j``, the samples
-    extended beyond the ends by ``mode``.
+    The coefficients ``c`` of the spline of degree ``order`` through the
+    samples: ``sum_i c_i B(j - i) = input_j`` at every sample ``j``, the
+    samples extended beyond the ends by ``mode``.
 
     Parameters
     ----------
-    input : array_like, float, integer, bool or complex, any strides and
-        shape. It is read once, strided (and converted when its dtype is
-        not ``output``'s), into the C-ordered result, which is then
-        filtered in place: one copy, no other. Complex input: the real and
-        imaginary parts through the same filter, as scipy.
-    order : int, the degree.
-    axis : int, the axis to filter (negative counts from the end).
-    output : a dtype or dtype name (default float64; None: the input's
-        dtype), or an array of any dtype, byte order and strides to write
-        into (float64/float32 C-contiguous ones directly, others through a
-        temporary; ``output=input`` filters in place). Every input is
-        computed in float64, as scipy computes it: float64 and float32
-        input is read where it lies (any strides) and widened as it is
-        read. A float32 output is rounded after every axis, as scipy
-        rounds it (scipy filters each axis in float64 line buffers and
-        stores the result in the output): the same accuracy as scipy's,
-        and no float64 array of the output's size. Integer and boolean
-        results are converted as scipy's filter converts them (truncated
-        toward zero, numpy's ``astype``), after every axis; float16
-        results rounded once at the end (scipy refuses float16).
-    compute : 'float64' (default: scipy's arithmetic) or 'float32' (ours):
-        float32 arithmetic on float32 samples (other input converted to
-        float32 first), the result then converted into ``output``. Error
-        about ``amplification * 6e-8`` relative per axis (``A = 1.73`` for
-        cubics, 3.3 for quintics: :func:`filter_bound`), against float64's
-        rounding of scipy's float32 output; speed: python/bench/float32.py
-        (measured figures in the README).
-    mode : scipy's names and scipy's filters: 'mirror', 'constant',
-        'grid-constant' and 'wrap' filter with the mirror rule; 'reflect',
-        'grid-mirror' and 'nearest' with the half-sample (reflect) rule;
-        'grid-wrap' is periodic (what scipy 1.17 computes, for every degree).
-    exact_edges : bool, default False. True: 'nearest' and 'grid-constant'
-        give the exact coefficients of the signal extended by its end
-        samples / by zeros (scipy has no such filter; its map_coordinates
-        approximates them by padding 12 samples).
-    tol : None (exact recursive filter) or float in (0, 1): certified to
-        ``|result - exact| <= bound * max|input|`` with ``bound =
-        truncation_width(degree=order, tol=tol)['bound'] < tol``, by the
-        fastest route that keeps it: one long line in blocks overlapping by
-        the certified width, their recursions side by side in vector lanes
-        and on every thread; lines of an N-D array (and short lines) by the
-        exact recursion (difference 0). Never slower than ``tol=None``.
-        Default None, except under ``nan_policy='local'``: 1e-12.
-    threads : None (one per core) or the number of threads.
-    nan_policy : 'propagate' (default), 'raise' or 'local': what NaN and
-        ±inf samples (missing data) do.
+    %(filter_input)s
+    %(filter_order)s
+    axis : int, optional
+        The axis to filter (negative counts from the end). Default -1.
+    %(filter_output)s
+    %(filter_mode)s
+    %(filter_keywords)s
 
-        - 'propagate': scipy's pattern. The recursive filter carries a
-          non-finite sample along its whole line, so every coefficient of
-          every line through it along a filtered axis is non-finite (after
-          every axis of an N-D array: all of them); other lines as usual.
-        - 'raise': ``ValueError("sample k is not finite (nan)")`` naming the
-          first (flat index in C order, and its value).
-        - 'local': missing samples are filled with 0 and a coefficient is
-          NaN only where a missing sample lies within the certified
-          half-width ``n`` of ``tol`` along every filtered axis (folded by
-          the mode; ``nan_reach(order, tol) - (order // 2 + 1)``). Every
-          other coefficient is within ``((A + b)**k - (A - b)**k) *
-          max|finite input|`` over ``k`` filtered axes (``A``, ``b``:
-          :func:`filter_bound`'s amplification and bound) of the exact
-          coefficients of the input with its missing samples filled by ANY
-          values of magnitude at most ``max|finite input|``. Needs a finite
-          ``tol`` (default 1e-12; ``tol=None`` is refused: no finite reach).
+    Returns
+    -------
+    ndarray
+        The coefficients: a new array, or ``output``.
 
-    Integer and boolean input has no NaN; complex input: a NaN in either
-    part, that part's pattern.
+    Raises
+    ------
+    numpy.exceptions.AxisError
+        ``axis`` out of range (also for a 0-d input).
+    %(raises)s
 
-    Returns the coefficients (a new array, or ``output``).
-    Formula: exact causal/anti-causal recursions per pole (Unser, Aldroubi
-    and Eden 1993), poles rounded once from MPFR; cost O(poles) per sample.
+    Notes
+    -----
+    Method: the exact causal/anti-causal recursions, one pair per pole
+    (Unser, Aldroubi and Eden 1993), the poles rounded once from MPFR; with
+    ``tol``, the truncated convolution of half-width
+    :func:`splinelab.truncation_width`. Error: ``tol=None``, the rounding of
+    the recursions (the report's accuracy section measures it against
+    MPFR); with ``tol``, at most ``bound * max|input|`` more. Cost:
+    O(poles) operations per sample; memory: the output.
+
+    Examples
+    --------
+    The cubic coefficients of the identity's columns reproduce it:
 
     >>> import numpy as np, splinelab
     >>> c = splinelab.spline_filter1d(np.eye(3), order=3, axis=0)
@@ -240,20 +203,47 @@ def spline_filter1d(
                    compute=compute)
 
 
+@fill
 def spline_filter(input, order=3, output=np.float64, mode="mirror", *, tol=DEFAULT_TOL, threads=None, exact_edges=False,
                   nan_policy="propagate", compute="float64"):
     """Interpolation coefficients along every axis (``scipy.ndimage.spline_filter``).
 
-    ``order`` is the spline **degree**, 0..199 (scipy: 2..5). Other
-    arguments as :func:`spline_filter1d`. With ``tol`` the error compounds
-    over the ``d`` axes to at most ``((A + b)**d - A**d) * max|input|``
-    (``A`` the amplification, ``b`` the per-axis bound): :func:`filter_bound`.
-    ``nan_policy`` and ``compute`` as :func:`spline_filter1d` (over every
-    axis). Memory: the output (the input is read where it lies; a float32
-    output holds the float32 coefficients only, as scipy's).
+    :func:`spline_filter1d` along each axis in turn: the coefficients of the
+    tensor-product spline of degree ``order`` through the samples.
+
+    Parameters
+    ----------
+    %(filter_input)s
+    %(filter_order)s
+    %(filter_output)s
+    %(filter_mode)s
+    %(filter_keywords)s
+
+    Returns
+    -------
+    ndarray
+        The coefficients: a new array, or ``output``.
+
+    Raises
+    ------
+    %(raises)s
+
+    Notes
+    -----
+    Method: :func:`spline_filter1d`'s recursions (Unser, Aldroubi and Eden
+    1993) along every axis. Error: with ``tol`` it compounds over the ``d``
+    axes to at most ``((A + b)**d - A**d) * max|input|`` (``A`` the
+    amplification, ``b`` the per-axis bound): :func:`filter_bound`. Cost:
+    O(poles) operations per sample and axis. Memory: the output (the input
+    is read where it lies; a float32 output holds the float32 coefficients
+    only, as scipy's).
+
+    Examples
+    --------
+    The B-splines sum to 1, so a constant is its own coefficients:
 
     >>> import numpy as np, splinelab
-    >>> x = np.full((4, 5), 2.5)  # the B-splines sum to 1: constants are kept
+    >>> x = np.full((4, 5), 2.5)
     >>> bool(np.allclose(splinelab.spline_filter(x, order=5), x))
     True
     """
@@ -262,6 +252,7 @@ def spline_filter(input, order=3, output=np.float64, mode="mirror", *, tol=DEFAU
                    compute=compute)
 
 
+@fill
 def map_coordinates(
     input,
     coordinates,
@@ -280,70 +271,98 @@ def map_coordinates(
 ):
     """Values of the spline interpolant at coordinates (``scipy.ndimage.map_coordinates``).
 
-    ``order`` is the spline **degree**, 0..199 (scipy: 0..5). Degree 0 picks
-    the nearest sample (scipy's rule at half-integers) and degree 1 is
-    multilinear, both without a prefilter, as in scipy. ``coordinates`` has
-    shape ``(input.ndim, ...)``: one row per axis, as in scipy; the result
-    has shape ``coordinates.shape[1:]``. ``prefilter=False``: ``input``
-    already holds the coefficients (e.g. from ``spline_filter`` with the
-    same mode); they are extended beyond the grid by ``mode`` (``cval`` for
-    'grid-constant') and evaluated as given, as scipy does (``tol`` does not
-    apply).
+    The spline of degree ``order`` through the samples of ``input``
+    (extended beyond the grid by ``mode``), evaluated at each point, or with
+    ``derivative`` one of its partial derivatives.
 
-    Modes, as scipy 1.17 computes them: 'constant' (the default, as in
-    scipy) is the 'mirror' spline inside ``[0, n - 1]`` on every axis and
-    ``cval`` at any point outside; 'mirror', 'reflect' ('grid-mirror') and
-    'grid-wrap' fold the point; 'nearest' and 'grid-constant' (degrees 2..5)
-    pad the input with 12 edge samples / ``cval`` on every side, filter it
-    with scipy's rule (:func:`spline_filter1d`) and evaluate at ``x + 12``,
-    as scipy does — an approximation of the spline of the extended signal
-    (off by about ``rho**(24 - k)`` of the data ``k <= 12`` samples outside,
-    ``rho`` the largest pole: 2e-14 for cubics, 2e-9 for quintics at the
-    ends). ``exact_edges=True``, and every degree above 5, evaluate that
-    spline exactly instead. 'wrap' is scipy's: the 'mirror' spline at the
-    point moved by whole periods ``n - 1`` into ``[0, n - 1]`` (the first
-    and last samples overlap; 'grid-wrap' is the periodic spline, period
-    ``n``).
+    Parameters
+    ----------
+    input : array_like
+        The samples: bool, integer, float or complex (scipy's dtypes), any
+        strides. Every input is computed in float64, as scipy computes it
+        (complex: complex128, part by part). An array-like that is not in
+        memory (anything with ``shape``, ``dtype``, ``ndim`` and basic-slice
+        ``__getitem__``: zarr, h5py, dask) is read one box at a time, only
+        where the points' windows need it (the local route:
+        :doc:`/large_arrays`).
+    coordinates : array_like
+        Shape ``(input.ndim, ...)``: one row per axis, as in scipy.
+    %(interp_output)s
+    %(interp_order)s
+    mode : str, optional
+        As scipy 1.17 computes them: 'constant' (the default, as in scipy)
+        is the 'mirror' spline inside ``[0, n - 1]`` on every axis and
+        ``cval`` at any point outside; 'mirror', 'reflect' ('grid-mirror')
+        and 'grid-wrap' fold the point; 'nearest' and 'grid-constant'
+        (degrees 2..5) pad the input with 12 edge samples / ``cval`` on
+        every side, filter it with scipy's rule (:func:`spline_filter1d`)
+        and evaluate at ``x + 12``, as scipy does — an approximation of the
+        spline of the extended signal (off by about ``rho**(24 - k)`` of the
+        data ``k <= 12`` samples outside, ``rho`` the largest pole: 2e-14
+        for cubics, 2e-9 for quintics at the ends). ``exact_edges=True``,
+        and every degree above 5, evaluate that spline exactly instead.
+        'wrap' is scipy's: the 'mirror' spline at the point moved by whole
+        periods ``n - 1`` into ``[0, n - 1]`` (the first and last samples
+        overlap; 'grid-wrap' is the periodic spline, period ``n``).
+    %(cval)s
+    %(prefilter)s
+    %(interp_engine)s
+    derivative : sequence of int, optional
+        ``(k_0, k_1, ...)``, one order per axis, each ``k_a <= order``: the
+        partial derivative ``d^(k_0 + k_1 + ...) f / dx_0^k_0 dx_1^k_1 ...``
+        of the same spline at the points instead of its values, from the
+        B-spline derivative weights (exact rational recurrences, the
+        engine's ``Interpolant::eval_derivative``); outside the grid the
+        derivative of the extended spline (the folding's reflections change
+        the sign of odd orders; 0 where 'constant' gives ``cval``). Tested
+        against 5-point central differences of scipy's values
+        (python/tests/test_gradient.py). splinelab's own keyword; see also
+        :func:`spline_gradient`.
+    %(interp_tail)s
 
-    Data types as scipy's: bool, integer, float and complex input;
-    ``output`` None (the input's dtype), a dtype, a dtype name or an array
-    of any dtype, byte order and strides (it may share memory with
-    ``input`` or ``coordinates``: the values are written into it once they
-    are all computed). Every input is computed in float64, as
-    scipy computes it (complex: complex128, part by part; ``cval`` may be
-    complex), and rounded once into the result: float32, complex64 and
-    float16 results are the float64 values rounded once; integer and
-    boolean results are rounded as scipy rounds them (half away from zero,
-    saturated: :mod:`splinelab._dtypes`). ``compute="float32"`` (ours)
-    computes in float32 instead: float32 samples and arithmetic, error about
-    ``(A + 1) * 6e-8`` of ``max|input|`` (``A``: :func:`filter_bound`'s
-    amplification) where float64's is that of one rounding of the result;
-    speed in python/bench/float32.py.
+    Returns
+    -------
+    ndarray
+        The values, shape ``coordinates.shape[1:]``: a new array of
+        ``output``'s dtype, or ``output``.
 
-    Memory beside the input and the result, as scipy's or less: with the
-    prefilter (``order >= 2``) one float64 array of coefficients, the
-    input's shape grown by ``order // 2 + 2`` per side (scipy: a float64
-    copy of the coefficients); float64 and float32 input is read where it
-    lies (other dtypes: a float32 or float64 copy first). Without
-    (``order <= 1``, ``prefilter=False``) the same padded float64 copy of
-    the input, which scipy does not hold (it reads the input). 'nearest'
-    and 'grid-constant' (scipy's route): the input padded by 12 (a copy in
-    its dtype, as scipy's) and one float64 coefficient array of that.
-    ``compute="float32"``: float32 arrays instead. An input with an empty axis gives ``cval``
-    at every point in 'constant' / 'grid-constant' (all points lie
-    outside), as scipy; other modes refuse it (scipy reads outside the array).
+    Raises
+    ------
+    splinelab.errors.CoordinateShapeError
+        ``coordinates`` without one row per input axis.
+    %(raises)s
+
+    Notes
+    -----
+    Method: the prefilter (:func:`spline_filter`, scipy's rule for the
+    mode), then the B-spline weights of each point. With few points the
+    local route is taken by itself (:doc:`/large_arrays`): only the
+    samples within the certified half-width of the points' windows are
+    read and prefiltered. Degree 0 picks the nearest sample (scipy's rule
+    at half-integers). An input with an empty axis gives ``cval`` at every
+    point in 'constant' / 'grid-constant' (all points lie outside), as
+    scipy; other modes refuse it (scipy reads outside the array).
+
+    Error: that of one rounding of the result in float64 beyond the
+    prefilter's (``tol``: at most ``bound * max|input|`` more).
+
     Cost: the prefilter (O(poles) per sample and axis) once, then
-    ``(order + 1)**ndim`` multiply-adds per point.
+    ``(order + 1)**ndim`` multiply-adds per point. Memory beside the input
+    and the result, as scipy's or less: with the prefilter (``order >= 2``)
+    one float64 array of coefficients, the input's shape grown by
+    ``order // 2 + 2`` per side (scipy: a float64 copy of the
+    coefficients); float64 and float32 input is read where it lies (other
+    dtypes: a float32 or float64 copy first). Without (``order <= 1``,
+    ``prefilter=False``) the same padded float64 copy of the input, which
+    scipy does not hold (it reads the input). 'nearest' and 'grid-constant'
+    (scipy's route): the input padded by 12 (a copy in its dtype, as
+    scipy's) and one float64 coefficient array of that.
+    ``compute="float32"``: float32 arrays instead.
 
-    ``derivative=(k_0, k_1, ...)`` (ours; scipy has none): the partial
-    derivative ``d^(k_0 + k_1 + ...) f / dx_0^k_0 dx_1^k_1 ...`` of the same
-    spline at the points instead of its values, each ``k_a <= order``, from
-    the B-spline derivative weights (exact rational recurrences, the
-    engine's ``Interpolant::eval_derivative``); outside the grid it is the
-    derivative of the extended spline (the folding's reflections change
-    the sign of odd orders; 0 where 'constant' gives ``cval``). Tested
-    against 5-point central differences of scipy's values
-    (python/tests/test_gradient.py). See also :func:`spline_gradient`.
+    Examples
+    --------
+    The cubic spline through ``k**3`` at a sample, and the same with the
+    coefficients computed first:
 
     >>> import numpy as np, splinelab
     >>> v = splinelab.map_coordinates(np.array([0.0, 1, 8, 27, 64]), [[1.0, 2.5]], order=3)
@@ -352,6 +371,14 @@ def map_coordinates(
     >>> c = splinelab.spline_filter(np.array([0.0, 1, 8, 27, 64]), order=3)
     >>> w = splinelab.map_coordinates(c, [[1.0, 2.5]], order=3, prefilter=False)
     >>> bool(np.allclose(v, w, rtol=0, atol=1e-13))
+    True
+
+    A first derivative (``derivative``, splinelab's own) of ``i + 2 j``, far from the
+    ends:
+
+    >>> x = np.add.outer(np.arange(40.0), 2 * np.arange(40.0))
+    >>> d = splinelab.map_coordinates(x, [[19.5], [20.25]], order=3, mode="mirror", derivative=(0, 1))
+    >>> bool(abs(d[0] - 2.0) < 1e-8)
     True
     """
     prefilter = _flag(prefilter, "prefilter")
@@ -426,22 +453,55 @@ def _reflection_sign(flat, shape, mode, deriv):
     return sign
 
 
+@fill
 def spline_gradient(
     input, coordinates, order=3, mode="constant", cval=0.0, prefilter=True, *, tol=DEFAULT_TOL, threads=None,
     exact_edges=False, nan_policy="propagate", compute="float64",
 ):
-    """All first partial derivatives of the interpolant of
-    :func:`map_coordinates` at the points: an array of shape ``(ndim,
-    *coordinates.shape[1:])``, row ``a`` the derivative along axis ``a``
-    (``map_coordinates(..., derivative=e_a)``; float64, or float32 for
-    float32 input: computed in float64 and rounded once, or in float32 with
-    ``compute="float32"``). Cost: ``ndim`` evaluations (and prefilters).
-    ``nan_policy`` and memory as :func:`map_coordinates`.
+    """All first partial derivatives of :func:`map_coordinates`' interpolant at the points.
+
+    Row ``a`` is the derivative along axis ``a``:
+    ``map_coordinates(..., derivative=e_a)``. splinelab's own function
+    (scipy has none).
+
+    Parameters
+    ----------
+    %(interp_input)s
+    coordinates : array_like
+        Shape ``(input.ndim, ...)``: one row per axis, as in scipy.
+    %(interp_order)s
+    %(interp_mode)s
+    %(cval)s
+    %(prefilter)s
+    %(interp_keywords)s
+
+    Returns
+    -------
+    ndarray
+        Shape ``(ndim, *coordinates.shape[1:])``; float64, or float32 for
+        float32 input (computed in float64 and rounded once, or in float32
+        with ``compute="float32"``); complex for complex input.
+
+    Raises
+    ------
+    splinelab.errors.CoordinateShapeError
+        ``coordinates`` without one row per input axis.
+    %(raises)s
+
+    Notes
+    -----
+    Method: the B-spline derivative weights of
+    :func:`map_coordinates`' ``derivative``. Error and memory as
+    :func:`map_coordinates`. Cost: ``ndim`` evaluations (and prefilters).
+
+    Examples
+    --------
+    The gradient of ``i / 2 + 3 j``, far from the ends:
 
     >>> import numpy as np, splinelab
-    >>> x = np.add.outer(0.5 * np.arange(40.0), 3 * np.arange(40.0))  # i / 2 + 3 j
+    >>> x = np.add.outer(0.5 * np.arange(40.0), 3 * np.arange(40.0))
     >>> g = splinelab.spline_gradient(x, [[19.5], [20.25]], order=3, mode="mirror")
-    >>> bool(np.allclose(g[:, 0], [0.5, 3.0], rtol=0, atol=1e-8))  # far from the ends
+    >>> bool(np.allclose(g[:, 0], [0.5, 3.0], rtol=0, atol=1e-8))
     True
     """
     a = np.asarray(input)

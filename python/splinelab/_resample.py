@@ -22,6 +22,7 @@ import warnings
 import numpy as np
 
 from . import _dtypes as _dt
+from ._doc import fill
 from .errors import ArgumentTypeError, MappingError, MatrixShapeError, RankError, SequenceLengthError
 from ._ndimage import _Affine, _flag, _Grid, _interp_mode, _interpolate, _map_real
 from ._validate import DEFAULT_TOL, _degree, _int, _nan_policy, _threads, _tol_for
@@ -110,6 +111,7 @@ def _early_copy(input, output, shape):
     return out
 
 
+@fill
 def zoom(input, zoom, output=None, order=3, mode="constant", cval=0.0, prefilter=True, *, grid_mode=False,
          tol=DEFAULT_TOL, threads=None, exact_edges=False, nan_policy="propagate", compute="float64"):
     """Resample an array by ``zoom`` per axis (``scipy.ndimage.zoom``).
@@ -117,23 +119,46 @@ def zoom(input, zoom, output=None, order=3, mode="constant", cval=0.0, prefilter
     The output shape is ``round(n * zoom)`` per axis (Python's ``round``);
     output index ``k`` reads the input at ``k * (n - 1) / (m - 1)``
     (``grid_mode=True``: ``(k + 0.5) * n / m - 0.5``, the pixel edges
-    aligned; an axis of one output sample reads index 0). ``order`` is the
-    spline degree, 0..199; modes, ``cval``, ``prefilter``, dtypes and
-    ``output`` as :func:`splinelab.map_coordinates` (scipy's rules), and
-    so are ``nan_policy`` ('propagate', 'raise', 'local') and ``tol``
-    (under 'local' default 1e-12: a missing sample reaches the outputs
-    within :func:`splinelab.nan_reach` ``(order, tol)`` input samples;
-    elsewhere within the bound stated there), ``compute`` (float64 by
-    default, as scipy; ``"float32"`` the opt-in float32 arithmetic) and the
-    memory held. A zoom
-    of 1 on every axis with the prefilter returns the input converted, as
-    scipy. Cost: the prefilter, then ``order + 1`` multiply-adds per output
-    sample and axis (separable tensor-product evaluation). Memory beside
-    the input and the result: the coefficients (:func:`map_coordinates`)
-    and the array of the last axis resampled (the input's leading shape by
-    the output's last axis, float64), float32 results written rounded once
-    a row at a time.
+    aligned; an axis of one output sample reads index 0).
 
+    Parameters
+    ----------
+    %(interp_input)s
+    zoom : float or sequence of float
+        The factor along every axis, or one per axis.
+    %(interp_args)s
+    grid_mode : bool, optional
+        False (default): the first and last samples' centres aligned. True:
+        the pixel edges aligned (scipy warns, and so does this, for
+        'constant' and 'wrap': 'grid-constant' / 'grid-wrap' are meant).
+    %(interp_keywords)s
+
+    Returns
+    -------
+    ndarray
+        The resampled array: a new array of ``output``'s dtype, or
+        ``output``.
+
+    Raises
+    ------
+    %(raises_transform)s
+    %(raises)s
+
+    Notes
+    -----
+    Method: scipy 1.17's coordinate arithmetic (``NI_ZoomShift``: the same
+    floating-point operations, so scipy's points to the bit), the
+    prefilter, then the engine's separable tensor-product evaluation.
+    A zoom of 1 on every axis with the prefilter returns the input
+    converted, as scipy. Error: as :func:`map_coordinates`. Cost: the
+    prefilter, then ``order + 1`` multiply-adds per output sample and axis.
+    Memory beside the input and the result: the coefficients
+    (:func:`map_coordinates`) and the array of the last axis resampled
+    (the input's leading shape by the output's last axis, float64),
+    float32 results written rounded once a row at a time.
+
+    Examples
+    --------
     >>> import numpy as np, splinelab
     >>> splinelab.zoom(np.array([0.0, 1.0, 2.0]), 5 / 3, order=1)
     array([0. , 0.5, 1. , 1.5, 2. ])
@@ -166,13 +191,39 @@ def zoom(input, zoom, output=None, order=3, mode="constant", cval=0.0, prefilter
     return spec.on_grid(a, output, out_shape, coords)
 
 
+@fill
 def shift(input, shift, output=None, order=3, mode="constant", cval=0.0, prefilter=True, *, tol=DEFAULT_TOL,
           threads=None, exact_edges=False, nan_policy="propagate", compute="float64"):
-    """Shift an array by ``shift`` samples per axis (``scipy.ndimage.shift``):
-    output index ``k`` reads the input at ``k - shift``. Arguments as
-    :func:`zoom`; cost the prefilter, then ``order + 1`` multiply-adds per
-    sample and axis.
+    """Shift an array by ``shift`` samples per axis (``scipy.ndimage.shift``).
 
+    Output index ``k`` reads the input at ``k - shift``.
+
+    Parameters
+    ----------
+    %(interp_input)s
+    shift : float or sequence of float
+        The shift along every axis, or one per axis.
+    %(interp_args)s
+    %(interp_keywords)s
+
+    Returns
+    -------
+    ndarray
+        The shifted array: a new array of ``output``'s dtype, or ``output``.
+
+    Raises
+    ------
+    %(raises_transform)s
+    %(raises)s
+
+    Notes
+    -----
+    Method, error and memory as :func:`zoom` (scipy's ``NI_ZoomShift``
+    coordinates, separable evaluation). Cost: the prefilter, then
+    ``order + 1`` multiply-adds per sample and axis.
+
+    Examples
+    --------
     >>> import numpy as np, splinelab
     >>> splinelab.shift(np.array([0.0, 1.0, 4.0, 9.0]), 1, order=1, mode="nearest")
     array([0., 0., 1., 4.])
@@ -243,24 +294,57 @@ def _output_shape(output_shape, output, default):
     return shape
 
 
+@fill
 def affine_transform(input, matrix, offset=0.0, output_shape=None, output=None, order=3, mode="constant",
                      cval=0.0, prefilter=True, *, tol=DEFAULT_TOL, threads=None, exact_edges=False,
                      nan_policy="propagate", compute="float64"):
-    """Apply an affine transformation (``scipy.ndimage.affine_transform``):
-    output index ``o`` reads the input at ``matrix @ o + offset`` (the
+    """Apply an affine transformation (``scipy.ndimage.affine_transform``).
+
+    Output index ``o`` reads the input at ``matrix @ o + offset`` (the
     "pull" direction, as scipy).
 
-    ``matrix``: (ndim,) a diagonal (evaluated separably, as scipy's
-    zoom/shift: ``(o + offset / m) * m``), (ndim, out_ndim), or homogeneous
-    (ndim, ndim + 1) / (ndim + 1, ndim + 1) with the offset in its last
-    column. ``output_shape`` defaults to ``output``'s shape or the input's;
-    an ``output`` array of another shape is refused with a ValueError that
-    is also scipy's RuntimeError.
-    Other arguments as :func:`zoom`. Cost: the prefilter, then
+    Parameters
+    ----------
+    %(interp_input)s
+    matrix : ndarray
+        (ndim,) a diagonal (evaluated separably, as scipy's zoom/shift:
+        ``(o + offset / m) * m``), (ndim, out_ndim), or homogeneous
+        (ndim, ndim + 1) / (ndim + 1, ndim + 1) with the offset in its last
+        column.
+    offset : float or sequence of float, optional
+        Added to ``matrix @ o``; one value or one per axis. Default 0.0.
+    output_shape : tuple of int, optional
+        Defaults to ``output``'s shape or the input's.
+    %(interp_args)s
+    %(interp_keywords)s
+
+    Returns
+    -------
+    ndarray
+        The transformed array, shape ``output_shape``: a new array of
+        ``output``'s dtype, or ``output``.
+
+    Raises
+    ------
+    splinelab.errors.MatrixShapeError
+        A matrix of a shape it does not take (or a diagonal with an output
+        of another rank).
+    %(raises_transform)s
+    %(raises)s
+
+    Notes
+    -----
+    Method: scipy 1.17's coordinate arithmetic (``NI_GeometricTransform``),
+    the prefilter, then the B-spline weights of each point. Error: as
+    :func:`map_coordinates`. Cost: the prefilter, then
     ``(order + 1)**ndim`` multiply-adds per output sample. Memory beside
     the input and the result: the coefficients only (the points are
     generated where they are evaluated; float32 results rounded once, 2048
     at a time).
+
+    Examples
+    --------
+    A transpose:
 
     >>> import numpy as np, splinelab
     >>> x = np.arange(12.0).reshape(3, 4)
@@ -335,16 +419,50 @@ def _rotation(angle, axes, shape, reshape):
     return axes, rot, offset, out_plane, tuple(int(n) for n in out_shape)
 
 
+@fill
 def rotate(input, angle, axes=(1, 0), reshape=True, output=None, order=3, mode="constant", cval=0.0,
            prefilter=True, *, tol=DEFAULT_TOL, threads=None, exact_edges=False, nan_policy="propagate",
            compute="float64"):
-    """Rotate an array by ``angle`` degrees in the plane of ``axes``
-    (``scipy.ndimage.rotate``): about the centre ``(n - 1) / 2`` of the
-    plane, the matrix ``[[c, s], [-s, c]]`` from output to input;
-    ``reshape=True`` enlarges the plane to hold the whole rotated input
-    (``(extent + 0.5)`` truncated, as scipy). Arrays of more than two
-    dimensions are rotated plane by plane. Other arguments as :func:`zoom`.
+    """Rotate an array by ``angle`` degrees in the plane of ``axes`` (``scipy.ndimage.rotate``).
 
+    About the centre ``(n - 1) / 2`` of the plane, the matrix
+    ``[[c, s], [-s, c]]`` from output to input.
+
+    Parameters
+    ----------
+    %(interp_input)s
+    angle : float
+        In degrees; multiples of 90 give exact 0 and ±1 as scipy's.
+    axes : tuple of 2 ints, optional
+        The plane of the rotation. Default ``(1, 0)``.
+    reshape : bool, optional
+        True (default): the plane enlarged to hold the whole rotated input
+        (``(extent + 0.5)`` truncated, as scipy).
+    %(interp_args)s
+    %(interp_keywords)s
+
+    Returns
+    -------
+    ndarray
+        The rotated array: a new array of ``output``'s dtype, or ``output``.
+
+    Raises
+    ------
+    ValueError
+        An input of fewer than two dimensions, or ``axes`` that are not a
+        plane of it (scipy's messages).
+    %(raises)s
+
+    Notes
+    -----
+    Method: :func:`affine_transform` with the rotation's matrix; arrays of
+    more than two dimensions are rotated plane by plane (each plane
+    prefiltered on its own, as scipy). Error and memory as
+    :func:`affine_transform`. Cost: the prefilter, then
+    ``(order + 1)**2`` multiply-adds per output sample.
+
+    Examples
+    --------
     >>> import numpy as np, splinelab
     >>> splinelab.rotate(np.arange(6.0).reshape(2, 3), 90, order=1)
     array([[2., 5.],
@@ -373,22 +491,66 @@ def rotate(input, angle, axes=(1, 0), reshape=True, output=None, order=3, mode="
     return full
 
 
+@fill
 def geometric_transform(input, mapping, output_shape=None, output=None, order=3, mode="constant", cval=0.0,
                         prefilter=True, extra_arguments=(), extra_keywords=None, *, vectorized=False,
                         tol=DEFAULT_TOL, threads=None, exact_edges=False, nan_policy="propagate",
                         compute="float64"):
     """Apply an arbitrary coordinate mapping (``scipy.ndimage.geometric_transform``).
 
-    ``mapping(out_index, *extra_arguments, **extra_keywords)`` takes a
-    tuple of integers (an output index) and returns the input coordinates
-    (a sequence of ``input.ndim`` numbers), called once per output sample
-    as scipy does. ``vectorized=True`` (ours): ``mapping(indices, ...)``
-    takes an array of shape ``(out_ndim, *output_shape)`` of float64 output
-    indices (``numpy.indices``) and returns an array of shape
-    ``(input.ndim, *output_shape)``: one call, no Python loop. Other
-    arguments as :func:`zoom`; cost the prefilter, ``(order + 1)**ndim``
-    multiply-adds per sample, and the mapping.
+    Output index ``o`` reads the input at ``mapping(o)``.
 
+    Parameters
+    ----------
+    %(interp_input)s
+    mapping : callable
+        ``mapping(out_index, *extra_arguments, **extra_keywords)`` takes a
+        tuple of integers (an output index) and returns the input
+        coordinates (a sequence of ``input.ndim`` numbers), called once per
+        output sample as scipy does.
+    output_shape : tuple of int, optional
+        Defaults to the input's shape.
+    %(interp_args)s
+    extra_arguments : tuple, optional
+        Passed to ``mapping`` after the index.
+    extra_keywords : dict, optional
+        Passed to ``mapping`` as keywords.
+    vectorized : bool, optional
+        splinelab's own keyword. True: ``mapping(indices, ...)`` takes an
+        array of shape ``(out_ndim, *output_shape)`` of float64 output
+        indices (``numpy.indices``) and returns an array of shape
+        ``(input.ndim, *output_shape)``: one call, no Python loop. Default
+        False.
+    %(interp_keywords)s
+
+    Returns
+    -------
+    ndarray
+        The transformed array, shape ``output_shape``: a new array of
+        ``output``'s dtype, or ``output``.
+
+    Raises
+    ------
+    splinelab.errors.MappingError
+        ``mapping`` is not callable, or returned something other than one
+        coordinate per input axis.
+    splinelab.errors.ArgumentTypeError
+        ``extra_arguments`` that is not a sequence or ``extra_keywords``
+        that is not a mapping.
+    splinelab.errors.RankError
+        An input (or output) without axes.
+    %(raises)s
+
+    Notes
+    -----
+    Method: the points from ``mapping``, then :func:`map_coordinates` at
+    them. Error and memory as :func:`map_coordinates` (under
+    ``nan_policy='raise'`` a non-finite coordinate is a ValueError). Cost:
+    the prefilter, ``(order + 1)**ndim`` multiply-adds per sample, and the
+    mapping.
+
+    Examples
+    --------
     >>> import numpy as np, splinelab
     >>> x = np.arange(5.0) ** 2
     >>> splinelab.geometric_transform(x, lambda o: (o[0] / 2,), output_shape=(3,), order=1)

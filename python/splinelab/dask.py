@@ -58,6 +58,7 @@ import numpy as np
 
 import splinelab
 from splinelab import _dtypes as _dt
+from splinelab._doc import fill
 from splinelab._ndimage import _axis, _filter, _filter_mode
 from splinelab._validate import _nan_policy
 
@@ -83,9 +84,32 @@ def _width_tol(tol, route):
     return tol / 2 if _route(route) == "recursive" else tol
 
 
+@fill
 def depth(order, tol=DEFAULT_TOL, route="truncated"):
     """The overlap depth per filtered axis: certified half-width + support.
 
+    Parameters
+    ----------
+    order : int
+        The spline degree, 0..199.
+    tol : float, optional
+        The per-axis tolerance the half-width is certified for (default
+        1e-12).
+    route : {'truncated', 'recursive'}, optional
+        'recursive' certifies the half-width for ``tol / 2``.
+
+    Returns
+    -------
+    int
+        ``n + (order + 1) // 2``, ``n`` from :func:`splinelab.filter_bound`.
+
+    Raises
+    ------
+    ValueError
+        ``tol=None`` or outside (0, 1), or an unknown ``route``.
+
+    Examples
+    --------
     >>> from splinelab.dask import depth
     >>> depth(3, 1e-10)  # n = 18 for cubics at 1e-10, support 2
     20
@@ -96,13 +120,36 @@ def depth(order, tol=DEFAULT_TOL, route="truncated"):
     return n + (order + 1) // 2
 
 
+@fill
 def bound(order, tol=DEFAULT_TOL, ndim=1, route="truncated"):
     """Certified ``max|chunked - exact unchunked| / max|input|`` over ``ndim`` filtered axes.
 
-    ``(A + e)**ndim - A**ndim`` with ``A`` the amplification and ``e`` the
-    per-axis bound: ``b`` (truncated) or ``2 b`` (recursive), ``b`` the tail
-    of the half-width :func:`depth` uses; both stay below ``tol`` per axis.
+    Parameters
+    ----------
+    order : int
+        The spline degree, 0..199.
+    tol : float, optional
+        The per-axis tolerance (default 1e-12).
+    ndim : int, optional
+        The number of filtered axes (default 1).
+    route : {'truncated', 'recursive'}, optional
+        The chunked filter's route (default 'truncated').
 
+    Returns
+    -------
+    float
+        ``(A + e)**ndim - A**ndim`` with ``A`` the amplification and ``e``
+        the per-axis bound: ``b`` (truncated) or ``2 b`` (recursive), ``b``
+        the tail of the half-width :func:`depth` uses; both stay below
+        ``tol`` per axis.
+
+    Raises
+    ------
+    ValueError
+        ``tol=None`` or outside (0, 1), or an unknown ``route``.
+
+    Examples
+    --------
     >>> from splinelab.dask import bound
     >>> bound(3, 1e-10, ndim=2) < 7e-10, bound(3, 1e-10, ndim=2, route="recursive") < 7e-10
     (True, True)
@@ -176,25 +223,40 @@ def _pad_array_edges(x, seamed, rule, d, location, chunks):
     return np.pad(x, pads, mode=_NUMPY_PAD[rule]), crop
 
 
+@fill
 def spline_filter(darr, order=3, mode="mirror", tol=DEFAULT_TOL, output=np.float64, threads=1, route="truncated",
                   nan_policy="propagate", compute="float64"):
-    """``splinelab.spline_filter`` of a dask array, chunk by chunk.
+    """:func:`splinelab.spline_filter` of a dask array, chunk by chunk.
 
-    ``order`` is the spline **degree** 0..199. ``tol`` in (0, 1) is the
-    certified per-axis truncation tolerance (see the module documentation);
-    ``threads`` per block (default 1: dask already runs blocks in parallel).
-    ``route``: 'truncated' (default: the recursion per padded block with
-    zeros beyond it, bound ``b`` per axis) or 'recursive' (the block's own
-    mirror extension, ``2 b`` at half the tolerance; see the module
-    documentation); :func:`bound` gives the certified error of either.
-    ``nan_policy``: 'propagate' (default, scipy's whole-array pattern by a
-    global reduction), 'raise' or 'local' (the unchunked pattern whatever
-    the chunking; module documentation). ``compute``: 'float64' (default:
-    every block computed in float64, float32 blocks read as they lie, a
-    float32 ``output`` rounded after every axis as scipy rounds it) or
-    'float32' (the opt-in float32 arithmetic, as
-    :func:`splinelab.spline_filter`).
+    Parameters
+    ----------
+    darr : dask.array.Array or array_like
+        The samples.
+    %(dask_order)s
+    %(dask_mode)s
+    %(dask_tol)s
+    %(dask_output)s
+    %(dask_tail)s
 
+    Returns
+    -------
+    dask.array.Array
+        The coefficients, chunked as the input (lazy).
+
+    Raises
+    ------
+    %(dask_raises)s
+
+    Notes
+    -----
+    Method: ``dask.array.map_overlap`` with the overlap :func:`depth` on
+    each filtered axis (module documentation). Error: at most
+    :func:`bound` ``* max|input|`` from the unchunked exact coefficients,
+    whatever the chunking. Cost: the recursion's per block (about 4
+    multiply-adds per sample and pole), on the block and its overlap.
+
+    Examples
+    --------
     >>> import dask.array as da, numpy as np, splinelab, splinelab.dask
     >>> x = np.random.default_rng(0).uniform(-1, 1, (64, 64))
     >>> c = splinelab.dask.spline_filter(da.from_array(x, chunks=32), order=3).compute()
@@ -206,14 +268,37 @@ def spline_filter(darr, order=3, mode="mirror", tol=DEFAULT_TOL, output=np.float
     return _map(darr, list(range(darr.ndim)), order, mode, tol, output, threads, route, nan_policy, compute)
 
 
+@fill
 def spline_filter1d(
     darr, order=3, axis=-1, mode="mirror", tol=DEFAULT_TOL, output=np.float64, threads=1, route="truncated",
     nan_policy="propagate", compute="float64",
 ):
-    """``splinelab.spline_filter1d`` of a dask array along ``axis``, chunk by chunk.
+    """:func:`splinelab.spline_filter1d` of a dask array along ``axis``, chunk by chunk.
 
-    ``order`` is the spline **degree** 0..199; other arguments as
-    :func:`spline_filter`.
+    Parameters
+    ----------
+    darr : dask.array.Array or array_like
+        The samples.
+    %(dask_order)s
+    axis : int, optional
+        The axis to filter (default -1).
+    %(dask_mode)s
+    %(dask_tol)s
+    %(dask_output)s
+    %(dask_tail)s
+
+    Returns
+    -------
+    dask.array.Array
+        The coefficients, chunked as the input (lazy).
+
+    Raises
+    ------
+    %(dask_raises)s
+
+    Notes
+    -----
+    As :func:`spline_filter`, along one axis.
     """
     darr = da.asarray(darr)
     return _map(darr, [_axis(axis, darr.ndim)], order, mode, tol, output, threads, route, nan_policy, compute)
@@ -399,20 +484,47 @@ def _on_output_grid(darr, out_shape, chunks, points_of, order, mode, cval, tol, 
     return da.block(blocks.tolist())
 
 
+@fill
 def map_coordinates(input, coordinates, order=3, mode="constant", cval=0.0, tol=DEFAULT_TOL, output=None,
                     threads=1, route="truncated", nan_policy="propagate", compute="float64"):
-    """``splinelab.map_coordinates`` with dask: ``input`` (dask or numpy)
-    prefiltered once by the certified chunked filter, ``coordinates`` a
-    dask array ``(ndim, ...)`` chunked along the points (axis 0 whole); the
-    result is chunked like them. Each chunk reads only the coefficient
-    region its points need (its bounding box, computed when the graph is
-    built). Within ``bound(order, tol, ndim) * max|input|`` (plus rounding)
-    of ``splinelab.map_coordinates`` (module notes above). ``nan_policy``
-    as :func:`spline_filter` (the coefficients); a coefficient that is NaN
-    reaches the outputs whose window holds it, as unchunked. ``compute``:
-    'float64' (default: float64 coefficients, float32 results rounded once,
-    as :func:`splinelab.map_coordinates`) or 'float32' (the opt-in).
+    """:func:`splinelab.map_coordinates` with dask.
 
+    ``input`` (dask or numpy) is prefiltered once by the certified chunked
+    filter; ``coordinates`` is a dask array ``(ndim, ...)`` chunked along
+    the points (axis 0 whole), and the result is chunked like them.
+
+    Parameters
+    ----------
+    input : dask.array.Array or array_like
+        The samples.
+    coordinates : dask.array.Array or array_like
+        Shape ``(input.ndim, ...)``, chunked along the points.
+    %(dask_resample)s
+    %(dask_tol)s
+    %(dask_output)s
+    %(dask_tail)s
+
+    Returns
+    -------
+    dask.array.Array
+        The values, chunked like the points (lazy).
+
+    Raises
+    ------
+    %(dask_raises)s
+
+    Notes
+    -----
+    Each chunk reads only the coefficient region its points need (its
+    bounding box, computed when the graph is built). Error: within
+    ``bound(order, tol, ndim) * max|input|`` (plus rounding) of
+    :func:`splinelab.map_coordinates` (module documentation). A coefficient
+    that is NaN reaches the outputs whose window holds it, as unchunked.
+    ``compute='float64'``: float64 coefficients, float32 results rounded
+    once, as :func:`splinelab.map_coordinates`.
+
+    Examples
+    --------
     >>> import dask.array as da, numpy as np, splinelab, splinelab.dask
     >>> x = np.random.default_rng(0).uniform(-1, 1, (40, 40))
     >>> at = da.from_array(np.random.default_rng(1).uniform(0, 39, (2, 500)), chunks=(2, 64))
@@ -459,11 +571,35 @@ def _local_points(darr, parts, at, order, mode, cval, tol, threads, nan_policy, 
     return da.from_array(values.reshape(at.shape[1:]), chunks=at.chunks[1:])
 
 
+@fill
 def zoom(input, zoom, order=3, mode="constant", cval=0.0, *, grid_mode=False, tol=DEFAULT_TOL, output=None,
          chunks=None, threads=1, route="truncated", nan_policy="propagate", compute="float64"):
-    """``splinelab.zoom`` of a dask array (scipy's output shape and
-    coordinates), output in ``chunks`` (default: the input's chunk size).
-    Bound as :func:`map_coordinates`."""
+    """:func:`splinelab.zoom` of a dask array (scipy's output shape and coordinates).
+
+    Parameters
+    ----------
+    input : dask.array.Array or array_like
+        The samples.
+    zoom : float or sequence of float
+        The factor along every axis, or one per axis.
+    %(dask_resample)s
+    grid_mode : bool, optional
+        As :func:`splinelab.zoom` (default False).
+    %(dask_resample_keywords)s
+
+    Returns
+    -------
+    dask.array.Array
+        The resampled array in ``chunks`` (lazy).
+
+    Raises
+    ------
+    %(dask_raises)s
+
+    Notes
+    -----
+    Error bound as :func:`map_coordinates`.
+    """
     from splinelab._resample import _per_axis, _zoom_shift_coordinates
 
     darr = da.asarray(input)
@@ -478,9 +614,33 @@ def zoom(input, zoom, order=3, mode="constant", cval=0.0, *, grid_mode=False, to
                            output, threads, nan_policy, compute)
 
 
+@fill
 def shift(input, shift, order=3, mode="constant", cval=0.0, *, tol=DEFAULT_TOL, output=None, chunks=None,
           threads=1, route="truncated", nan_policy="propagate", compute="float64"):
-    """``splinelab.shift`` of a dask array; arguments and bound as :func:`zoom`."""
+    """:func:`splinelab.shift` of a dask array.
+
+    Parameters
+    ----------
+    input : dask.array.Array or array_like
+        The samples.
+    shift : float or sequence of float
+        The shift along every axis, or one per axis.
+    %(dask_resample)s
+    %(dask_resample_keywords)s
+
+    Returns
+    -------
+    dask.array.Array
+        The shifted array in ``chunks`` (lazy).
+
+    Raises
+    ------
+    %(dask_raises)s
+
+    Notes
+    -----
+    Error bound as :func:`map_coordinates`.
+    """
     from splinelab._resample import _per_axis, _zoom_shift_coordinates
 
     darr = da.asarray(input)
@@ -495,11 +655,38 @@ def _grid_points(axes, slices):
     return np.stack([m.reshape(-1) for m in mesh])
 
 
+@fill
 def affine_transform(input, matrix, offset=0.0, output_shape=None, order=3, mode="constant", cval=0.0, *,
                      tol=DEFAULT_TOL, output=None, chunks=None, threads=1, route="truncated", nan_policy="propagate",
                      compute="float64"):
-    """``splinelab.affine_transform`` of a dask array (every matrix form
-    scipy takes); arguments and bound as :func:`zoom`."""
+    """:func:`splinelab.affine_transform` of a dask array (every matrix form scipy takes).
+
+    Parameters
+    ----------
+    input : dask.array.Array or array_like
+        The samples.
+    matrix : ndarray
+        As :func:`splinelab.affine_transform`.
+    offset : float or sequence of float, optional
+        As :func:`splinelab.affine_transform` (default 0.0).
+    output_shape : tuple of int, optional
+        Defaults to the input's shape.
+    %(dask_resample)s
+    %(dask_resample_keywords)s
+
+    Returns
+    -------
+    dask.array.Array
+        The transformed array in ``chunks`` (lazy).
+
+    Raises
+    ------
+    %(dask_raises)s
+
+    Notes
+    -----
+    Error bound as :func:`map_coordinates`.
+    """
     from splinelab._resample import _affine_parts, _zoom_shift_coordinates
 
     darr = da.asarray(input)
@@ -527,14 +714,41 @@ def affine_transform(input, matrix, offset=0.0, output_shape=None, order=3, mode
                            nan_policy, compute)
 
 
+@fill
 def rotate(input, angle, axes=(1, 0), reshape=True, order=3, mode="constant", cval=0.0, *, tol=DEFAULT_TOL,
            output=None, chunks=None, threads=1, route="truncated", nan_policy="propagate", compute="float64"):
-    """``splinelab.rotate`` of a dask array (scipy's matrix, centre and
-    output shape); arguments and bound as :func:`zoom`. Above two
-    dimensions the rotation is one N-D affine map, the identity off the
-    plane: at the integer coordinates there the N-D spline interpolates,
-    so it equals scipy's plane-by-plane rotation within
-    ``bound(order, tol, ndim) * max|input|`` (plus rounding)."""
+    """:func:`splinelab.rotate` of a dask array (scipy's matrix, centre and output shape).
+
+    Parameters
+    ----------
+    input : dask.array.Array or array_like
+        The samples.
+    angle : float
+        In degrees.
+    axes : tuple of 2 ints, optional
+        The plane of the rotation (default ``(1, 0)``).
+    reshape : bool, optional
+        As :func:`splinelab.rotate` (default True).
+    %(dask_resample)s
+    %(dask_resample_keywords)s
+
+    Returns
+    -------
+    dask.array.Array
+        The rotated array in ``chunks`` (lazy).
+
+    Raises
+    ------
+    %(dask_raises)s
+
+    Notes
+    -----
+    Error bound as :func:`map_coordinates`. Above two dimensions the
+    rotation is one N-D affine map, the identity off the plane: at the
+    integer coordinates there the N-D spline interpolates, so it equals
+    scipy's plane-by-plane rotation within ``bound(order, tol, ndim) *
+    max|input|`` (plus rounding).
+    """
     from splinelab._resample import _rotation
 
     darr = da.asarray(input)

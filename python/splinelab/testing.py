@@ -47,16 +47,45 @@ _recorder = None
 
 
 def assert_check(kind: str, /, *, name: str | None = None, **inputs: Any) -> dict[str, Any]:
-    """Checks your numbers as ``splinelab.check(kind, **inputs)`` and raises
-    ``AssertionError`` (message: the summary) unless the verdict is 'pass'.
+    """Check your numbers as :func:`splinelab.check` does; raise unless the verdict is 'pass'.
 
-    Returns the check's dict on a pass. ``name`` labels the check in the
-    pytest plugin's report (default: the test's node id, ``-2``, ``-3``, ...
-    for further checks in one test); ``out=`` writes its page there
-    instead. A kind judged without a stable bound and without ``max_ulps``
-    (``cond``) could only fail on NaN: a ``ValueError`` says so.
+    Parameters
+    ----------
+    kind : str
+        The check's kind, as :func:`splinelab.check` (positional only).
+    name : str, optional
+        Labels the check in the pytest plugin's report (default: the test's
+        node id, ``-2``, ``-3``, ... for further checks in one test).
+    **inputs
+        :func:`splinelab.check`'s keywords for ``kind``; ``out=`` writes
+        the check's page there instead of the plugin's folder.
+
+    Returns
+    -------
+    dict
+        The check's dict, on a pass.
+
+    Raises
+    ------
+    AssertionError
+        The verdict is not 'pass'; the message is the command line's
+        summary (and the page's folder where one was written).
+    ValueError
+        A kind judged without a stable bound and without ``max_ulps``
+        (``cond``), which could only fail on NaN.
+
+    Notes
+    -----
     Cost: the check's (one certified reference per element, see
     :func:`splinelab.check`), plus the page when it is written.
+
+    Examples
+    --------
+    >>> import numpy as np, splinelab
+    >>> from splinelab.testing import assert_check
+    >>> s = np.array([1.0, 2.0, 0.5, 3.0, 1.0, 0.0, 2.0, 1.0])
+    >>> assert_check("prefilter", samples=s, coeffs=splinelab.spline_filter1d(s), degree=3)["verdict"]
+    'pass'
     """
     __tracebackhide__ = True  # pytest shows the caller's line, not this one
     if inputs.get("out") is None and _recorder is not None:
