@@ -147,8 +147,34 @@ impl<T: Real> Overlay<T> {
         if self.blocks.is_empty() {
             return;
         }
+        if lo.iter().zip(hi).any(|(l, h)| l >= h) {
+            return;
+        }
         let dims: Vec<usize> = lo.iter().zip(hi).map(|(l, h)| h - l).collect();
-        for (key, block) in &self.blocks {
+        // The blocks the box overlaps, looked up by key where they are
+        // fewer than the blocks held (a long run of updates holds many).
+        let first: Vec<usize> = lo.iter().zip(&self.edge).map(|(l, e)| l / e).collect();
+        let counts: Vec<usize> = hi
+            .iter()
+            .zip(&self.edge)
+            .zip(&first)
+            .map(|((h, e), f)| (h - 1) / e + 1 - f)
+            .collect();
+        let mut held: Vec<(&Vec<usize>, &Vec<T>)> = Vec::new();
+        if counts.iter().product::<usize>() < self.blocks.len() {
+            let mut key = vec![0; first.len()];
+            super::gather::for_each_index(&counts, |_, idx| {
+                for (k, (f, i)) in key.iter_mut().zip(first.iter().zip(idx)) {
+                    *k = f + i;
+                }
+                if let Some((k, b)) = self.blocks.get_key_value(&key) {
+                    held.push((k, b));
+                }
+            });
+        } else {
+            held.extend(self.blocks.iter());
+        }
+        for (key, block) in held {
             let (blo, bhi) = self.block_box(key);
             let from: Vec<usize> = blo.iter().zip(lo).map(|(a, b)| *a.max(b)).collect();
             let to: Vec<usize> = bhi.iter().zip(hi).map(|(a, b)| *a.min(b)).collect();
@@ -157,14 +183,22 @@ impl<T: Real> Overlay<T> {
             }
             let bdims: Vec<usize> = blo.iter().zip(&bhi).map(|(l, h)| h - l).collect();
             let inter: Vec<usize> = from.iter().zip(&to).map(|(f, t)| t - f).collect();
-            super::gather::for_each_index(&inter, |_, idx| {
+            // Row by row along the last axis (0-d: the one sample).
+            let Some(last) = inter.len().checked_sub(1) else {
+                out[0] = block[0].clone();
+                continue;
+            };
+            let row = inter[last];
+            super::gather::for_each_index(&inter[..last], |_, idx| {
                 let (mut o, mut b) = (0, 0);
-                for a in 0..idx.len() {
+                for a in 0..last {
                     let g = from[a] + idx[a];
                     o = o * dims[a] + (g - lo[a]);
                     b = b * bdims[a] + (g - blo[a]);
                 }
-                out[o] = block[b].clone();
+                o = o * dims[last] + (from[last] - lo[last]);
+                b = b * bdims[last] + (from[last] - blo[last]);
+                out[o..o + row].clone_from_slice(&block[b..b + row]);
             });
         }
     }
