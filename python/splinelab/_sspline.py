@@ -195,6 +195,8 @@ def nan_reach(order, tol=1e-12):
         ``order`` outside 0..199.
     ValueError
         ``tol`` outside (0, 1).
+    TypeError
+        ``tol`` not a real number (None included).
 
     Notes
     -----
@@ -215,4 +217,7 @@ def nan_reach(order, tol=1e-12):
     >>> splinelab.nan_reach(3, 1e-12), splinelab.nan_reach(1)
     (24, 1)
     """
-    return _ext.nan_reach(_degree(order), float(_opt_float(tol, "tol")))
+    t = _opt_float(tol, "tol")
+    if t is None:  # no tolerance, no certified width: name the argument
+        raise TypeError("tol must be a real number in (0, 1), got None")
+    return _ext.nan_reach(_degree(order), t)

@@ -189,6 +189,9 @@ def test_unknown_policy_and_local_without_tol_are_refused():
     np.testing.assert_array_equal(np.flatnonzero(np.isnan(splinelab.zoom(x, 2, order=1, nan_policy="local", tol=None))),
                                   [5, 6, 7, 8])
     assert splinelab.nan_reach(3, 1e-12) == splinelab.filter_bound(3, 1e-12)["half_width"] + 2
+    # No tolerance, no certified width: a TypeError naming the argument.
+    with pytest.raises(TypeError, match="tol"):
+        splinelab.nan_reach(3, None)
 
 
 # --- 'local': hypothesis ----------------------------------------------------
