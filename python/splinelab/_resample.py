@@ -24,7 +24,7 @@ import numpy as np
 from . import _dtypes as _dt
 from ._doc import fill
 from .errors import ArgumentTypeError, MappingError, MatrixShapeError, RankError, SequenceLengthError
-from ._ndimage import _Affine, _flag, _Grid, _interp_mode, _interpolate, _map_real
+from ._ndimage import _Affine, _affine_points, _flag, _Grid, _interp_mode, _interpolate, _map_real
 from ._validate import DEFAULT_TOL, _degree, _int, _nan_policy, _threads, _tol_for
 
 
@@ -273,16 +273,6 @@ def _reserve_output(a, output, shape):
         warnings.simplefilter("ignore")
         dtype, _ = _dt.output_dtype(output, a.dtype, _dt.default_output(a.dtype, cplx), cplx)
     np.empty(shape, dtype)
-
-
-def _affine_points(m, offsets, out_shape):
-    """The points ``m @ o + offset`` of every output index ``o`` as an
-    array ``(ndim, prod(out_shape))``: for a matrix or offset that is not
-    finite, whose NaN and infinite points then get scipy's values there
-    (the engine generates finite points only)."""
-    index = np.indices(out_shape, dtype=np.float64).reshape(len(out_shape), -1)
-    with np.errstate(invalid="ignore", over="ignore"):
-        return m @ index + offsets[:, None]
 
 
 def _output_shape(output_shape, output, default):
