@@ -137,7 +137,7 @@ def memory(args):
                                text=True, check=True)
             got[lib] = json.loads(r.stdout)
         mib = {k: v["peak"] / 2**20 for k, v in got.items()}
-        print(f"{name:<20}{got['scipy']['result'] / 2**20:>8.0f}{mib['scipy']:>9.0f}{mib['splinelab']:>11.0f}"
+        print(f"{name:<20}{got['scipy']['result'] / 2**20:>8.0f}{mib['scipy']:>9.1f}{mib['splinelab']:>11.1f}"
               f"{mib['splinelab'] / mib['scipy']:>8.2f}")
 
 
