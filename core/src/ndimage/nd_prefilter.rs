@@ -59,7 +59,7 @@ use super::alloc::try_padded_zeros;
 use super::alloc::try_to_owned;
 use super::block_filter::BlockPrefilter;
 use super::lanes;
-use super::line_filter::{LineFilter, RowCheck};
+use super::line_filter::{BlockIo, LineFilter, RowBlocks, RowCheck, StripRows, rows_as_compute};
 use super::missing::{fill, fill_filter_mark, pattern};
 use super::mode::Mode;
 use super::nan_policy::{first_non_finite, write_nan};
@@ -487,6 +487,7 @@ struct Work<T> {
     rows: Vec<T>,
     scratch: Vec<T>,
     wide: Vec<T>,
+    blocks: RowBlocks<T>,
 }
 
 impl<T> Default for Work<T> {
@@ -495,6 +496,7 @@ impl<T> Default for Work<T> {
             rows: Vec::new(),
             scratch: Vec::new(),
             wide: Vec::new(),
+            blocks: RowBlocks::default(),
         }
     }
 }
@@ -683,6 +685,9 @@ fn last_group_as<T: Real, E: Sample<T>, O: Sample<T> + Stored<T>, const G: usize
     filter: &LineFilter<T>,
     work: &mut Work<T>,
 ) -> Scan {
+    if let Some(scan) = last_group_in_blocks::<T, E, O, G>(lines, src, n, filter, work) {
+        return scan;
+    }
     if let Some(t) = O::as_compute_mut(lines) {
         let Some(s) = src else {
             return last_group::<T, G>(t, None, n, filter, work);
@@ -711,6 +716,146 @@ fn last_group_as<T: Real, E: Sample<T>, O: Sample<T> + Stored<T>, const G: usize
     O::store_from(&wide, lines);
     work.wide = wide;
     scan
+}
+
+/// Bytes of a group's whole buffers (`n × G` in `T`, twice where the
+/// lines are of another type) from which [`last_pass`] filters it in
+/// blocks of rows ([`LineFilter::filter_in_blocks`]): the blocks read the
+/// group twice (the second time from L2), which at 4096 samples of `f64`
+/// lines (512 KiB) made `spline_filter1d` along the last axis 1.3–1.8×
+/// slower on one thread (4096² f64 and f32, alternated, min of 5:
+/// 39.0–40.7 → 54.1–70.3 ms), so below 1 MiB a thread the whole buffer
+/// stays; `f32` coefficients of an `f64` filter (two buffers, 1 MiB at
+/// 4096) run in blocks as fast (`spline_filter(output=float32)` 84–120 →
+/// 77–101 ms).
+const GROUP_BLOCKS_FROM: usize = 1 << 20;
+
+/// One group of [`last_pass`] in blocks of rows where its whole buffers
+/// would reach [`GROUP_BLOCKS_FROM`]: the work
+/// memory of [`LineFilter::filter_in_blocks`] instead, the same bits.
+/// `None`: not taken.
+fn last_group_in_blocks<T: Real, E: Sample<T>, O: Sample<T> + Stored<T>, const G: usize>(
+    lines: &mut [O],
+    src: Option<&[E]>,
+    n: usize,
+    filter: &LineFilter<T>,
+    work: &mut Work<T>,
+) -> Option<Scan> {
+    // The whole route holds the group in `T` (and again, widened, where
+    // the lines are not `T`'s).
+    let copies = if is_compute::<T, O>() { 1 } else { 2 };
+    if n * G * std::mem::size_of::<T>() * copies < GROUP_BLOCKS_FROM || !filter.runs_in_blocks(n) {
+        return None;
+    }
+    let mut scan = Scan::default();
+    let pieces = std::mem::take(&mut work.wide);
+    let (done, pieces) = match src {
+        Some(_) => {
+            let seen = &mut scan;
+            let mut io = GroupLines::<T, E, O, Scan, G> {
+                src,
+                lines,
+                n,
+                seen,
+                pieces,
+            };
+            (
+                filter.filter_in_blocks(&mut io, &mut work.blocks),
+                io.pieces,
+            )
+        }
+        None => {
+            let seen = &mut ();
+            let mut io = GroupLines::<T, O, O, (), G> {
+                src: None,
+                lines,
+                n,
+                seen,
+                pieces,
+            };
+            (
+                filter.filter_in_blocks(&mut io, &mut work.blocks),
+                io.pieces,
+            )
+        }
+    };
+    work.wide = pieces;
+    done.then_some(scan)
+}
+
+/// A group of at most `G` contiguous lines of `n` samples as the rows of
+/// [`LineFilter::filter_in_blocks`]: row `i` holds sample `i` of each line
+/// times the gain (transposed in tiles, [`lanes::load_strip`], as
+/// [`last_group`] loads them; the columns of absent lines zero). Read from
+/// `src` (`seen` taking in each piece on its first read) or in place from
+/// `lines`, widened into `pieces` where of another type than `T`; written
+/// back into `lines` ([`lanes::store_strip`]), rounded once where they are
+/// not `T`'s.
+struct GroupLines<'a, T, E, O, F, const G: usize> {
+    src: Option<&'a [E]>,
+    lines: &'a mut [O],
+    n: usize,
+    seen: &'a mut F,
+    pieces: Vec<T>,
+}
+
+impl<T, E, O, F, const G: usize> BlockIo<T> for GroupLines<'_, T, E, O, F, G>
+where
+    T: Real,
+    E: Sample<T>,
+    O: Sample<T> + Stored<T>,
+    F: RowCheck,
+{
+    fn shape(&self) -> (usize, usize) {
+        (self.n, G)
+    }
+
+    fn read_into(&mut self, lo: usize, hi: usize, rows: &mut [T], gain: &T, first: bool) {
+        let n = self.n;
+        let rows = rows.as_chunks_mut::<G>().0;
+        let count = self.lines.len() / n.max(1);
+        if count < G {
+            rows.iter_mut()
+                .for_each(|r| r[count..].iter_mut().for_each(|x| *x = T::zero()));
+        }
+        // The pieces `lo .. hi` of the lines, from `src` or in place.
+        let from_src: Vec<&[E]> = self
+            .src
+            .map(|s| s.chunks(n).map(|l| &l[lo..hi]).collect())
+            .unwrap_or_default();
+        let in_place: Vec<&[O]> = match self.src {
+            Some(_) => Vec::new(),
+            None => self.lines.chunks(n).map(|l| &l[lo..hi]).collect(),
+        };
+        let pieces = match self.src {
+            Some(_) => rows_as_compute(&from_src, &mut self.pieces),
+            None => rows_as_compute(&in_place, &mut self.pieces),
+        };
+        if first {
+            pieces.iter().for_each(|p| self.seen.row(p));
+        }
+        lanes::load_strip(rows, 0, &pieces, gain);
+    }
+
+    fn write(&mut self, lo: usize, block: &[T]) {
+        let rows = block.as_chunks::<G>().0;
+        let (n, len) = (self.n, rows.len());
+        if is_compute::<T, O>() {
+            let mut outs: Vec<&mut [T]> = self
+                .lines
+                .chunks_mut(n)
+                .filter_map(O::as_compute_mut)
+                .collect();
+            return lanes::store_strip(&mut outs, rows, lo);
+        }
+        let count = self.lines.len() / n.max(1);
+        self.pieces.resize(count * len, T::zero());
+        let mut outs: Vec<&mut [T]> = self.pieces.chunks_mut(len.max(1)).collect();
+        lanes::store_strip(&mut outs, rows, 0);
+        for (line, p) in self.lines.chunks_mut(n).zip(self.pieces.chunks(len.max(1))) {
+            O::store_from(p, &mut line[lo..lo + len]);
+        }
+    }
 }
 
 /// One group of [`last_pass`]: at most `G` lines of `n` samples, read
@@ -786,6 +931,17 @@ fn strip_width<T>(n: usize) -> usize {
     (w / 8 * 8).clamp(8, 1024)
 }
 
+/// Bytes of a strip's whole work buffer (`n × w`) above which
+/// [`filter_strip`] filters it in blocks of rows
+/// ([`LineFilter::filter_in_blocks`]): a strip of 64 lines of `f64` is
+/// 2 MiB at 4096 samples, a buffer a thread that put the prefilter's peak
+/// memory 4 MiB above scipy's on two threads (4096² float32,
+/// `python/bench/float32.py memory`: spline_filter 132.5 → 128.8 MiB,
+/// scipy 128.2); the blocks' second read of the strip comes from L3 and
+/// their buffers stay in L2, as fast as the whole buffer (one thread, 4096²,
+/// alternated, min of 5: `spline_filter1d` along axis 0 61–75 → 59–77 ms).
+const STRIP_BLOCKS_FROM: usize = 256 << 10;
+
 /// The filter along a strided `axis` of a standard-layout array: seen as
 /// `(outer, n, inner)`, the `inner` lines are cut in strips of `w`
 /// (a task each); each strip's `n × w` blocks are filtered where they lie,
@@ -845,6 +1001,7 @@ fn filter_strip<T: Real, E: Sample<T>, O: Sample<T> + Stored<T>>(
         rows: buf,
         scratch,
         wide,
+        blocks,
     } = work;
     for (k, mut block) in strip.outer_iter_mut().enumerate() {
         let mut rows: Vec<&mut [O]> = block
@@ -857,6 +1014,36 @@ fn filter_strip<T: Real, E: Sample<T>, O: Sample<T> + Stored<T>>(
                 .map(|r| r.to_slice().expect("a row of a standard-layout strip"))
                 .collect()
         });
+        let (n, w) = (rows.len(), rows.first().map_or(0, |r| r.len()));
+        if n * w * std::mem::size_of::<T>() > STRIP_BLOCKS_FROM && filter.runs_in_blocks(n) {
+            // Long lines: blocks of rows, work memory independent of `n`
+            // (the same bits). Rows filtered in place are not scanned.
+            let done = match &src {
+                Some(s) => {
+                    let seen = &mut scan;
+                    let io = &mut StripRows {
+                        src: Some(s),
+                        rows: &mut rows,
+                        seen,
+                        stream,
+                    };
+                    filter.filter_in_blocks(io, blocks)
+                }
+                None => {
+                    let seen = &mut ();
+                    let io = &mut StripRows::<O, O, ()> {
+                        src: None,
+                        rows: &mut rows,
+                        seen,
+                        stream: false,
+                    };
+                    filter.filter_in_blocks(io, blocks)
+                }
+            };
+            if done {
+                continue;
+            }
+        }
         if is_compute::<T, O>() {
             let mut rows: Vec<&mut [T]> = rows.into_iter().filter_map(O::as_compute_mut).collect();
             let Some(src) = src else {
@@ -879,7 +1066,6 @@ fn filter_strip<T: Real, E: Sample<T>, O: Sample<T> + Stored<T>>(
             }
             continue;
         }
-        let (n, w) = (rows.len(), rows.first().map_or(0, |r| r.len()));
         wide.resize(n * w, T::zero());
         let block_t = &mut wide[..n * w];
         match &src {
@@ -1349,6 +1535,79 @@ mod tests {
     fn slabs_and_fused_copy_equal_axis_by_axis_bit_for_bit() {
         slabs_equal_axis_by_axis::<f64>();
         slabs_equal_axis_by_axis::<f32>();
+    }
+
+    /// `a` filtered along `axes` in turn, each lane alone through the
+    /// whole-line buffer ([`LineFilter::apply_lines`] of one column) in
+    /// `T`, and stored as `O` after each axis: the route the blocks replace.
+    fn lane_by_lane<T: Real, O: Sample<T> + Stored<T>>(
+        a: &ArrayD<O>,
+        axes: &[usize],
+        f: &LineFilter<T>,
+    ) -> ArrayD<O> {
+        let mut out = a.clone();
+        for &axis in axes {
+            for mut lane in out.lanes_mut(Axis(axis)) {
+                let src: Vec<O> = lane.to_vec();
+                let mut line = vec![T::zero(); src.len()];
+                O::widen_into(&src, &mut line);
+                f.apply_lines(&mut line, 1, &mut Vec::new());
+                let mut stored = src;
+                O::store_from(&line, &mut stored);
+                lane.iter_mut().zip(stored).for_each(|(d, s)| *d = s);
+            }
+        }
+        out
+    }
+
+    /// Lines long enough for blocks of rows (a strided strip of 2100 ×
+    /// 64 above [`STRIP_BLOCKS_FROM`], a group of 3 contiguous lines of
+    /// 8300 above [`GROUP_BLOCKS_FROM`]) give the bits of each lane filtered alone through the whole
+    /// buffer: degrees 2–5 (one pole; two: the cascade), mirror and
+    /// reflect, in place and from a copy, f64 and f32 compute, f32 samples
+    /// and coefficients of an f64 filter.
+    #[test]
+    fn long_lines_in_blocks_equal_the_whole_line_bit_for_bit() {
+        fn check<T: Real + Send + Sync, O: Sample<T> + Stored<T>>(
+            a: &ArrayD<O>,
+            f: &LineFilter<T>,
+            what: &str,
+        ) {
+            let bits = |x: &ArrayD<O>| {
+                x.iter()
+                    .map(|v| v.widen().to_f64().to_bits())
+                    .collect::<Vec<_>>()
+            };
+            for axes in [&[0usize][..], &[1], &[0, 1]] {
+                assert!(f.runs_in_blocks(2100));
+                let want = lane_by_lane(a, axes, f);
+                let mut got = a.clone();
+                for &axis in axes {
+                    spline_filter1d(&mut got, axis, f).unwrap();
+                }
+                assert_eq!(bits(&got), bits(&want), "{what} in place {axes:?}");
+                let mut got = ArrayD::from_elem(IxDyn(a.shape()), a.iter().next().unwrap().clone());
+                spline_filter_from_as(a, &mut got, axes, Some(f)).unwrap();
+                assert_eq!(bits(&got), bits(&want), "{what} from a copy {axes:?}");
+            }
+        }
+        for degree in [2u32, 3, 4, 5] {
+            let family = SplineFamily::Order(degree + 1);
+            for mode in [Mode::Mirror, Mode::Reflect] {
+                let f64s = LineFilter::<f64>::new(&family, mode, 0.0, Route::Exact).unwrap();
+                let f32s = LineFilter::<f32>::new(&family, mode, 0.0, Route::Exact).unwrap();
+                for shape in [[2100usize, 70], [3, 8300]] {
+                    let what = format!("degree {degree} {mode:?} {shape:?}");
+                    check(&samples::<f64>(&shape, 5), &f64s, &format!("f64 {what}"));
+                    check(&samples::<f32>(&shape, 5), &f32s, &format!("f32 {what}"));
+                    check::<f64, f32>(
+                        &samples::<f32>(&shape, 5),
+                        &f64s,
+                        &format!("f32 in f64 {what}"),
+                    );
+                }
+            }
+        }
     }
 
     /// The N-D coefficients in `T` against the exact ones: 128-bit MPFR,
