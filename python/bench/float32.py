@@ -7,7 +7,7 @@ build's float32 route (not run by CI):
     .venv/bin/python python/bench/float32.py speed [--rounds 7] [--size 2048] [CASE ...]
     # the opt-in against the build before (its float32 route computed in float32):
     cp -r /path/to/other/python/splinelab /tmp/ab/splinelab_base
-    .venv/bin/python python/bench/float32.py speed --base /tmp/ab [CASE ...]
+    .venv/bin/python python/bench/float32.py speed --base /tmp/ab [--threads N] [--clock cpu] [CASE ...]
     # peak memory: each call in a child process, VmHWM above the resident
     # size before the call (/proc/self/clear_refs resets the mark)
     .venv/bin/python python/bench/float32.py memory [--size 4096] [CASE ...]
@@ -52,13 +52,18 @@ def cases(size):
     }
 
 
+CLOCKS = {"wall": time.perf_counter, "cpu": time.process_time}
+clock = CLOCKS["wall"]
+
+
 def best(fn, rounds_out, key):
-    t = time.perf_counter()
+    t = clock()
     fn()
-    rounds_out.setdefault(key, []).append(time.perf_counter() - t)
+    rounds_out.setdefault(key, []).append(clock() - t)
 
 
 def speed(args):
+    global clock
     import scipy.ndimage as ndi
 
     import splinelab
@@ -67,10 +72,14 @@ def speed(args):
     if args.base:
         sys.path.insert(0, args.base)
         import splinelab_base as base
+    # Both builds default to one thread per core; --threads N passes the same
+    # threads=N to both (a loaded machine times one thread with less noise).
+    threads = {} if args.threads is None else {"threads": args.threads}
+    clock = CLOCKS[args.clock]
     img, all_cases = cases(args.size)
     names = args.cases or list(all_cases)
-    print(f"float32 {args.size}^2, cubic, min of {args.rounds} alternated rounds (wall ms; "
-          f"{os.cpu_count()} cores)")
+    print(f"float32 {args.size}^2, cubic, min of {args.rounds} alternated rounds ({args.clock} ms; "
+          f"{os.cpu_count()} cores, threads={args.threads})")
     if base is None:
         print(f"{'case':<20}{'scipy':>9}{'sl 1 thr':>10}{'sl all':>9}{'scipy/1':>9}{'scipy/all':>10}"
               f"{'sl f32':>9}{'all/f32':>9}")
@@ -86,8 +95,8 @@ def speed(args):
                 best(lambda: call(splinelab, img), times, "all")
                 best(lambda: call(splinelab, img, compute="float32"), times, "f32")
             else:
-                best(lambda: call(base, img), times, "base")
-                best(lambda: call(splinelab, img, compute="float32"), times, "opt")
+                best(lambda: call(base, img, **threads), times, "base")
+                best(lambda: call(splinelab, img, compute="float32", **threads), times, "opt")
         m = {k: 1e3 * min(v) for k, v in times.items()}
         if base is None:
             print(f"{name:<20}{m['scipy']:>9.1f}{m['one']:>10.1f}{m['all']:>9.1f}"
@@ -150,6 +159,10 @@ def main():
     p.add_argument("--rounds", type=int, default=7)
     p.add_argument("--size", type=int, default=None)
     p.add_argument("--base", default=None, help="folder holding the other build as splinelab_base")
+    p.add_argument("--threads", type=int, default=None, help="with --base: threads=N for both builds")
+    # cpu: the process' CPU time (all threads), less disturbed than wall time
+    # by other jobs on a loaded machine; with --threads 1 it is the speed.
+    p.add_argument("--clock", choices=tuple(CLOCKS), default="wall")
     p.add_argument("cases", nargs="*")
     args = p.parse_intermixed_args()
     if args.what == "speed":

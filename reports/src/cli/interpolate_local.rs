@@ -32,7 +32,7 @@ use serde_json::json;
 use splinelab::ndimage::interpolant::PointRule;
 use splinelab::ndimage::local::{LocalOptions, LocalPlan, LocalSpec, LocalStats};
 use splinelab::ndimage::samples::SampleSource;
-use splinelab::prelude::{NanPolicy, RecursivePrefilter, SplineFamily};
+use splinelab::prelude::{NanPolicy, NdimageError, RecursivePrefilter, SplineFamily};
 use splinelab::scalar::Real;
 use splinelab_verify::check::UserFormat;
 use std::fs::File;
@@ -153,11 +153,20 @@ where
     let engine = |err| super::engine_io::engine_error(&e.input, err);
     let spec = LocalSpec::<T>::new(&shape, opts).map_err(engine)?;
     let points = read_points(&args.at, shape.len())?;
-    let plan = LocalPlan::new(&spec, points.view(), PointRule::Fold, None)
-        .map_err(|err| input_error(&args.at, err.to_string()))?;
-    if !plan.cost().prefer_local() && !over_limit {
-        return Ok(false);
-    }
+    let at_error = |err: NdimageError| input_error(&args.at, err.to_string());
+    // Above the input limit the local route runs at any cost (the global
+    // route cannot read the file); within it, `new_if_local` decides as
+    // the priced plan would without grouping and pricing every point where
+    // the local route cannot win (10^6 points: seconds before the global
+    // route was taken).
+    let plan = if over_limit {
+        LocalPlan::new(&spec, points.view(), PointRule::Fold, None).map_err(at_error)?
+    } else {
+        match LocalPlan::new_if_local(&spec, points.view(), PointRule::Fold).map_err(at_error)? {
+            Some(plan) => plan,
+            None => return Ok(false),
+        }
+    };
     let mut out = vec![T::zero(); points.nrows()];
     let stats = plan
         .evaluate(&spec, source, None, &mut out)
