@@ -88,7 +88,7 @@ def source(input):
 #: A box's own cost on the local route of an array-like, in samples read
 #: whole and evaluated in memory in the same time: the plan, the Python
 #: slice and copy and the reader's call per box. Measured (loaded 2-core
-#: machine, /tmp/l2/boxcost.py in notes/local2-dask.md: linear points on
+#: machine, boxcost.py of the issue-42 notes, local2-dask.md: linear points on
 #: 2000^2): 18 us a box (numpy-backed reader), 27 us (dask), against 5 ns a
 #: sample read whole: 3.6e3 and 4.7e3 samples; 10^4 leaves room for the
 #: slower calls of h5py and zarr readers.
