@@ -85,6 +85,48 @@ def source(input):
     raise TypeError(f"input of type {type(input).__name__} cannot be read: {_NEEDS}")
 
 
+#: A box's own cost on the local route of an array-like, in samples read
+#: whole and evaluated in memory in the same time: the plan, the Python
+#: slice and copy and the reader's call per box. Measured (loaded 2-core
+#: machine, boxcost.py of the issue-42 notes, local2-dask.md: linear points on
+#: 2000^2): 18 us a box (numpy-backed reader), 27 us (dask), against 5 ns a
+#: sample read whole: 3.6e3 and 4.7e3 samples; 10^4 leaves room for the
+#: slower calls of h5py and zarr readers.
+_BOX = 10**4
+
+
+def read_whole(src, flat, d, mode, prefilter, tol, exact_edges, nan_policy):
+    """The array-like ``src`` read whole (one basic-slice read, as a numpy
+    array) where that costs no more than its windows read a box each on
+    the local route, else None: by :data:`ROUTE` ("local": never, "global":
+    always), by cost under "auto". The cost of the windows is bounded above
+    by ``k (B + W)`` for ``k`` points (:data:`_BOX` per box, one box a
+    point, ``W`` the samples of one point's box, :func:`_window`), so an
+    array of at most that size is read whole: at most ``B + W`` samples a
+    point, never more than the boxes' own bound (a dask block of
+    reproject, whose points cover it, costs one ``np.asarray`` as on scipy;
+    a few points of a large array still read only their windows)."""
+    if ROUTE == "local":
+        return None
+    if ROUTE == "auto":
+        k = flat.shape[1]
+        if math.prod(src.shape) > k * (_BOX + _window(src.shape, d, mode, prefilter, tol, exact_edges, nan_policy)):
+            return None
+    return np.asarray(src[tuple(slice(None) for _ in src.shape)])
+
+
+def _window(shape, d, mode, prefilter, tol, exact_edges, nan_policy):
+    """The samples one isolated point's box reads: its ``d + 1`` samples a
+    side, with the prefilter's half-width ``n`` and scipy's pad each side
+    where the samples are prefiltered."""
+    engine_mode, _, pad = engine_args(mode, d, prefilter, exact_edges)
+    n = 0
+    if prefilter and d > 1:
+        spline = _ext.LocalSplineF64(list(shape), d, engine_mode, 0.0, tol, nan_policy, True, pad, 2**62, True)
+        n = spline.truncation()[0]
+    return (d + 1 + 2 * (n + pad)) ** len(shape)
+
+
 def _is_dask(x):
     return type(x).__module__.split(".")[0] == "dask"
 

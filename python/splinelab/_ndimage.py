@@ -284,7 +284,8 @@ def map_coordinates(
         memory (anything with ``shape``, ``dtype``, ``ndim`` and basic-slice
         ``__getitem__``: zarr, h5py, dask) is read one box at a time, only
         where the points' windows need it (the local route:
-        :doc:`/large_arrays`).
+        :doc:`/large_arrays`), or whole, once, where the points cover it
+        (reading it costs less than their boxes one by one).
     coordinates : array_like
         Shape ``(input.ndim, ...)``: one row per axis, as in scipy.
     %(interp_output)s
@@ -395,9 +396,14 @@ def map_coordinates(
         # under the constant modes; reproject passes empty dask blocks).
         input = np.empty(input.shape, np.dtype(input.dtype))
     if _local.is_array_like(input):
-        # Not in memory (zarr, h5py, dask): read only the windows' boxes.
-        return _map_array_like(input, flat, shape, output, d, mode, cval, prefilter, tol, threads, exact_edges,
-                               deriv, nan_policy, sign)
+        # Not in memory (zarr, h5py, dask): read whole where that costs no
+        # more than the windows' boxes (then the in-memory call's bits),
+        # else only the windows' boxes.
+        whole = _local.read_whole(_local.source(input), flat, d, mode, prefilter, tol, exact_edges, nan_policy)
+        if whole is None:
+            return _map_array_like(input, flat, shape, output, d, mode, cval, prefilter, tol, threads, exact_edges,
+                                   deriv, nan_policy, sign)
+        input = whole
 
     def evaluate(a, cv, work):
         values = _map_real(a, flat, d, mode, cv, prefilter, tol, threads, exact_edges, deriv, nan_policy, work)

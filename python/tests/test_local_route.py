@@ -194,21 +194,57 @@ def test_sources_give_the_same_bits(tmp_path):
 
 
 def test_dask_with_many_points_reads_the_bounding_box_once():
-    # Many boxes (1000 cubic points, prefilter=False): one slice of their
-    # bounding box, the boxes cut from it: the values of the in-memory call.
+    # Many boxes (100 points in a corner, prefilter=False; too few to read
+    # the array whole): one slice of their bounding box, the boxes cut from
+    # it: the local route's values, the bounding box read.
     import dask.array as da
 
     rng = np.random.default_rng(5)
     a = rng.uniform(-1, 1, (35, 250, 150))
     src = Counting(a)
     d = da.from_array(src, chunks=(35, 100, 100), asarray=False)
-    at = np.stack([rng.uniform(-1, n, 1000) for n in a.shape])
-    for kw in (dict(order=3, prefilter=False), dict(order=1), dict(order=3, mode="mirror")):
+    at = np.stack([rng.uniform(1, n, 100) for n in (20, 120, 80)])
+    for kw in (dict(order=3, prefilter=False), dict(order=1)):
         src.read = 0
         got = splinelab.map_coordinates(d, at, **kw)
         want = _route("local", lambda: splinelab.map_coordinates(a, at, **kw))
         np.testing.assert_array_equal(got, want, err_msg=str(kw))
-        assert src.read <= a.size, (kw, src.read)
+        assert src.read <= 23 * 123 * 83 < a.size, (kw, src.read)
+
+
+@pytest.mark.parametrize("kind", ["dask", "counting"])
+@pytest.mark.parametrize("kw", [dict(order=0, prefilter=False), dict(order=1), dict(order=3, prefilter=False),
+                                dict(order=3, mode="mirror"), dict(order=5, mode="nearest", cval=np.nan)])
+def test_array_like_covered_by_its_points_is_read_once_whole(kind, kw):
+    # Issue 42: reproject hands dask-image's blocks to map_coordinates with
+    # a point in most cells (8.5x scipy's CPU when each point's box was
+    # read and sliced on its own). Where the array holds at most
+    # k * (_BOX + one point's box) samples it is read once, whole, and
+    # evaluated in memory: the bits of the in-memory call, close to scipy.
+    import dask.array as da
+
+    rng = np.random.default_rng(6)
+    a = rng.uniform(-1, 1, (60, 70))
+    src = Counting(a)
+    x = da.from_array(src, chunks=(25, 30), asarray=False) if kind == "dask" else src
+    at = np.stack([rng.uniform(-2, n + 1, 400) for n in a.shape])
+    got = splinelab.map_coordinates(x, at, **kw)
+    assert src.read == a.size and (kind == "dask" or src.calls == 1), (src.read, src.calls)
+    np.testing.assert_array_equal(got, splinelab.map_coordinates(a, at, **kw))
+    np.testing.assert_allclose(got, ndi.map_coordinates(a, at, **kw), rtol=0, atol=1e-13)
+
+
+def test_array_like_is_read_whole_by_the_stated_cost():
+    # Read whole iff size <= k * (_BOX + W), W = (order + 1)**ndim without a
+    # prefilter: 3 linear points on a 3 x 10_004 array (W = 4): whole at
+    # 30_012 samples, their windows alone at 30_015.
+    a3 = np.random.default_rng(7).uniform(-1, 1, (3, 10_005))
+    at = np.array([[0.5, 1.0, 1.5], [7.25, 5000.5, 9000.0]])
+    for cols, whole in ((10_004, True), (10_005, False)):
+        src = Counting(a3[:, :cols])
+        got = splinelab.map_coordinates(src, at, order=1)
+        assert (src.calls == 1 and src.read == 3 * cols) == whole, (cols, src.calls, src.read)
+        np.testing.assert_allclose(got, ndi.map_coordinates(a3[:, :cols], at, order=1), rtol=0, atol=1e-15)
 
 
 @pytest.mark.parametrize("shape", [(0, 5), (5, 0), (0,)])

@@ -10,7 +10,7 @@
 
 use super::axis_map::AxisMap;
 use super::coef_box::{CoefBox, Work, first_index};
-use super::route::{C_POINT, C_READ, RouteCost, global_ns, tile_ns};
+use super::route::{C_POINT, C_READ, RouteCost, global_ns, locate_ns, tile_ns};
 use super::spec::LocalSpec;
 use crate::ndimage::NdimageError;
 use crate::ndimage::interpolant::PointRule;
@@ -80,18 +80,24 @@ impl LocalPlan {
     /// 10^6 points on a 2048^2 array, whose global route takes 0.1 s), so
     /// a floor of the local cost comes first (`local_floor_ns`); where it
     /// already reaches the global cost, the local route cannot win and
-    /// nothing is grouped.
+    /// nothing is grouped; where locating the points alone reaches it
+    /// (`locate_ns`: reproject's 10⁴ linear points on a 250 × 150 array),
+    /// nothing is located.
     pub fn new_if_local<T: Real>(
         spec: &LocalSpec<T>,
         points: ArrayView2<'_, f64>,
         rule: PointRule,
     ) -> Result<Option<Self>, NdimageError> {
-        let mut plan = Self::located(spec, points, rule)?;
         let global = global_ns(
             spec.shape().iter().product(),
-            plan.ndim,
+            spec.ndim(),
             spec.filter.is_some(),
         );
+        if locate_ns(points.nrows()) >= global {
+            // Locating the points alone costs what the global route does.
+            return Ok(None);
+        }
+        let mut plan = Self::located(spec, points, rule)?;
         if plan.local_floor_ns(spec) >= global {
             return Ok(None);
         }
@@ -100,21 +106,23 @@ impl LocalPlan {
     }
 
     /// A lower bound of [`group`](Self::group)'s local cost at every tile
-    /// edge: `C_POINT` per evaluated point and one tile of edge 1 (a
+    /// edge: every point located (`locate_ns`), `C_POINT` per evaluated
+    /// point and one tile of edge 1 (a
     /// tile's cost grows with its edge; one tile at least where a point is
     /// evaluated); without a prefilter, the cost itself.
     fn local_floor_ns<T: Real>(&self, spec: &LocalSpec<T>) -> f64 {
         let live = self.cval_at.iter().filter(|&&c| !c).count();
         let (d, m) = (self.ndim, spec.order as usize);
         if spec.filter.is_none() {
-            return live as f64 * (C_POINT + C_READ * (m as f64).powi(d as i32));
+            return locate_ns(self.len())
+                + live as f64 * (C_POINT + C_READ * (m as f64).powi(d as i32));
         }
         let one_tile = if live > 0 {
             tile_ns(d, spec.degree(), spec.half_width(), 1)
         } else {
             0.0
         };
-        one_tile + live as f64 * C_POINT
+        locate_ns(self.len()) + one_tile + live as f64 * C_POINT
     }
 
     /// The points located (cells, `cval` points), not yet grouped.
@@ -189,7 +197,7 @@ impl LocalPlan {
                 .collect();
             let per_point = C_POINT + C_READ * (m as f64).powi(d as i32);
             self.cost = RouteCost {
-                local_ns: live.len() as f64 * per_point,
+                local_ns: locate_ns(self.len()) + live.len() as f64 * per_point,
                 global_ns: global_ns(samples, d, false),
                 tile: 1,
                 tiles: live.len(),
@@ -226,7 +234,7 @@ impl LocalPlan {
                 .unwrap_or((0.0, 1, 0)),
         };
         self.cost = RouteCost {
-            local_ns: local + live.len() as f64 * C_POINT,
+            local_ns: locate_ns(self.len()) + local + live.len() as f64 * C_POINT,
             global_ns: global_ns(samples, d, true),
             tile: t,
             tiles,

@@ -28,7 +28,9 @@
 //! two) that minimises it; global `N (C_GLOBAL D + C_COPY)`. Without a
 //! prefilter (degrees 0, 1, `prefilter=False`) the local route reads each
 //! point's `(d + 1)^D` support and the global route copies the array
-//! (`C_COPY` per sample). The constants were measured on the 2-core
+//! (`C_COPY` per sample). Either way the local route first locates every
+//! point (`C_LOCATE` each, `cval` points included), so where that alone
+//! reaches the global cost nothing is located. The constants were measured on the 2-core
 //! development machine (`python/bench/local_route.py`); the crossover they
 //! give is quoted in the README.
 
@@ -57,6 +59,13 @@ pub const C_COPY: f64 = 1.5;
 /// With 150 ns, the figure before, 10⁶ points on a 4096² array were
 /// grouped and priced (2.4 s) before the global route (0.35 s) was taken.
 pub const C_POINT: f64 = 1000.0;
+/// Nanoseconds per point of locating it (its cell, whether it is a `cval`
+/// point), every point, before anything is priced: the local route's
+/// floor at many points. Measured (issue 42, `local_map_f64` declining 10⁴
+/// linear points on a 250 × 150 array, the loaded 2-core machine): 57 ns a
+/// point, spec included, where the global route's extra cost is 56 µs; it
+/// is what reproject's 7875 such calls spent deciding.
+pub const C_LOCATE: f64 = 50.0;
 
 /// The tolerance of the local route under `tol=None` for a spline of
 /// `degree ≥ 2` computed in `T` (module documentation): `u · A / 4`, at
@@ -101,6 +110,11 @@ pub(crate) fn tile_ns(ndim: usize, degree: u32, n: usize, t: usize) -> f64 {
     let d = ndim as i32;
     let outputs: f64 = (1..=d).map(|j| e.powi(d - j) * b.powi(j)).sum();
     C_TAP * (2 * n + 1) as f64 * outputs + C_READ * e.powi(d)
+}
+
+/// The local route's cost of locating `points` points ([`C_LOCATE`] each).
+pub(crate) fn locate_ns(points: usize) -> f64 {
+    points as f64 * C_LOCATE
 }
 
 /// The global route's cost on `samples` samples of `ndim` axes, with a
