@@ -24,9 +24,8 @@
 use crate::cache;
 use crate::error::{engine_error, value_error};
 use crate::pool::run_with;
-use crate::with_samples;
 use ndarray::{ArrayView1, ArrayViewD, ArrayViewMut1, ArrayViewMutD};
-use numpy::{Element, PyReadonlyArrayDyn, PyReadwriteArrayDyn};
+use numpy::{Element, PyReadwriteArrayDyn};
 use pyo3::prelude::*;
 use splinelab::ndimage::NdimageError;
 use splinelab::ndimage::nd_prefilter::{filter_missing, spline_filter_from_as};
@@ -270,24 +269,15 @@ where
     .map_err(engine_error)
 }
 
-/// [`filter_generic`] in float64 into `output` of `O`, from `input` (a
-/// float64 or float32 array) or in place.
-fn filter_into_f64<'py, O>(
-    py: Python<'py>,
-    input: Option<&Bound<'py, PyAny>>,
-    output: PyReadwriteArrayDyn<'py, O>,
-    axes: Vec<usize>,
-    spec: Spec,
-    threads: Option<usize>,
-) -> PyResult<()>
-where
-    O: Sample<f64> + Stored<f64> + Element,
-{
-    match input {
-        None => filter_generic::<f64, O, O>(py, None, output, axes, spec, threads),
-        Some(input) => with_samples!(input, a => {
-            filter_generic::<f64, _, O>(py, Some(a), output, axes, spec, threads)
-        }),
+/// Whether `output` is a float32 array (else a float64 one; another
+/// dtype is `unsupported`), tried by the extraction the filter then makes.
+fn writes_f32(output: &Bound<'_, PyAny>) -> PyResult<bool> {
+    if output.extract::<PyReadwriteArrayDyn<'_, f64>>().is_ok() {
+        Ok(false)
+    } else if output.extract::<PyReadwriteArrayDyn<'_, f32>>().is_ok() {
+        Ok(true)
+    } else {
+        Err(crate::samples::unsupported(output))
     }
 }
 
@@ -314,22 +304,13 @@ pub fn filter<'py>(
     f32: bool,
 ) -> PyResult<()> {
     let spec = Spec::new(degree, mode, cval, tol, convolution, nan_policy)?;
-    let input = input.as_ref();
-    if f32 {
-        let src = input
-            .map(|a| a.extract::<PyReadonlyArrayDyn<'py, f32>>())
-            .transpose()?;
-        let out = output.extract::<PyReadwriteArrayDyn<'py, f32>>()?;
-        let src = src.as_ref().map(|a| a.as_array());
-        return filter_generic::<f32, f32, f32>(py, src, out, axes, spec, threads);
-    }
-    if let Ok(out) = output.extract::<PyReadwriteArrayDyn<'py, f64>>() {
-        filter_into_f64(py, input, out, axes, spec, threads)
-    } else if let Ok(out) = output.extract::<PyReadwriteArrayDyn<'py, f32>>() {
-        filter_into_f64(py, input, out, axes, spec, threads)
-    } else {
-        Err(crate::samples::unsupported(&output))
-    }
+    // The results' type is the output's; with `f32` float32 (which its
+    // extraction checks).
+    let out32 = f32 || writes_f32(&output)?;
+    crate::dispatch_compute!(optional input.as_ref(), f32, out32, <T, O> src => {
+        let out = output.extract::<PyReadwriteArrayDyn<'py, O>>()?;
+        filter_generic::<T, _, O>(py, src, out, axes, spec, threads)
+    })
 }
 
 /// `(half_width, bound, amplification)` of the filter for `degree`, `tol`:

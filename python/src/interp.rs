@@ -15,9 +15,8 @@
 
 use crate::error::{engine_error, value_error};
 use crate::pool::run_with;
-use crate::with_samples;
 use ndarray::ArrayViewD;
-use numpy::{Element, PyArrayMethods, PyReadonlyArray2, PyReadonlyArrayDyn};
+use numpy::{Element, PyArrayMethods, PyReadonlyArray2};
 use pyo3::prelude::*;
 use splinelab::ndimage::interpolant::PointRule;
 use splinelab::ndimage::samples::{Sample, Stored};
@@ -149,22 +148,7 @@ pub fn map_coordinates<'py>(
     let opts = options(degree, mode, cval, tol, nan_policy)?;
     let how = Coefficients::new(prefilter, filter_rule)?;
     let c = &coordinates;
-    if f32 {
-        let a = input.extract::<PyReadonlyArrayDyn<'py, f32>>()?;
-        return map_generic::<f32, f32, f32>(
-            py,
-            a.as_array(),
-            c,
-            opts,
-            how,
-            threads,
-            deriv,
-            cval_outside,
-        );
-    }
-    with_samples!(input, a => if out32 {
-        map_generic::<f64, _, f32>(py, a, c, opts, how, threads, deriv, cval_outside)
-    } else {
-        map_generic::<f64, _, f64>(py, a, c, opts, how, threads, deriv, cval_outside)
+    crate::dispatch_compute!(input, f32, out32, <T, O> a => {
+        map_generic::<T, _, O>(py, a, c, opts, how, threads, deriv, cval_outside)
     })
 }

@@ -46,11 +46,6 @@ fn nonzero(deriv: Option<Vec<u32>>) -> Option<Vec<u32>> {
     deriv.filter(|d| d.iter().any(|&k| k > 0))
 }
 
-/// Results of the float64 computation stored as `O` (rounded once).
-fn stored<O: Stored<f64>>(values: &[f64]) -> Vec<O> {
-    values.iter().map(O::store).collect()
-}
-
 #[allow(clippy::too_many_arguments)]
 fn map_local<'py, E>(
     py: Python<'py>,
@@ -86,7 +81,7 @@ where
     let out = py
         .detach(|| run_with(threads, run))?
         .map_err(engine_error)?;
-    Ok(out.map(|v| stored::<E>(&v).into_pyarray(py)))
+    Ok(out.map(|v| E::store_vec(v).into_pyarray(py)))
 }
 
 /// The float64 and float32 entry points, one generic body.
@@ -263,7 +258,7 @@ macro_rules! spline_class {
             ) -> PyResult<Bound<'py, PyArray1<$t>>> {
                 let (data, at) = (input.as_array(), coordinates.as_array());
                 let out = py.detach(|| eval_source(&self.inner, &data, at, rule, deriv, threads))?;
-                Ok(stored::<$t>(&out).into_pyarray(py))
+                Ok(<$t as Stored<f64>>::store_vec(out).into_pyarray(py))
             }
 
             #[pyo3(signature = (shape, fetched, coordinates, rule, deriv, threads))]
@@ -281,7 +276,7 @@ macro_rules! spline_class {
                 let source = blocks(&shape, &fetched)?;
                 let at = coordinates.as_array();
                 let out = py.detach(|| eval_source(&self.inner, &source, at, rule, deriv, threads))?;
-                Ok(stored::<$t>(&out).into_pyarray(py))
+                Ok(<$t as Stored<f64>>::store_vec(out).into_pyarray(py))
             }
 
             /// The source boxes `(lo, hi)` evaluating at `coordinates` reads.
@@ -338,7 +333,7 @@ macro_rules! spline_class {
                 self.inner
                     .changed_blocks()
                     .into_iter()
-                    .map(|(first, data)| (first, stored::<$t>(&data).into_pyarray(py)))
+                    .map(|(first, data)| (first, <$t as Stored<f64>>::store_vec(data).into_pyarray(py)))
                     .collect()
             }
 

@@ -11,9 +11,8 @@
 use crate::error::{engine_error, value_error};
 use crate::interp::{Coefficients, interpolant, options};
 use crate::pool::run_with;
-use crate::with_samples;
 use ndarray::ArrayViewD;
-use numpy::{Element, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2, PyReadonlyArrayDyn};
+use numpy::{Element, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2};
 use pyo3::prelude::*;
 use splinelab::ndimage::interpolant::PointRule;
 use splinelab::ndimage::samples::{Sample, Stored};
@@ -81,14 +80,8 @@ pub fn resample<'py>(
     let opts = options(degree, mode, cval, tol, nan_policy)?;
     let how = Coefficients::new(prefilter, filter_rule)?;
     let c = &coordinates;
-    if f32 {
-        let a = input.extract::<PyReadonlyArrayDyn<'py, f32>>()?;
-        return resample_generic::<f32, f32, f32>(py, a.as_array(), c, opts, how, &deriv, threads);
-    }
-    with_samples!(input, a => if out32 {
-        resample_generic::<f64, _, f32>(py, a, c, opts, how, &deriv, threads)
-    } else {
-        resample_generic::<f64, _, f64>(py, a, c, opts, how, &deriv, threads)
+    crate::dispatch_compute!(input, f32, out32, <T, O> a => {
+        resample_generic::<T, _, O>(py, a, c, opts, how, &deriv, threads)
     })
 }
 
@@ -196,13 +189,7 @@ pub fn affine<'py>(
         shift,
         rule,
     )?;
-    if f32 {
-        let a = input.extract::<PyReadonlyArrayDyn<'py, f32>>()?;
-        return affine_generic::<f32, f32, f32>(py, a.as_array(), &map, opts, how, threads);
-    }
-    with_samples!(input, a => if out32 {
-        affine_generic::<f64, _, f32>(py, a, &map, opts, how, threads)
-    } else {
-        affine_generic::<f64, _, f64>(py, a, &map, opts, how, threads)
+    crate::dispatch_compute!(input, f32, out32, <T, O> a => {
+        affine_generic::<T, _, O>(py, a, &map, opts, how, threads)
     })
 }

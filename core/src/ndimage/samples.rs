@@ -77,6 +77,20 @@ pub trait Stored<T>: Clone + Send + Sync + 'static {
             *d = Self::store(s);
         }
     }
+
+    /// [`Stored::store_from`] into a new vector: results computed into a
+    /// vector of `T` handed over as stored values (the compute type's own:
+    /// `src` itself, no copy).
+    ///
+    /// ```
+    /// use splinelab::ndimage::samples::Stored;
+    /// let wide = vec![0.1f64, 1.0 + f64::EPSILON];
+    /// assert_eq!(<f32 as Stored<f64>>::store_vec(wide.clone()), [0.1f32, 1.0]);
+    /// assert_eq!(<f64 as Stored<f64>>::store_vec(wide.clone()), wide);
+    /// ```
+    fn store_vec(src: Vec<T>) -> Vec<Self> {
+        src.iter().map(Self::store).collect()
+    }
 }
 
 impl<T: Real> Sample<T> for T {
@@ -112,6 +126,10 @@ impl<T: Real> Stored<T> for T {
     fn store_from(src: &[T], dst: &mut [T]) {
         let n = src.len().min(dst.len());
         dst[..n].clone_from_slice(&src[..n]);
+    }
+
+    fn store_vec(src: Vec<T>) -> Vec<T> {
+        src
     }
 }
 

@@ -4,7 +4,7 @@
 //! within the local route's stated bound; a file above the input limit is
 //! refused by the global route but evaluated by the local one.
 
-use super::common::{stdout_ok, tmpdir};
+use super::common::{cubic_at, stdout_ok, tmpdir};
 use ndarray::{Array1, Array2};
 use ndarray_npy::{read_npy, write_npy};
 use splinelab::prelude::*;
@@ -38,20 +38,7 @@ fn a_memory_mapped_npy_takes_the_local_route_within_its_bound() {
     let (input, at) = (dir.join("a.npy"), dir.join("at.npy"));
     for mode in ["mirror", "nearest", "grid-wrap"] {
         let out = dir.join(format!("v_{mode}.npy"));
-        let args = [
-            "interpolate",
-            "--input",
-            input.to_str().unwrap(),
-            "--at",
-            at.to_str().unwrap(),
-            "--degree",
-            "3",
-            "--mode",
-            mode,
-            "--output",
-            out.to_str().unwrap(),
-        ];
-        let text = stdout_ok(&args);
+        let text = stdout_ok(&cubic_at(&input, &at, mode, &out));
         assert!(
             text.contains("route            local (memory-mapped)"),
             "{text}"

@@ -319,30 +319,16 @@ fn interpolate_nan_pattern_and_local_values() {
     }
     // Values: local beside the exact spline of the samples filled with ±m.
     for mode in MODES {
-        let args = |input: &Path, out: &Path, local: bool| {
-            let mut v: Vec<String> = [
-                "interpolate",
-                "--input",
-                input.to_str().unwrap(),
-                "--at",
-                at.to_str().unwrap(),
-                "--degree",
-                "3",
-                "--mode",
-                mode,
-                "--output",
-                out.to_str().unwrap(),
-            ]
-            .map(String::from)
-            .into();
+        // The cubic at the points into `out`, under `local` or `propagate`.
+        let interpolate = |input: &Path, out: &Path, local: bool| {
+            let mut v = common::cubic_at(input, &at, mode, out);
             if local {
-                v.extend(["--nan-policy", "local", "--tol", "1e-4"].map(String::from));
+                v.extend(["--nan-policy", "local", "--tol", "1e-4"]);
             }
-            v
+            ok(&v)
         };
-        let strs = |v: &[String]| ok(&v.iter().map(String::as_str).collect::<Vec<_>>());
         let json = dir.join("v.json");
-        strs(&args(&input, &json, true));
+        interpolate(&input, &json, true);
         let doc: serde_json::Value =
             serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
         let bound = doc["local_bound"].as_f64().unwrap();
@@ -369,7 +355,7 @@ fn interpolate_nan_pattern_and_local_values() {
             let filled = a.mapv(|x| if x.is_finite() { x } else { fill });
             let (fin, fout) = (dir.join("filled.npy"), dir.join("exact.npy"));
             write(&fin, &filled);
-            strs(&args(&fin, &fout, false));
+            interpolate(&fin, &fout, false);
             let exact = read(&fout);
             for (l, e) in local.iter().zip(exact.iter()) {
                 if l.is_finite() {

@@ -1,7 +1,7 @@
 //! Helpers shared by the command-line tests: run the built `splinelab`.
 
 use serde_json::Value;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
 /// Runs the `splinelab` binary of this build with `args`.
@@ -41,4 +41,23 @@ pub fn tmpdir(topic: &str, tag: &str) -> PathBuf {
     let _ = std::fs::remove_dir_all(&d);
     std::fs::create_dir_all(&d).unwrap();
     d
+}
+
+/// `interpolate` of the `.npy` samples `input` at the points `at` by the
+/// cubic in `mode`, written to `out`.
+pub fn cubic_at<'a>(input: &'a Path, at: &'a Path, mode: &'a str, out: &'a Path) -> Vec<&'a str> {
+    let path = |p: &'a Path| p.to_str().unwrap();
+    vec![
+        "interpolate",
+        "--input",
+        path(input),
+        "--at",
+        path(at),
+        "--degree",
+        "3",
+        "--mode",
+        mode,
+        "--output",
+        path(out),
+    ]
 }
