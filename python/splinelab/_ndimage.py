@@ -236,7 +236,9 @@ def spline_filter(input, order=3, output=np.float64, mode="mirror", *, tol=DEFAU
     amplification, ``b`` the per-axis bound): :func:`filter_bound`. Cost:
     O(poles) operations per sample and axis. Memory: the output (the input
     is read where it lies; a float32 output holds the float32 coefficients
-    only, as scipy's).
+    only, as scipy's) and work buffers of at most about 1 MiB a thread
+    whatever the array's size (long lines are filtered in blocks of rows;
+    scipy: one line buffer).
 
     Examples
     --------
@@ -358,7 +360,8 @@ def map_coordinates(
     scipy does not hold (it reads the input). 'nearest' and 'grid-constant'
     (scipy's route): the input padded by 12 (a copy in its dtype, as
     scipy's) and one float64 coefficient array of that.
-    ``compute="float32"``: float32 arrays instead.
+    ``compute="float32"``: float32 arrays instead. The prefilter's work
+    buffers stay within about 1 MiB a thread (:func:`spline_filter`).
 
     Examples
     --------

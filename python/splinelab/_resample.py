@@ -153,9 +153,10 @@ def zoom(input, zoom, output=None, order=3, mode="constant", cval=0.0, prefilter
     converted, as scipy. Error: as :func:`map_coordinates`. Cost: the
     prefilter, then ``order + 1`` multiply-adds per output sample and axis.
     Memory beside the input and the result: the coefficients
-    (:func:`map_coordinates`) and the array of the last axis resampled
-    (the input's leading shape by the output's last axis, float64),
-    float32 results written rounded once a row at a time.
+    (:func:`map_coordinates`) and, per thread, the ``order + 2``
+    coefficient slabs an output row reads, resampled along the other axes
+    (float64; no array of the whole intermediate), float32 results
+    written rounded once a row at a time.
 
     Examples
     --------
