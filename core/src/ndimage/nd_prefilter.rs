@@ -942,6 +942,20 @@ fn strip_width<T>(n: usize) -> usize {
 /// alternated, min of 5: `spline_filter1d` along axis 0 61–75 → 59–77 ms).
 const STRIP_BLOCKS_FROM: usize = 256 << 10;
 
+/// [`STRIP_BLOCKS_FROM`] for a filter of one pole; 4 MiB for two (the
+/// cascade of degrees 4 and 5, twice the arithmetic per sample, whose
+/// recomputation in the blocks showed: quintic `spline_filter` of 4096²
+/// float32, one thread, alternated, min of 5: f64 68–92 → 102–137 ms,
+/// `compute="float32"` 46–58 → 65–73 ms), so that a quintic strip of 64
+/// lines keeps its whole buffer up to 8192 samples.
+fn strip_blocks_from<T: Real>(filter: &LineFilter<T>) -> usize {
+    if filter.recursive().poles().len() > 1 {
+        4 << 20
+    } else {
+        STRIP_BLOCKS_FROM
+    }
+}
+
 /// The filter along a strided `axis` of a standard-layout array: seen as
 /// `(outer, n, inner)`, the `inner` lines are cut in strips of `w`
 /// (a task each); each strip's `n × w` blocks are filtered where they lie,
@@ -1015,7 +1029,8 @@ fn filter_strip<T: Real, E: Sample<T>, O: Sample<T> + Stored<T>>(
                 .collect()
         });
         let (n, w) = (rows.len(), rows.first().map_or(0, |r| r.len()));
-        if n * w * std::mem::size_of::<T>() > STRIP_BLOCKS_FROM && filter.runs_in_blocks(n) {
+        if n * w * std::mem::size_of::<T>() > strip_blocks_from(filter) && filter.runs_in_blocks(n)
+        {
             // Long lines: blocks of rows, work memory independent of `n`
             // (the same bits). Rows filtered in place are not scanned.
             let done = match &src {
@@ -1561,7 +1576,8 @@ mod tests {
     }
 
     /// Lines long enough for blocks of rows (a strided strip of 2100 ×
-    /// 64 above [`STRIP_BLOCKS_FROM`], a group of 3 contiguous lines of
+    /// 64 above [`STRIP_BLOCKS_FROM`] for one pole; two poles' blocks
+    /// through `filter_in_blocks` directly in `line_filter`'s tests), a group of 3 contiguous lines of
     /// 8300 above [`GROUP_BLOCKS_FROM`]) give the bits of each lane filtered alone through the whole
     /// buffer: degrees 2–5 (one pole; two: the cascade), mirror and
     /// reflect, in place and from a copy, f64 and f32 compute, f32 samples
