@@ -1512,7 +1512,7 @@ fn write_rows<T: Real, O: Stored<T>>(rows: &mut [&mut [O]], block: &[T], stream:
 
 /// `row = v`, stored as `O` (rounded once where `O` is not `T`); by a
 /// streaming store where `stream`.
-pub(crate) fn store_row<T: Real, O: Stored<T>>(row: &mut [O], v: &[T], stream: bool) {
+fn store_row<T: Real, O: Stored<T>>(row: &mut [O], v: &[T], stream: bool) {
     match O::as_compute_mut(row) {
         Some(t) if stream => lanes::stream_row(t, v),
         Some(t) => t.clone_from_slice(v),
@@ -1589,17 +1589,17 @@ impl<T: Real> LineFilter<T> {
     /// the cascade's first-pole state); the pass up then recomputes each
     /// block's causal values from the row before it, reading its rows a
     /// second time, runs the anti-causal step up the block and writes it.
-    /// The operations of [`Self::apply_rows`] (rows times the gain) or
-    /// [`Self::apply_lines_scaled`] (rows read scaled, [`BlockIo::scaled`]:
-    /// the gain 1 here, exact) on the same values, so the same bits
-    /// (tested); the mirror and reflect starts read only the first rows
+    /// The rows are read times the gain ([`BlockIo::read_into`]) and
+    /// filtered as [`Self::apply_lines_scaled`] filters its rows, the
+    /// operations of [`Self::apply_rows`] too, on the same values, so the
+    /// same bits (tested); the mirror and reflect starts read only the first rows
     /// (down) and the last three (up), which the first and last blocks
     /// hold. Returns `false`, with nothing done, where the filter or `n`
     /// does not allow blocks ([`Self::runs_in_blocks`]).
     ///
     /// **Cost**: the rows are read twice and written once (the whole
-    /// buffer: read and written once each); work memory `(2B + 2⌈n/B⌉ + 8)
-    /// · w` values.
+    /// buffer: read and written once each); work memory `(B + 2⌈n/B⌉ + 7)
+    /// · w` values ([`RowBlocks`]).
     pub(crate) fn filter_in_blocks<B: BlockIo<T>>(
         &self,
         io: &mut B,

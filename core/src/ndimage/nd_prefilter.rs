@@ -811,30 +811,12 @@ where
     }
 
     fn read_into(&mut self, lo: usize, hi: usize, rows: &mut [T], gain: &T, first: bool) {
-        let n = self.n;
-        let rows = rows.as_chunks_mut::<G>().0;
-        let count = self.lines.len() / n.max(1);
-        if count < G {
-            rows.iter_mut()
-                .for_each(|r| r[count..].iter_mut().for_each(|x| *x = T::zero()));
+        let (n, rows) = (self.n, rows.as_chunks_mut::<G>().0);
+        let seen = first.then_some(&mut *self.seen);
+        match self.src {
+            Some(s) => load_pieces(s, n, (lo, hi), rows, gain, &mut self.pieces, seen),
+            None => load_pieces(self.lines, n, (lo, hi), rows, gain, &mut self.pieces, seen),
         }
-        // The pieces `lo .. hi` of the lines, from `src` or in place.
-        let from_src: Vec<&[E]> = self
-            .src
-            .map(|s| s.chunks(n).map(|l| &l[lo..hi]).collect())
-            .unwrap_or_default();
-        let in_place: Vec<&[O]> = match self.src {
-            Some(_) => Vec::new(),
-            None => self.lines.chunks(n).map(|l| &l[lo..hi]).collect(),
-        };
-        let pieces = match self.src {
-            Some(_) => rows_as_compute(&from_src, &mut self.pieces),
-            None => rows_as_compute(&in_place, &mut self.pieces),
-        };
-        if first {
-            pieces.iter().for_each(|p| self.seen.row(p));
-        }
-        lanes::load_strip(rows, 0, &pieces, gain);
     }
 
     fn write(&mut self, lo: usize, block: &[T]) {
@@ -856,6 +838,31 @@ where
             O::store_from(p, &mut line[lo..lo + len]);
         }
     }
+}
+
+/// The pieces `lo .. hi` of the contiguous `lines` of `n` samples into
+/// `rows` (column `j` = line `j`, the columns of absent lines zero) times
+/// `gain` ([`lanes::load_strip`]), read into `T` through `wide` where they
+/// are of another type; `seen` takes in each piece as it is.
+fn load_pieces<T: Real, S: Sample<T>, F: RowCheck, const G: usize>(
+    lines: &[S],
+    n: usize,
+    (lo, hi): (usize, usize),
+    rows: &mut [[T; G]],
+    gain: &T,
+    wide: &mut Vec<T>,
+    seen: Option<&mut F>,
+) {
+    let pieces: Vec<&[S]> = lines.chunks(n.max(1)).map(|l| &l[lo..hi]).collect();
+    let pieces = rows_as_compute(&pieces, wide);
+    if pieces.len() < G {
+        rows.iter_mut()
+            .for_each(|r| r[pieces.len()..].iter_mut().for_each(|x| *x = T::zero()));
+    }
+    if let Some(seen) = seen {
+        pieces.iter().for_each(|p| seen.row(p));
+    }
+    lanes::load_strip(rows, 0, &pieces, gain);
 }
 
 /// One group of [`last_pass`]: at most `G` lines of `n` samples, read
@@ -936,7 +943,7 @@ fn strip_width<T>(n: usize) -> usize {
 /// ([`LineFilter::filter_in_blocks`]): a strip of 64 lines of `f64` is
 /// 2 MiB at 4096 samples, a buffer a thread that put the prefilter's peak
 /// memory 4 MiB above scipy's on two threads (4096² float32,
-/// `python/bench/float32.py memory`: spline_filter 132.5 → 128.8 MiB,
+/// `python/bench/float32.py memory`: spline_filter 132.5 → 129.6 MiB,
 /// scipy 128.2); the blocks' second read of the strip comes from L3 and
 /// their buffers stay in L2, as fast as the whole buffer (one thread, 4096²,
 /// alternated, min of 5: `spline_filter1d` along axis 0 61–75 → 59–77 ms).
@@ -1576,10 +1583,10 @@ mod tests {
     }
 
     /// Lines long enough for blocks of rows (a strided strip of 2100 ×
-    /// 64 above [`STRIP_BLOCKS_FROM`] for one pole; two poles' blocks
-    /// through `filter_in_blocks` directly in `line_filter`'s tests), a group of 3 contiguous lines of
-    /// 8300 above [`GROUP_BLOCKS_FROM`]) give the bits of each lane filtered alone through the whole
-    /// buffer: degrees 2–5 (one pole; two: the cascade), mirror and
+    /// 64 above [`STRIP_BLOCKS_FROM`] for one pole, two poles' strips in
+    /// `line_filter`'s tests; a group of 3 contiguous lines of 8300 above
+    /// [`GROUP_BLOCKS_FROM`]) give the bits of each lane filtered alone
+    /// through the whole buffer: degrees 2–5 (one pole; two: the cascade), mirror and
     /// reflect, in place and from a copy, f64 and f32 compute, f32 samples
     /// and coefficients of an f64 filter.
     #[test]
