@@ -4,7 +4,9 @@ Drop-in for ``scipy.ndimage``'s spline functions, with the same argument
 names and defaults where they overlap: ``spline_filter1d``,
 ``spline_filter``, ``map_coordinates``, ``zoom``, ``shift``, ``rotate``,
 ``affine_transform`` and ``geometric_transform`` (plus ``spline_gradient``
-and ``map_coordinates(derivative=...)``). As in scipy, ``order`` is the
+and ``map_coordinates(derivative=...)``), and for ``scipy.interpolate``'s
+``RegularGridInterpolator`` and ``interpn``, whose "slinear", "cubic" and
+"quintic" splines are computed exactly (a direct banded solve per grid line). As in scipy, ``order`` is the
 spline **degree** (scipy's ``order``; the papers' B-spline order is
 ``degree + 1``), here any of 0..199 where scipy stops at 5.
 
@@ -48,6 +50,7 @@ from ._check import check
 from ._interpolant import Interpolant
 from ._ndimage import map_coordinates, spline_filter, spline_filter1d, spline_gradient
 from ._resample import affine_transform, geometric_transform, rotate, shift, zoom
+from ._rgi import RegularGridInterpolator, interpn
 from ._sspline import coefficients, filter_bound, nan_reach, truncation_width
 from ._validate import MAX_DEGREE
 
@@ -63,6 +66,8 @@ __all__ = [
     "rotate",
     "affine_transform",
     "geometric_transform",
+    "RegularGridInterpolator",
+    "interpn",
     "Interpolant",
     "truncation_width",
     "coefficients",

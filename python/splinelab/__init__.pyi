@@ -137,6 +137,46 @@ def affine_transform(
     nan_policy: NanPolicy = "propagate",
     compute: Compute = "float64",
 ) -> npt.NDArray[Any]: ...
+# scipy.interpolate's gridded interpolation (issue 49): exact not-a-knot splines.
+GridMethod = Literal["linear", "nearest", "slinear", "cubic", "quintic", "pchip", "slinear_legacy", "cubic_legacy", "quintic_legacy"]
+
+class RegularGridInterpolator:
+    method: str
+    bounds_error: bool
+    fill_value: Any
+    def __init__(
+        self,
+        points: Sequence[npt.ArrayLike],
+        values: npt.ArrayLike,
+        method: GridMethod = "linear",
+        bounds_error: bool = True,
+        fill_value: Any = ...,
+        *,
+        solver: Callable[..., Any] | None = None,
+        solver_args: dict[str, Any] | None = None,
+        threads: int | None = None,
+    ) -> None: ...
+    def __call__(self, xi: Any, method: GridMethod | None = None, *, nu: Sequence[int] | None = None) -> npt.NDArray[Any]: ...
+    @property
+    def grid(self) -> tuple[npt.NDArray[np.float64], ...]: ...
+    @property
+    def values(self) -> Any: ...
+    @property
+    def condition(self) -> list[float] | None: ...
+    @property
+    def error_bound(self) -> float | None: ...
+
+def interpn(
+    points: Sequence[npt.ArrayLike],
+    values: npt.ArrayLike,
+    xi: Any,
+    method: GridMethod | Literal["splinef2d"] = "linear",
+    bounds_error: bool = True,
+    fill_value: Any = ...,
+    *,
+    threads: int | None = None,
+) -> npt.NDArray[Any]: ...
+
 class Interpolant:
     shape: tuple[int, ...]
     ndim: int

@@ -32,8 +32,10 @@ HERE = Path(__file__).resolve().parent
 # as shipped in its wheel (versions pinned in requirements.txt). Tests marked
 # remote_data (network) are deselected for every client.
 CLIENTS = {
-    # scipy's own interpolation tests: the drop-in's reference suite.
-    "scipy": ["scipy.ndimage.tests.test_interpolation", "scipy.ndimage.tests.test_splines"],
+    # scipy's own interpolation tests: the drop-in's reference suite
+    # (ndimage's, and interpolate's RegularGridInterpolator / interpn).
+    "scipy": ["scipy.ndimage.tests.test_interpolation", "scipy.ndimage.tests.test_splines",
+              "scipy.interpolate.tests.test_rgi"],
     # reproject_interp -> reproject._array_utils.map_coordinates ->
     # scipy.ndimage.map_coordinates (cval=nan), dask-image's spline_filter.
     "reproject": ["reproject.interpolation.tests.test_core", "reproject.tests.test_array_utils"],

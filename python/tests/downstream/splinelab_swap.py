@@ -1,16 +1,18 @@
-"""pytest plugin: splinelab's functions in place of scipy.ndimage's, to run
+"""pytest plugin: splinelab's functions in place of scipy.ndimage's (and
+scipy.interpolate's ``RegularGridInterpolator`` and ``interpn``), to run
 another library's own tests (or scipy's) on splinelab.
 
 Load it with ``-p`` (the folder on ``PYTHONPATH``); ``--splinelab-swap=on``
-replaces ``scipy.ndimage.<name>`` by ``splinelab.<name>`` for every name of
-:data:`SWAPPED` in ``pytest_load_initial_conftests``, before any conftest or
-test module of the client is imported, so a client's module-level
+replaces ``scipy.ndimage.<name>`` / ``scipy.interpolate.<name>`` by
+``splinelab.<name>`` for every name of :data:`SWAPPED` in
+``pytest_load_initial_conftests``, before any conftest or test module of the
+client is imported, so a client's module-level
 ``from scipy.ndimage import map_coordinates`` binds splinelab's function and
 ``ndimage.map_coordinates(...)`` finds it at call time. ``off`` runs the
 same selection on scipy (the baseline run.py compares with). Either way
 the installed functions are counting wrappers (``functools.wraps``: same
-name, signature and docstring), so each run says how many calls reached
-them. ``--splinelab-outcomes=FILE`` writes each test's outcome and the
+name, signature and docstring; a class is a subclass whose ``__init__``
+counts), so each run says how many calls (constructions) reached them. ``--splinelab-outcomes=FILE`` writes each test's outcome and the
 calls per function (JSON).
 
 Known differences (:mod:`known`) are marked ``xfail(strict=True)`` with
@@ -25,17 +27,20 @@ import json
 
 import pytest
 
-# scipy.ndimage's spline functions that splinelab replaces.
-SWAPPED = (
-    "map_coordinates",
-    "zoom",
-    "shift",
-    "rotate",
-    "affine_transform",
-    "geometric_transform",
-    "spline_filter",
-    "spline_filter1d",
-)
+# scipy's functions and classes that splinelab replaces, by module.
+SWAPPED = {
+    "scipy.ndimage": (
+        "map_coordinates",
+        "zoom",
+        "shift",
+        "rotate",
+        "affine_transform",
+        "geometric_transform",
+        "spline_filter",
+        "spline_filter1d",
+    ),
+    "scipy.interpolate": ("RegularGridInterpolator", "interpn"),
+}
 
 
 def pytest_addoption(parser):
@@ -51,7 +56,7 @@ def install(use_splinelab):
     of scipy's own in scipy.ndimage; returns the calls counter (name ->
     calls), which shows that the client's calls reached the functions
     installed."""
-    import scipy.ndimage
+    import importlib
 
     import splinelab
 
@@ -61,17 +66,34 @@ def install(use_splinelab):
         from scipy._lib._array_api import xp_capabilities_table as table
     except ImportError:
         table = {}
-    calls = dict.fromkeys(SWAPPED, 0)
-    for name in SWAPPED:
-        original = getattr(scipy.ndimage, name)
-        wrapper = _counted(name, getattr(splinelab, name) if use_splinelab else original, calls)
-        if original in table:
-            table[wrapper] = table[original]
-        setattr(scipy.ndimage, name, wrapper)
+    calls = {name: 0 for names in SWAPPED.values() for name in names}
+    for module_name, names in SWAPPED.items():
+        module = importlib.import_module(module_name)
+        for name in names:
+            original = getattr(module, name)
+            wrapper = _counted(name, getattr(splinelab, name) if use_splinelab else original, calls)
+            if original in table:
+                table[wrapper] = table[original]
+            setattr(module, name, wrapper)
     return calls
 
 
 def _counted(name, function, calls):
+    if isinstance(function, type):
+        # A class: a subclass of the same name whose construction counts
+        # (class attributes such as RegularGridInterpolator._ALL_METHODS and
+        # isinstance stay as they were).
+        init = function.__init__
+
+        @functools.wraps(init)
+        def __init__(self, *args, **kwargs):
+            calls[name] += 1
+            init(self, *args, **kwargs)
+
+        return type(function.__name__, (function,), {"__init__": __init__, "__doc__": function.__doc__,
+                                                     "__module__": function.__module__,
+                                                     "__qualname__": function.__qualname__})
+
     @functools.wraps(function)
     def counted(*args, **kwargs):
         calls[name] += 1
