@@ -119,6 +119,7 @@ pub mod bernstein;
 pub mod bspline;
 pub mod curves;
 pub mod equations;
+pub mod gridded;
 pub mod matrix_condition;
 pub mod named;
 pub mod ndimage;

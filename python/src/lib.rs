@@ -24,6 +24,7 @@ mod check;
 mod cli;
 mod error;
 mod filter;
+mod grid;
 mod interp;
 mod local;
 mod pages;
@@ -53,6 +54,9 @@ fn _splinelab(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(local::local_route_cost, m)?)?;
     m.add_class::<local::LocalSplineF64>()?;
     m.add_class::<local::LocalSplineF32>()?;
+    m.add_class::<grid::GridSpline>()?;
+    m.add_function(wrap_pyfunction!(grid::grid_linear, m)?)?;
+    m.add_function(wrap_pyfunction!(grid::grid_pchip, m)?)?;
     m.add_function(wrap_pyfunction!(resample::resample, m)?)?;
     m.add_function(wrap_pyfunction!(resample::affine, m)?)?;
     m.add_function(wrap_pyfunction!(width::truncation_width, m)?)?;

@@ -1,0 +1,302 @@
+//! scipy.interpolate's gridded splines: `GridSpline` (the exact not-a-knot
+//! tensor-product spline of odd degree, for `RegularGridInterpolator` and
+//! `interpn`'s `slinear`, `cubic` and `quintic`), `grid_linear` (the
+//! multilinear interpolant on the samples themselves) and `grid_pchip`.
+//! The Python layer (`splinelab._rgi`) has done scipy's argument handling:
+//! ascending float64 nodes, values of shape grid × m (float64 or float32;
+//! complex values as pairs), points `(n, d)` float64 C-contiguous.
+
+use crate::error::{engine_error, value_error};
+use crate::pool::run_with;
+use numpy::ndarray::{ArrayViewD, CowArray, IxDyn};
+use numpy::{
+    PyArray1, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2, PyReadonlyArrayDyn,
+    PyUntypedArrayMethods,
+};
+use pyo3::exceptions::PyTypeError;
+use pyo3::prelude::*;
+use splinelab::gridded::{self, GridAxis, GriddedError};
+use splinelab::ndimage::samples::Sample;
+
+fn grid_error(e: GriddedError) -> PyErr {
+    match e {
+        GriddedError::Alloc(e) => engine_error(e),
+        e => value_error(e),
+    }
+}
+
+fn nodes(grid: &[PyReadonlyArray1<'_, f64>]) -> Vec<Vec<f64>> {
+    grid.iter().map(|g| g.as_array().to_vec()).collect()
+}
+
+/// `xi` as a row-major slice of `n × d` points, and `n`.
+fn points<'a>(xi: &'a PyReadonlyArray2<'_, f64>, d: usize) -> PyResult<(&'a [f64], usize)> {
+    match *xi.shape() {
+        [n, dims] if dims == d => Ok((
+            xi.as_slice()
+                .map_err(|_| value_error("points must be C-contiguous"))?,
+            n,
+        )),
+        _ => Err(value_error(format!(
+            "points of shape {:?} do not have {d} coordinates each",
+            xi.shape()
+        ))),
+    }
+}
+
+/// A new float64 array `n × m` filled by `fill` without the GIL.
+fn results<'py>(
+    py: Python<'py>,
+    n: usize,
+    m: usize,
+    threads: Option<usize>,
+    fill: impl FnOnce(&mut [f64]) -> Result<(), GriddedError> + Send,
+) -> PyResult<Bound<'py, PyAny>> {
+    let out = crate::alloc::zeros::<f64>(py, &[n, m])?;
+    let mut view = out.readwrite();
+    let slice = view.as_slice_mut()?;
+    py.detach(|| run_with(threads, || fill(slice)))?
+        .map_err(grid_error)?;
+    drop(view);
+    Ok(out.into_any())
+}
+
+/// Float64 or float32 values, read as they lie.
+enum Values<'py> {
+    F64(PyReadonlyArrayDyn<'py, f64>),
+    F32(PyReadonlyArrayDyn<'py, f32>),
+}
+
+impl<'py> Values<'py> {
+    fn extract(values: &Bound<'py, PyAny>) -> PyResult<Self> {
+        if let Ok(v) = values.extract::<PyReadonlyArrayDyn<'py, f64>>() {
+            Ok(Values::F64(v))
+        } else if let Ok(v) = values.extract::<PyReadonlyArrayDyn<'py, f32>>() {
+            Ok(Values::F32(v))
+        } else {
+            Err(PyTypeError::new_err(
+                "values must be a float64 or float32 array",
+            ))
+        }
+    }
+}
+
+/// The axes of a grid whose values are evaluated as given (degree 1's
+/// knots: only nodes and cells are read for PCHIP).
+fn linear_axes(grid: Vec<Vec<f64>>) -> Result<Vec<GridAxis<f64>>, GriddedError> {
+    grid.into_iter()
+        .enumerate()
+        .map(|(a, x)| GridAxis::not_a_knot(x, 1, a))
+        .collect()
+}
+
+/// Checks `values` against the grid and evaluates `f` on its C-ordered
+/// samples (copied only where they are not C-contiguous).
+fn on_samples<S: Sample<f64> + numpy::Element>(
+    values: ArrayViewD<'_, S>,
+    axes: &[GridAxis<f64>],
+    f: impl FnOnce(&[S], usize) -> Result<(), GriddedError>,
+) -> Result<(), GriddedError> {
+    let grid: Vec<usize> = axes.iter().map(GridAxis::len).collect();
+    let m = match values.shape().split_last() {
+        Some((&m, lead)) if lead == grid.as_slice() => m,
+        _ => {
+            return Err(GriddedError::Shape {
+                grid,
+                got: values.shape().to_vec(),
+            });
+        }
+    };
+    let c: CowArray<'_, S, IxDyn> = values.as_standard_layout();
+    let slice = c.as_slice().ok_or(GriddedError::Shape {
+        grid,
+        got: values.shape().to_vec(),
+    })?;
+    f(slice, m)
+}
+
+/// The exact not-a-knot tensor-product spline of odd `degree` through
+/// `values` (grid × m) on `grid` (ascending float64 nodes per axis).
+#[pyclass(module = "splinelab._splinelab", frozen)]
+pub struct GridSpline {
+    inner: gridded::GridSpline<f64>,
+}
+
+#[pymethods]
+impl GridSpline {
+    #[new]
+    #[pyo3(signature = (grid, values, degree, threads=None))]
+    fn new(
+        py: Python<'_>,
+        grid: Vec<PyReadonlyArray1<'_, f64>>,
+        values: &Bound<'_, PyAny>,
+        degree: usize,
+        threads: Option<usize>,
+    ) -> PyResult<Self> {
+        let nodes = nodes(&grid);
+        let built = match Values::extract(values)? {
+            Values::F64(v) => {
+                let v = v.as_array();
+                py.detach(|| {
+                    run_with(threads, || {
+                        gridded::GridSpline::interpolate(nodes, v, degree)
+                    })
+                })?
+            }
+            Values::F32(v) => {
+                let v = v.as_array();
+                py.detach(|| {
+                    run_with(threads, || {
+                        gridded::GridSpline::interpolate(nodes, v, degree)
+                    })
+                })?
+            }
+        };
+        Ok(Self {
+            inner: built.map_err(grid_error)?,
+        })
+    }
+
+    /// The spline (or its derivative `nu`) at the points `xi` (`n × d`): `n × m` float64.
+    #[pyo3(signature = (xi, nu=None, threads=None))]
+    fn eval<'py>(
+        &self,
+        py: Python<'py>,
+        xi: PyReadonlyArray2<'py, f64>,
+        nu: Option<Vec<usize>>,
+        threads: Option<usize>,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let s = &self.inner;
+        let (x, n) = points(&xi, s.axes().len())?;
+        let nu = nu.unwrap_or_default();
+        results(py, n, s.batch(), threads, |out| s.eval_into(x, &nu, out))
+    }
+
+    /// The B-spline coefficients (a float64 copy, grid × m).
+    #[getter]
+    fn coefficients<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        let mut shape: Vec<usize> = self.inner.axes().iter().map(GridAxis::len).collect();
+        shape.push(self.inner.batch());
+        let out = crate::alloc::zeros::<f64>(py, &shape)?;
+        out.readwrite()
+            .as_slice_mut()?
+            .copy_from_slice(self.inner.coefficients());
+        Ok(out.into_any())
+    }
+
+    /// The knot vector of each axis.
+    #[getter]
+    fn knots<'py>(&self, py: Python<'py>) -> Vec<Bound<'py, PyArray1<f64>>> {
+        self.inner
+            .axes()
+            .iter()
+            .map(|a| PyArray1::from_slice(py, a.knots()))
+            .collect()
+    }
+
+    /// The degree.
+    #[getter]
+    fn degree(&self) -> usize {
+        self.inner.degree()
+    }
+
+    /// `‖A_a^{−1}‖∞` per axis: the ∞-norm condition number of each axis'
+    /// collocation matrix (`‖A_a‖∞ = 1`).
+    #[getter]
+    fn condition(&self) -> Vec<f64> {
+        self.inner.conditioning().iter().map(|c| c.kappa).collect()
+    }
+
+    /// Whether each axis' factorization exchanged rows.
+    #[getter]
+    fn pivoted(&self) -> Vec<bool> {
+        self.inner
+            .conditioning()
+            .iter()
+            .map(|c| c.pivoted)
+            .collect()
+    }
+
+    /// A bound on the computed spline's distance from the exact one inside the grid.
+    #[getter]
+    fn error_bound(&self) -> f64 {
+        self.inner.error_bound()
+    }
+}
+
+/// Which evaluation a gridded call of samples wants.
+#[derive(Clone, Copy)]
+enum OnSamples {
+    Linear,
+    Pchip,
+}
+
+fn eval_samples<'py>(
+    py: Python<'py>,
+    grid: Vec<PyReadonlyArray1<'py, f64>>,
+    values: &Bound<'py, PyAny>,
+    xi: PyReadonlyArray2<'py, f64>,
+    threads: Option<usize>,
+    how: OnSamples,
+) -> PyResult<Bound<'py, PyAny>> {
+    let axes = linear_axes(nodes(&grid)).map_err(grid_error)?;
+    let (x, n) = points(&xi, axes.len())?;
+    fn run<S: Sample<f64> + numpy::Element>(
+        axes: &[GridAxis<f64>],
+        v: ArrayViewD<'_, S>,
+        x: &[f64],
+        out: &mut [f64],
+        how: OnSamples,
+    ) -> Result<(), GriddedError> {
+        on_samples(v, axes, |s, m| {
+            match how {
+                OnSamples::Linear => gridded::tensor_eval(axes, s, m, x, &[], out),
+                OnSamples::Pchip => gridded::pchip_eval(axes, s, m, x, out),
+            }
+            Ok(())
+        })
+    }
+    let m = |shape: &[usize]| shape.last().copied().unwrap_or(0);
+    match Values::extract(values)? {
+        Values::F64(v) => {
+            let v = v.as_array();
+            results(py, n, m(v.shape()), threads, |out| {
+                run(&axes, v, x, out, how)
+            })
+        }
+        Values::F32(v) => {
+            let v = v.as_array();
+            results(py, n, m(v.shape()), threads, |out| {
+                run(&axes, v, x, out, how)
+            })
+        }
+    }
+}
+
+/// The multilinear interpolant of `values` (grid × m, float64 or float32)
+/// at `xi` (`n × d`), extrapolating linearly: scipy's `linear`.
+#[pyfunction]
+#[pyo3(signature = (grid, values, xi, threads=None))]
+pub fn grid_linear<'py>(
+    py: Python<'py>,
+    grid: Vec<PyReadonlyArray1<'py, f64>>,
+    values: &Bound<'py, PyAny>,
+    xi: PyReadonlyArray2<'py, f64>,
+    threads: Option<usize>,
+) -> PyResult<Bound<'py, PyAny>> {
+    eval_samples(py, grid, values, xi, threads, OnSamples::Linear)
+}
+
+/// scipy's recursive PCHIP of `values` (grid × m) at `xi` (`n × d`),
+/// read locally (four samples per axis a point).
+#[pyfunction]
+#[pyo3(signature = (grid, values, xi, threads=None))]
+pub fn grid_pchip<'py>(
+    py: Python<'py>,
+    grid: Vec<PyReadonlyArray1<'py, f64>>,
+    values: &Bound<'py, PyAny>,
+    xi: PyReadonlyArray2<'py, f64>,
+    threads: Option<usize>,
+) -> PyResult<Bound<'py, PyAny>> {
+    eval_samples(py, grid, values, xi, threads, OnSamples::Pchip)
+}
