@@ -14,9 +14,11 @@
   shown with its caption; a missing chart is a build error.
 - ``cli-man-pages`` (directive): links to the man pages this build wrote.
 - ``scipy-arguments`` (directive): every argument and default of the eight
-  functions beside scipy.ndimage's, from ``inspect.signature`` of both;
-  splinelab's own keywords marked; a scipy argument splinelab lacks, or a
-  shared default that differs, is a build error.
+  functions beside scipy.ndimage's (or, with ``:module:`` and ``:names:``,
+  of other scipy names: scipy.interpolate's RegularGridInterpolator and
+  interpn), from ``inspect.signature`` of both; splinelab's own keywords
+  marked; a scipy argument splinelab lacks, or a shared default that
+  differs, is a build error.
 
 At ``builder-inited`` it runs the command line's hidden ``cli-docs``
 subcommand (through the Python package's entry point) to write
@@ -266,24 +268,38 @@ class ScipyArguments(SphinxDirective):
     """Every argument and default of the eight functions beside scipy.ndimage's,
     read from ``inspect.signature`` of both at build time: a table per function,
     splinelab's own keywords marked, any scipy argument splinelab lacks (or a
-    default that differs) a build error, so the table cannot drift from either."""
+    default that differs) a build error, so the table cannot drift from either.
+    ``:module: scipy.interpolate`` with ``:names: RegularGridInterpolator
+    RegularGridInterpolator.__call__ interpn`` does the same for other names (a
+    class: its constructor's arguments)."""
 
     OURS = "no: splinelab's own"
     FUNCTIONS = ("spline_filter1d", "spline_filter", "map_coordinates", "affine_transform", "shift", "zoom",
                  "rotate", "geometric_transform")
+    option_spec = {"module": directives.unchanged, "names": directives.unchanged}
+
+    @staticmethod
+    def _lookup(root, dotted):
+        for part in dotted.split("."):
+            root = getattr(root, part)
+        return root
 
     def run(self):
+        import importlib
         import inspect
 
         import scipy
-        import scipy.ndimage
         import splinelab
 
+        module_name = self.options.get("module", "scipy.ndimage")
+        module = importlib.import_module(module_name)
+        names = self.options.get("names", " ".join(self.FUNCTIONS)).split()
+        self.column = f"in {module_name}"
         out = [nodes.paragraph("", f"Read at build time from inspect.signature of scipy {scipy.__version__}'s "
-                                   f"scipy.ndimage and of splinelab {splinelab.__version__}.")]
-        for name in self.FUNCTIONS:
-            theirs = inspect.signature(getattr(scipy.ndimage, name)).parameters
-            ours = inspect.signature(getattr(splinelab, name)).parameters
+                                   f"{module_name} and of splinelab {splinelab.__version__}.")]
+        for name in names:
+            theirs = inspect.signature(self._lookup(module, name)).parameters
+            ours = inspect.signature(self._lookup(splinelab, name)).parameters
             missing = [a for a in theirs if a not in ours]
             if missing:
                 raise self.error(f"scipy-arguments: splinelab.{name} lacks scipy's {missing}")
@@ -319,11 +335,11 @@ class ScipyArguments(SphinxDirective):
     def _section(self, name, rows):
         from sphinx import addnodes
 
-        ref = addnodes.pending_xref("", refdomain="py", reftype="func", reftarget=f"splinelab.{name}",
+        ref = addnodes.pending_xref("", refdomain="py", reftype="obj", reftarget=f"splinelab.{name}",
                                     refexplicit=False, refwarn=True, refdoc=self.env.docname)
         ref += nodes.literal("", f"splinelab.{name}")
         title = nodes.paragraph("", "", nodes.strong("", "", ref))
-        arguments, body = table(["argument", "default", "passed", "in scipy.ndimage"], ["scipy-arguments"])
+        arguments, body = table(["argument", "default", "passed", self.column], ["scipy-arguments"])
         for cells in rows:
             tr = row(cells, literal_first=True)
             if cells[-1] == self.OURS:

@@ -325,10 +325,12 @@ class RegularGridInterpolator:
     >>> x = np.array([0.0, 0.4, 1.1, 1.5, 2.6, 3.0])
     >>> y = np.linspace(-1.0, 1.0, 7)
     >>> f = lambda x, y: x**3 - 2 * x * y**2 + y
-    >>> ip = splinelab.RegularGridInterpolator((x, y), f(*np.meshgrid(x, y, indexing="ij")), method="cubic")
+    >>> v = f(*np.meshgrid(x, y, indexing="ij"))
+    >>> ip = splinelab.RegularGridInterpolator((x, y), v, method="cubic")
     >>> bool(abs(ip([1.3, 0.25])[0] - f(1.3, 0.25)) < 1e-12)   # a cubic is reproduced exactly
     True
-    >>> ip.error_bound < 1e-12
+    >>> at_nodes = np.stack(np.meshgrid(x, y, indexing="ij"), axis=-1)
+    >>> bool(np.abs(ip(at_nodes) - v).max() <= ip.error_bound)   # meets the data to its bound
     True
     """
 
@@ -375,18 +377,31 @@ class RegularGridInterpolator:
 
     @property
     def grid(self):
+        """The grid's axes, each ascending (a tuple of float64 arrays)."""
         return tuple(self._grid)
 
     @property
     def values(self):
+        """The data on the grid, reversed along the axes given descending."""
         return self._values
 
     @property
     def condition(self):
+        """Per axis, an estimate of the infinity-norm condition number of the 1-D collocation matrix.
+
+        A list of floats for the spline methods ("slinear", "cubic",
+        "quintic": the construction's method), None for the others.
+        """
         return None if self._spline is None else list(self._spline.spline.condition)
 
     @property
     def error_bound(self):
+        """A bound on ``|computed - exact|`` of the spline's values inside the grid.
+
+        The exact spline meets the data at every node, so the interpolant
+        meets it to within this bound there. A float for the spline methods
+        (the construction's method), None for the others.
+        """
         return None if self._spline is None else float(self._spline.spline.error_bound)
 
     def __call__(self, xi, method=None, *, nu=None):
@@ -545,6 +560,9 @@ def interpn(points, values, xi, method="linear", bounds_error=True, fill_value=n
     Returns
     -------
     ndarray, shape ``xi.shape[:-1] + values.shape[ndim:]``
+        The interpolated values (``(1,) + values.shape[ndim:]`` for a 1-D
+        ``xi``), in the dtype of :class:`RegularGridInterpolator`'s result
+        for the method ("splinef2d": ``xi``'s dtype, as scipy).
 
     Raises
     ------
