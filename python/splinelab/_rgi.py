@@ -246,15 +246,17 @@ class RegularGridInterpolator:
 
     Parameters
     ----------
-    points : tuple of array_like of float, shapes (m1,), ..., (mn,)
-        The grid's axes, each strictly ascending or strictly descending (a
-        descending axis is reversed, points and values together), any
-        spacing.
-    values : array_like, shape (m1, ..., mn, ...)
-        The data on the grid; trailing dimensions beyond the n axes are
-        interpolated together. Real (integers and booleans are converted
-        to float64, as scipy) or complex. float64 and float32 are read in
-        place (any strides); other dtypes are converted to float64.
+    points : tuple of array_like
+        The grid's axes, n 1-D arrays of float of lengths m1, ..., mn, each
+        strictly ascending or strictly descending (a descending axis is
+        reversed, points and values together), any spacing.
+    values : array_like
+        The data on the grid, of shape ``(m1, ..., mn, ...)``; trailing
+        dimensions beyond the n axes are interpolated together. Real
+        (integers and booleans are converted to float64, as scipy) or
+        complex. float64 and float32 are read as they are (copied once
+        where not C-contiguous, a descending axis included); other dtypes
+        are converted to float64.
     method : str, optional
         "linear" (default), "nearest", "slinear", "cubic", "quintic",
         "pchip", or scipy's "slinear_legacy", "cubic_legacy",
@@ -409,20 +411,22 @@ class RegularGridInterpolator:
 
         Parameters
         ----------
-        xi : array_like of shape (..., ndim), or a tuple of ndim arrays
-            The points (a tuple of coordinate arrays is broadcast together;
-            a 1-D array is one point, or several laid end to end).
+        xi : array_like or tuple of array_like
+            The points, of shape ``(..., ndim)``, or a tuple of ``ndim``
+            coordinate arrays broadcast together; a 1-D array is one point,
+            or several laid end to end.
         method : str, optional
             Another method for this call (default: the construction's); a
             spline method other than the construction's builds its spline
             for this call.
-        nu : sequence of ints, length ndim, optional
-            Derivative orders, "slinear", "cubic" and "quintic" only (a
-            ``ValueError`` otherwise, as scipy).
+        nu : sequence of int, optional
+            Derivative orders, one per axis, for "slinear", "cubic" and
+            "quintic" only (a ``ValueError`` otherwise, as scipy).
 
         Returns
         -------
-        ndarray, shape ``xi.shape[:-1] + values.shape[ndim:]``
+        ndarray
+            Of shape ``xi.shape[:-1] + values.shape[ndim:]``
             (``(1,) + values.shape[ndim:]`` for a 1-D ``xi``). NaN where a
             coordinate is NaN; ``fill_value`` outside the grid unless None.
         """
@@ -534,12 +538,15 @@ def interpn(points, values, xi, method="linear", bounds_error=True, fill_value=n
 
     Parameters
     ----------
-    points : tuple of array_like of float, shapes (m1,), ..., (mn,)
-        The grid's axes, strictly ascending or descending.
-    values : array_like, shape (m1, ..., mn, ...)
-        The data on the grid (real or complex).
-    xi : array_like of shape (..., ndim), or a tuple of ndim arrays
-        The points.
+    points : tuple of array_like
+        The grid's axes, n 1-D arrays of lengths m1, ..., mn, strictly
+        ascending or descending.
+    values : array_like
+        The data on the grid, of shape ``(m1, ..., mn, ...)`` (real or
+        complex).
+    xi : array_like or tuple of array_like
+        The points, of shape ``(..., n)``, or a tuple of ``n`` arrays
+        broadcast together.
     method : str, optional
         "linear" (default), "nearest", "slinear", "cubic", "quintic",
         "pchip", "splinef2d" or the ``*_legacy`` spline names.
@@ -551,7 +558,7 @@ def interpn(points, values, xi, method="linear", bounds_error=True, fill_value=n
         included), as scipy.
     bounds_error : bool, optional
         True (default): a point outside the grid is a ``ValueError``.
-    fill_value : number or None, optional
+    fill_value : float or None, optional
         The value outside the grid when ``bounds_error`` is False (default
         NaN); None extrapolates (not with "splinef2d").
     threads : int or None, optional
@@ -559,8 +566,8 @@ def interpn(points, values, xi, method="linear", bounds_error=True, fill_value=n
 
     Returns
     -------
-    ndarray, shape ``xi.shape[:-1] + values.shape[ndim:]``
-        The interpolated values (``(1,) + values.shape[ndim:]`` for a 1-D
+    ndarray
+        The interpolated values, of shape ``xi.shape[:-1] + values.shape[n:]`` (``(1,) + values.shape[ndim:]`` for a 1-D
         ``xi``), in the dtype of :class:`RegularGridInterpolator`'s result
         for the method ("splinef2d": ``xi``'s dtype, as scipy).
 
