@@ -180,6 +180,15 @@ def _stacked(grid_shape, values):
     return v.reshape(tuple(grid_shape) + (-1,)), cdtype
 
 
+def _samples(grid_shape, values):
+    """:func:`_stacked` C-contiguous, for ``grid_linear`` and ``grid_pchip``
+    (which read C-ordered samples): a layout that is not (a descending axis,
+    a broadcast view) is copied here, so an array too large to copy is
+    numpy's ``MemoryError``."""
+    stacked, cdtype = _stacked(grid_shape, values)
+    return np.ascontiguousarray(stacked), cdtype
+
+
 def _from_columns(out, cdtype):
     """The extension's ``(n, m)`` float64 result back in the values' type:
     complex pairs viewed as complex128 (scipy's result for complex input)."""
@@ -453,7 +462,7 @@ class RegularGridInterpolator:
                 result = spline(xi, _nu(nu, ndim), self._threads)
             elif method == "pchip":
                 _require_finite(self._values, "`y` must contain only finite values.")
-                stacked, _ = _stacked([len(g) for g in self._grid], self._values)
+                stacked, _ = _samples([len(g) for g in self._grid], self._values)
                 result = _ext.grid_pchip(list(self._grid), stacked, np.ascontiguousarray(xi), self._threads)
                 result = result.astype(self._values.dtype, copy=False)
             else:  # the legacy methods: scipy's recursive route to the same exact spline
@@ -504,7 +513,7 @@ class RegularGridInterpolator:
         if len(keep) < len(self._grid):
             values = values[tuple(slice(None) if len(g) > 1 else 0 for g in self._grid)]
         grid = [self._grid[i] for i in keep]
-        stacked, cdtype = _stacked([len(g) for g in grid], values)
+        stacked, cdtype = _samples([len(g) for g in grid], values)
         if not grid:
             out = np.broadcast_to(stacked.astype(np.float64), (xi.shape[0],) + stacked.shape).copy()
         else:

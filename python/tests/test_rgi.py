@@ -404,6 +404,32 @@ def test_bad_input_is_refused_with_scipys_exception(label, call, words):
         assert word.lower() in str(ours.value).lower(), (label, word, str(ours.value))
 
 
+_HUGE = """
+import resource, sys
+import numpy as np
+import splinelab
+resource.setrlimit(resource.RLIMIT_AS, (3 << 30, 3 << 30))
+x = np.linspace(0, 1, 40000)
+v = np.broadcast_to(np.float64(1.0), (40000, 40000))  # 12.8 GB as an array, 8 bytes as a view
+for method in sys.argv[1:]:
+    try:
+        splinelab.RegularGridInterpolator((x, x), v, method=method)([[0.5, 0.5]], method=method)
+        print(method, "computed")
+    except MemoryError:
+        print(method, "MemoryError")
+"""
+
+
+def test_a_grid_too_large_for_memory_is_a_memory_error_not_a_crash():
+    import subprocess
+    import sys
+
+    methods = ["cubic", "quintic", "linear", "pchip"]
+    run = subprocess.run([sys.executable, "-c", _HUGE, *methods], capture_output=True, text=True, timeout=120)
+    assert run.returncode == 0, run.stderr[-2000:]
+    assert run.stdout.split() == [w for m in methods for w in (m, "MemoryError")], run.stdout
+
+
 def test_attributes_scipys_tests_read():
     (x, y), v = _grid2()
     ip = splinelab.RegularGridInterpolator((x[::-1], y), v, method="cubic", bounds_error=False, fill_value=3.0)
