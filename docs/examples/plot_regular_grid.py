@@ -54,8 +54,9 @@ for method, k in [("cubic", 3), ("quintic", 5)]:
         between = np.abs(ip(xi) - ref).max()
         nodes = np.abs(ip(at_nodes) - values.ravel()).max()
         rows.append((f"{name} {method}", between, nodes))
+        bound = f", error_bound {ip.error_bound:.1e}" if name == "splinelab" else ""
         print(f"{name:9s} {method:7s}: construction {seconds:6.3f} s, |s - exact| <= {between:.1e}, "
-              f"misses its data by {nodes:.1e}" + (f", error_bound {ip.error_bound:.1e}" if name == "splinelab" else ""))
+              f"misses its data by {nodes:.1e}{bound}")
 
 # a uniform axis: RegularGridInterpolator's not-a-knot cubic against
 # map_coordinates' mirror cubic on the same samples (index coordinates)

@@ -203,7 +203,6 @@ class _Spline:
 
     def __init__(self, grid, values, degree, threads):
         stacked, self.cdtype = _stacked([len(g) for g in grid], values)
-        self.trailing = np.shape(values)[len(grid):]
         self.spline = _ext.GridSpline(list(grid), stacked, degree, threads)
 
     def __call__(self, xi, nu=None, threads=None):

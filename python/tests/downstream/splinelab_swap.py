@@ -12,8 +12,9 @@ client is imported, so a client's module-level
 same selection on scipy (the baseline run.py compares with). Either way
 the installed functions are counting wrappers (``functools.wraps``: same
 name, signature and docstring; a class is a subclass whose ``__init__``
-counts), so each run says how many calls (constructions) reached them. ``--splinelab-outcomes=FILE`` writes each test's outcome and the
-calls per function (JSON).
+counts), so each run says how many calls (constructions) reached them.
+``--splinelab-outcomes=FILE`` writes each test's outcome and the calls per
+function (JSON).
 
 Known differences (:mod:`known`) are marked ``xfail(strict=True)`` with
 their reason when the swap is on: each must still fail (a fixed one turns
