@@ -1,0 +1,541 @@
+"""``import splinelab.xarray``: the ``splinelab`` accessor on xarray's DataArray and Dataset (issue 51).
+
+``da.splinelab.interp(...)`` and ``ds.splinelab.interp(...)`` are
+:meth:`xarray.DataArray.interp` and :meth:`xarray.Dataset.interp` with
+splinelab's interpolators underneath: the same indexing forms (orthogonal
+1-D coordinates, scalars, pointwise DataArray indexers sharing a dimension,
+a subset of the dimensions), the same coordinates, dimensions and attributes
+in the result, the same ``kwargs`` (``fill_value``, ``bounds_error``) and
+out-of-range points, datetime coordinates converted as xarray converts them.
+The numbers are :class:`splinelab.RegularGridInterpolator`'s: scipy's for
+"linear", "nearest", "slinear" and "pchip", the exact not-a-knot spline for
+"cubic" and "quintic" (scipy's own on one dimension, where xarray calls
+``interp1d``; on two or more, where xarray calls scipy's ``interpn`` and
+its iterative ``gcrotmk`` solve, the exact spline instead of scipy's
+approximation of it). ``mode=`` interpolates in ndimage's boundary modes
+through :func:`splinelab.map_coordinates` on uniform axes.
+
+On dask-backed data the result is lazy and no interpolated axis is
+rechunked into one chunk: see :doc:`/coming_from_xarray` for which input
+blocks each output block reads.
+
+xarray is an optional dependency: ``pip install splinelab[xarray]``.
+"""
+
+from __future__ import annotations
+
+try:
+    import xarray as xr
+except ImportError as _err:  # pragma: no cover - exercised in a subprocess by the tests
+    raise ImportError("splinelab.xarray needs xarray, an optional dependency: "
+                      "pip install splinelab[xarray]") from _err
+
+import itertools
+from collections.abc import Hashable, Mapping, Sequence
+
+import numpy as np
+
+from . import RegularGridInterpolator, map_coordinates
+
+__all__ = ["SplinelabDataArrayAccessor", "SplinelabDatasetAccessor", "METHODS"]
+
+#: The methods of the accessor, and the fewest samples each needs on an
+#: interpolated axis (the spline's degree + 1; "pchip": scipy's four).
+METHODS = {"linear": 2, "nearest": 1, "slinear": 2, "cubic": 4, "quintic": 6, "pchip": 4}
+#: The methods whose value at a point reads only nearby samples, and how
+#: many samples beyond the point's cell on each side (the window a chunked
+#: axis reads for them).
+_HALO = {"linear": 0, "nearest": 0, "slinear": 0, "pchip": 2}
+#: The ndimage spline degree of each method under ``mode=``.
+_MODE_ORDER = {"nearest": 0, "linear": 1, "slinear": 1, "cubic": 3, "quintic": 5}
+#: The methods xarray interpolates along one dimension at a time where the
+#: new coordinates are orthogonal (xarray's ``decompose_interp``).
+_DECOMPOSED = ("linear", "nearest", "slinear")
+_KWARGS = {"fill_value", "bounds_error", "extrapolate"}
+
+
+# ---------------------------------------------------------------- indexers
+
+
+def _coords_dict(coords, coords_kwargs):
+    if coords is not None and coords_kwargs:
+        raise ValueError("cannot specify both keyword and positional arguments to .interp")
+    if coords is None:
+        return dict(coords_kwargs)
+    if not isinstance(coords, Mapping):
+        raise ValueError("the first argument to .interp must be a dictionary")
+    return dict(coords)
+
+
+def _axis_variable(obj, dim):
+    """The coordinate along ``dim`` (0, 1, ... where the dimension has none, as xarray)."""
+    if dim in obj.variables:
+        return obj.variables[dim]
+    return xr.Variable((dim,), np.arange(obj.sizes[dim]))
+
+
+def _is_datetime_like(values):
+    return np.asarray(values).dtype.kind in "Mm"
+
+
+def _validated(obj, coords):
+    """xarray's checks of ``interp``'s indexers, in its order; each as a Variable."""
+    missing = [k for k in coords if k not in obj.dims]
+    if missing:
+        raise ValueError(f"Dimensions {set(missing)} do not exist. Expected one or more of {dict(obj.sizes)}")
+    out = {}
+    for k, v in coords.items():
+        attrs = dict(_axis_variable(obj, k).attrs)
+        if isinstance(v, xr.Dataset):
+            raise TypeError("cannot use a Dataset as an indexer")
+        if isinstance(v, xr.DataArray):
+            v = v.variable
+        elif isinstance(v, tuple):
+            v = xr.Variable(*v)
+        elif isinstance(v, xr.Variable):
+            pass
+        elif isinstance(v, Sequence) and not isinstance(v, str) and len(v) == 0:
+            v = xr.Variable((k,), np.empty((0,), dtype="int64"), attrs=attrs)
+        else:
+            a = np.asarray(v)
+            if a.dtype.kind in "US" and _is_datetime_like(_axis_variable(obj, k).values):
+                a = a.astype("datetime64[ns]")
+            if a.ndim > 1:
+                raise IndexError(f"Unlabeled multi-dimensional array cannot be used for indexing: {k}")
+            v = xr.Variable((k,) if a.ndim else (), a, attrs=attrs)
+        x = _axis_variable(obj, k)
+        if _is_datetime_like(x.values) and not _is_datetime_like(v.values):
+            raise TypeError("When interpolating over a datetime-like coordinate, the coordinates to interpolate "
+                            f"to must be either datetime strings or datetimes. Instead got\n{v}")
+        out[k] = v
+    return out
+
+
+def _result_sizes(dim_sizes_of):
+    """The sizes of the broadcast of the new coordinates, xarray's error where they disagree."""
+    sizes = {}
+    for v in dim_sizes_of:
+        for d, n in v.sizes.items():
+            if d in sizes and sizes[d] != n:
+                raise ValueError(f"operands cannot be broadcast together with mismatched lengths for dimension "
+                                 f"{d}: {sizes[d]} vs {n}")
+            sizes[d] = n
+    return sizes
+
+
+def _groups(indexers, method):
+    """xarray's order of work: for "linear", "nearest" and "slinear" the
+    indexers split into runs whose new coordinates share no dimension (each
+    interpolated on its own, in the given order); otherwise all together."""
+    if method not in _DECOMPOSED:
+        return [dict(indexers)]
+    items = list(indexers.items())
+    out, run, run_dims = [], {}, set()
+    for i, (k, (x, new)) in enumerate(items):
+        run[k] = (x, new)
+        run_dims |= set(new.dims if new.ndim else (k,))
+        later = set().union(*(set(n.dims if n.ndim else (kk,)) for kk, (_, n) in items[i + 1:]))
+        if i == len(items) - 1 or not run_dims & later:
+            out.append(run)
+            run, run_dims = {}, set()
+    return out
+
+
+# ---------------------------------------------------------------- numbers
+
+
+class _Options:
+    """What the interpolation of one group needs besides the data."""
+
+    def __init__(self, method, kwargs, mode, tol, one_dim):
+        self.method = method
+        self.mode = mode
+        self.tol = tol
+        kwargs = dict(kwargs or {})
+        unknown = set(kwargs) - _KWARGS
+        if unknown:
+            raise TypeError(f"splinelab's interp takes the kwargs {sorted(_KWARGS)}; got {sorted(unknown)}")
+        self.bounds_error = bool(kwargs.get("bounds_error", False))
+        # xarray's defaults: interp1d (one dimension) fills NaN, and None
+        # means NaN there; interpn (several) fills NaN, and None extrapolates;
+        # PchipInterpolator along one dimension takes ``extrapolate``, not
+        # ``fill_value``.
+        if one_dim and method == "pchip":
+            if "fill_value" in kwargs:
+                raise TypeError("PchipInterpolator.__init__() got an unexpected keyword argument 'fill_value'")
+            fill = "extrapolate" if kwargs.get("extrapolate", False) else np.nan
+        else:
+            if "extrapolate" in kwargs:
+                raise TypeError("'extrapolate' is a keyword of the one-dimensional 'pchip' only")
+            fill = kwargs.get("fill_value", np.nan)
+            if fill is None:
+                fill = np.nan if one_dim else "extrapolate"
+            elif isinstance(fill, str) and fill != "extrapolate":
+                raise ValueError(f"{fill!r} is not a valid fill_value")
+            elif isinstance(fill, str) and not one_dim:
+                raise ValueError("fill_value must be either 'None' or of a type compatible with values "
+                                 "(xarray passes it to scipy's interpn, which takes no 'extrapolate')")
+            elif not one_dim and np.ndim(fill) != 0:
+                raise ValueError("fill_value must be a number or None when interpolating over several dimensions")
+        if mode is not None:
+            if method not in _MODE_ORDER:
+                raise ValueError(f"mode= takes the methods {sorted(_MODE_ORDER)}; got {method!r}")
+        self.below, self.above = (fill, fill) if np.ndim(fill) == 0 or isinstance(fill, str) else tuple(fill)
+
+
+def _float_axes(xs, news):
+    """The grid's axes and the new coordinates as float64, datetimes as
+    xarray converts them (offset by the axis' minimum, in the axis' unit)."""
+    out_x, out_new = [], []
+    for x, new in zip(xs, news):
+        x = np.asarray(x)
+        new = np.asarray(new)
+        if x.dtype.kind in "Mm":
+            unit = np.timedelta64(1, np.datetime_data(x.dtype)[0])
+            x0 = x.min()
+            out_x.append((x - x0) / unit)
+            out_new.append((new - x0) / unit)
+        else:
+            out_x.append(np.asarray(x, dtype=np.float64))
+            out_new.append(np.asarray(new, dtype=np.float64))
+    return out_x, out_new
+
+
+def _check_axis(dim, x, method, mode):
+    """The checks of one interpolated axis, each naming the dimension."""
+    if x.size < METHODS[method]:
+        raise ValueError(f"dimension {dim!r} has {x.size} points, but method {method!r} needs at least "
+                         f"{METHODS[method]}")
+    if np.any(np.isnan(x)):
+        raise ValueError(f"the coordinate of dimension {dim!r} contains NaN")
+    d = np.diff(x)
+    if np.any(d == 0):
+        raise ValueError(f"the coordinate of dimension {dim!r} has repeated values")
+    if np.any(d < 0):
+        raise ValueError(f"the coordinate of dimension {dim!r} is not monotonically increasing "
+                         "(assume_sorted=True with unsorted values)")
+    if mode is not None and x.size > 1 and not np.allclose(d, d[0], rtol=1e-9, atol=0):
+        raise ValueError(f"mode= needs uniformly spaced coordinates; dimension {dim!r} is not")
+
+
+def _result_dtype(dtype, method):
+    """xarray's in-memory dtypes: float64 for "linear" and the splines
+    (scipy's ``interp1d`` and ``interpn``), the values' for "nearest"."""
+    if dtype.kind == "c":
+        return np.dtype(np.complex128) if method != "nearest" else dtype
+    if method == "nearest" and dtype.kind == "f":
+        return dtype
+    if method == "pchip" and dtype.kind == "f":
+        return np.dtype(np.float64)
+    return np.dtype(np.float64)
+
+
+def _raw(grid, values, xi, opts):
+    """Values on a grid (the grid's axes first, any trailing axes) at points
+    ``xi`` (P, ngrid), extrapolated: (P, trailing...)."""
+    if opts.mode is None:
+        ip = RegularGridInterpolator(tuple(grid), values, method=opts.method, bounds_error=False, fill_value=None)
+        out = np.asarray(ip(xi))
+    else:
+        out = _evaluate_mode(grid, values, xi, opts)
+    return out.astype(_result_dtype(values.dtype, opts.method), copy=False)
+
+
+def _apply_fill(out, grid, xi, opts, dims):
+    """Out-of-range points as xarray gives them: NaN, ``fill_value``, a pair
+    (below, above), extrapolated, or ``bounds_error``'s ``ValueError``."""
+    if opts.mode is not None or not len(xi):
+        return out
+    below = np.zeros(len(xi), dtype=bool)
+    above = np.zeros(len(xi), dtype=bool)
+    for a, (g, x) in enumerate(zip(grid, xi.T)):
+        lo, hi = x < g[0], x > g[-1]
+        if opts.bounds_error and (lo.any() or hi.any()):
+            side = "below the minimum" if lo.any() else "above the maximum"
+            raise ValueError(f"a new coordinate of dimension {dims[a]!r} is {side} of its coordinate "
+                             f"[{g[0]}, {g[-1]}] (bounds_error=True)")
+        below |= lo
+        above |= hi
+    for mask, fill in ((below, opts.below), (above & ~below, opts.above)):
+        if isinstance(fill, str) or not mask.any():
+            continue
+        if not out.flags.writeable:
+            out = out.copy()
+        out[mask] = fill
+    return out
+
+
+def _evaluate(grid, values, xi, opts, dims):
+    """:func:`_raw` with :func:`_apply_fill`."""
+    return _apply_fill(_raw(grid, values, xi, opts), grid, xi, opts, dims)
+
+
+def _evaluate_mode(grid, values, xi, opts):
+    """``mode=``: splinelab.map_coordinates on the uniform axes' index
+    coordinates (ndimage's boundary modes, the certified prefilter at
+    ``tol``), one call per trailing column."""
+    values = np.asarray(values)
+    ng = len(grid)
+    idx = np.empty((ng, len(xi)))
+    for a, g in enumerate(grid):
+        step = (g[-1] - g[0]) / (len(g) - 1) if len(g) > 1 else 1.0
+        idx[a] = (xi[:, a] - g[0]) / step
+    trailing = values.shape[ng:]
+    cols = values.reshape(values.shape[:ng] + (-1,))
+    out = np.empty((len(xi), cols.shape[-1]), dtype=np.result_type(values.dtype, np.float64))
+    order = _MODE_ORDER[opts.method]
+    for c in range(cols.shape[-1]):
+        out[:, c] = map_coordinates(np.ascontiguousarray(cols[..., c]), idx, order=order, mode=opts.mode,
+                                    cval=np.nan, tol=opts.tol)
+    return out.reshape((len(xi),) + trailing)
+
+
+# ---------------------------------------------------------------- one variable
+
+
+def _interp_variable(var, indexers, method, kwargs, mode, tol):
+    """One variable interpolated as ``xarray.core.missing.interp`` does:
+    group by group, each group's result dims xarray's."""
+    for group in _groups(indexers, method):
+        var = _interp_group(var, group, method, kwargs, mode, tol)
+    return var
+
+
+def _interp_group(var, group, method, kwargs, mode, tol):
+    dims = list(group)
+    xs = [group[d][0] for d in dims]
+    news = [group[d][1] for d in dims]
+    sizes = _result_sizes(news)
+    rdims = list(dict.fromkeys(itertools.chain.from_iterable(n.dims for n in news)))
+    vdims = [d for d in rdims if d in var.dims and d not in dims]      # vectorised over (xarray's vectorize)
+    bdims = [d for d in var.dims if d not in dims and d not in vdims]  # carried, trailing
+    out_dims = list(dict.fromkeys(itertools.chain.from_iterable(
+        (group[d][1].dims if d in group else (d,)) for d in var.dims)))
+    for d in vdims:
+        if sizes[d] != var.sizes[d]:
+            raise ValueError(f"operands cannot be broadcast together with mismatched lengths for dimension "
+                             f"{d}: {var.sizes[d]} vs {sizes[d]}")
+    opts = _Options(method, kwargs, mode, tol, one_dim=len(dims) == 1)
+    grid, new_f = _float_axes([x.values for x in xs],
+                              [n.set_dims({d: sizes[d] for d in rdims}).values for n in news])
+    for d, g in zip(dims, grid):
+        _check_axis(d, g, method, mode)
+    pdims = [d for d in rdims if d not in vdims]
+    pshape = tuple(sizes[d] for d in pdims)
+    data = var.transpose(*(dims + vdims + bdims)).data
+    bshape = tuple(var.sizes[d] for d in bdims)
+
+    from . import _xarray_dask
+    if _xarray_dask.is_dask(data):
+        result = _xarray_dask.interp(data, grid, new_f, rdims, vdims, pdims, len(bdims), opts, dims)
+    else:
+        result = _interp_numpy(np.asarray(data), grid, new_f, rdims, vdims, pdims, opts, dims)
+    result = result.reshape(tuple(sizes[d] for d in vdims) + pshape + bshape)
+    out = xr.Variable(vdims + pdims + bdims, result, attrs=var.attrs)
+    return out.transpose(*out_dims) if len(out_dims) > 1 else out
+
+
+def _points(new_f, rdims, vdims, vindex):
+    """The points (P, ngrid) of one vectorised position (all when none)."""
+    sel = tuple(vindex[vdims.index(d)] if d in vdims else slice(None) for d in rdims)
+    return np.stack([n[sel].ravel() for n in new_f], axis=-1) if new_f else np.empty((1, 0))
+
+
+def _interp_numpy(values, grid, new_f, rdims, vdims, pdims, opts, dims):
+    """In memory: one RegularGridInterpolator per vectorised position (one
+    in all where the new coordinates share no dimension with the data)."""
+    ng, nv = len(grid), len(vdims)
+    vshape = values.shape[ng:ng + nv]
+    outs = []
+    for vindex in np.ndindex(*vshape):
+        block = values[(slice(None),) * ng + vindex]
+        outs.append(_evaluate(grid, block, _points(new_f, rdims, vdims, vindex), opts, dims))
+    if not nv:
+        return outs[0]
+    return np.stack(outs).reshape(vshape + outs[0].shape)
+
+
+# ---------------------------------------------------------------- Dataset
+
+
+def _interp_dataset(obj, coords, method, assume_sorted, kwargs, method_non_numeric, mode, tol):
+    if method not in METHODS:
+        raise ValueError(f"{method} is not a valid interpolator for splinelab's interp; "
+                         f"the methods are {list(METHODS)}")
+    if mode is None and tol is not None:
+        raise ValueError("tol= goes with mode= (the certified prefilter of map_coordinates)")
+    indexers = _validated(obj, coords)
+    if not assume_sorted:
+        obj = obj.sortby([k for k in indexers])
+    axes = {k: _axis_variable(obj, k) for k in indexers}
+
+    variables, reindex = {}, []
+    for name, var in obj.variables.items():
+        if name in indexers:
+            continue
+        mine = {k: (axes[k], v) for k, v in indexers.items() if k in var.dims}
+        kind = var.dtype.kind
+        if not mine:
+            variables[name] = var
+        elif kind in "uifc":
+            variables[name] = _interp_variable(var, mine, method, kwargs, mode, tol)
+        elif kind in "Mm":
+            variables[name] = _interp_datetime(var, mine, method, kwargs, mode, tol)
+        elif kind in "ObU":
+            if all(var.sizes[d] == 1 for d in mine):
+                variables[name] = xr.Variable(
+                    *_broadcast_dims(var.squeeze(), [n for _, n in mine.values()])).copy(deep=True)
+            else:
+                reindex.append(name)
+
+    by_dim = {k: v for k, v in indexers.items() if v.dims == (k,)}
+    if reindex and by_dim:
+        re = obj[reindex].reindex({k: v.values for k, v in by_dim.items()}, method=method_non_numeric)
+        for name in reindex:
+            variables[name] = re.variables[name]
+
+    coord_names = [n for n in obj.coords if n in variables]
+    for k, v in indexers.items():
+        variables[k] = v
+        coord_names.append(k)
+    for k, v in coords.items():
+        if isinstance(v, xr.DataArray):
+            for c, cv in v.coords.items():
+                if c not in variables:
+                    variables[c] = cv.variable
+                    coord_names.append(c)
+    data_vars = {n: v for n, v in variables.items() if n not in coord_names}
+    kept = obj.drop_vars([n for n in obj.variables if n not in coord_names or n in indexers
+                          or variables.get(n) is not obj.variables[n]]).coords
+    new_coords = {n: variables[n] for n in coord_names if n not in kept}
+    return xr.Dataset(data_vars, coords=kept, attrs=obj.attrs).assign_coords(new_coords)
+
+
+def _broadcast_dims(var, news):
+    """A variable broadcast against the new coordinates (xarray's
+    ``broadcast_variables``), as (dims, data, attrs)."""
+    dims = list(var.dims)
+    sizes = dict(var.sizes)
+    for n in news:
+        for d, s in n.sizes.items():
+            if d not in sizes:
+                dims.append(d)
+                sizes[d] = s
+    return dims, np.broadcast_to(var.set_dims(sizes).transpose(*dims).values, [sizes[d] for d in dims]), var.attrs
+
+
+def _interp_datetime(var, mine, method, kwargs, mode, tol):
+    """Datetime values interpolated as float64 nanoseconds (NaT as NaN),
+    rounded back, as xarray."""
+    ints = var.values.view(np.int64)
+    nat = np.iinfo(np.int64).min
+    floats = xr.Variable(var.dims, np.where(ints != nat, ints.astype(np.float64), np.nan), attrs=var.attrs)
+    res = _interp_variable(floats, mine, method, kwargs, mode, tol)
+    vals = np.asarray(res.values)
+    back = np.where(np.isnan(vals), nat, np.round(np.nan_to_num(vals)).astype(np.int64))
+    return xr.Variable(res.dims, back.view(var.dtype), attrs=res.attrs)
+
+
+# ---------------------------------------------------------------- accessors
+
+
+_DOC = """Interpolate onto new coordinates: xarray's ``interp``, splinelab's numbers.
+
+Parameters
+----------
+coords : dict, optional
+    Dimension names to new coordinates: a scalar, a 1-D array (the
+    dimension's new coordinate) or a DataArray (its dims broadcast: DataArrays
+    sharing a dimension interpolate pointwise), as :meth:`xarray.DataArray.interp`.
+method : str, optional
+    "cubic" (default; xarray's default is "linear"), "quintic", "linear",
+    "nearest", "slinear" or "pchip". "cubic" and "quintic" are the exact
+    not-a-knot spline; the others give scipy's numbers.
+assume_sorted : bool, optional
+    False (default): the interpolated coordinates are sorted first (xarray's
+    ``sortby``); True: they must be increasing already.
+kwargs : dict, optional
+    xarray's keywords for scipy's interpolators: ``fill_value`` (default
+    NaN; along one dimension also "extrapolate" or a pair (below, above), and
+    None means NaN; along several dimensions None extrapolates),
+    ``bounds_error`` (default False), and for "pchip" along one dimension
+    ``extrapolate`` (default False). Others are a ``TypeError``.
+mode : str, optional
+    splinelab's own: one of ndimage's boundary modes ("mirror", "reflect",
+    "nearest", "wrap", "grid-wrap", "constant", "grid-constant",
+    "grid-mirror"): the spline of degree 0, 1, 3 or 5 (methods "nearest",
+    "linear"/"slinear", "cubic", "quintic") with that boundary condition
+    through :func:`splinelab.map_coordinates`, on uniformly spaced axes
+    only; ``fill_value`` does not apply (the mode decides outside).
+tol : float, optional
+    With ``mode=``: the tolerance of the certified truncated prefilter
+    (:func:`splinelab.map_coordinates`' ``tol``).
+**coords_kwargs
+    The keyword form of ``coords``.
+
+Returns
+-------
+{ret}
+    On the new coordinates; attributes and the coordinates not
+    interpolated kept. Lazy (dask) where the data is: see
+    :doc:`/coming_from_xarray`.
+
+Raises
+------
+ValueError
+    As xarray: an unknown dimension, new coordinates whose shared
+    dimensions disagree in length, too few points on an axis for the method,
+    repeated or (``assume_sorted=True``) unsorted coordinates, a point out
+    of range with ``bounds_error=True``; each naming the dimension.
+TypeError, IndexError
+    As xarray: a non-datetime new coordinate of a datetime axis; a
+    multi-dimensional array that is not a DataArray.
+"""
+
+
+def _accessor_doc(ret):
+    return _DOC.replace("{ret}", ret)
+
+
+@xr.register_dataarray_accessor("splinelab")
+class SplinelabDataArrayAccessor:
+    """``da.splinelab``: splinelab's interpolation of a DataArray (registered by ``import splinelab.xarray``)."""
+
+    def __init__(self, obj):
+        self._obj = obj
+
+    def interp(self, coords=None, method="cubic", *, assume_sorted=False, kwargs=None, mode=None, tol=None,
+               **coords_kwargs):
+        da = self._obj
+        if da.dtype.kind not in "uifcMm":
+            raise TypeError(f"interp only works for a numeric type array. Given {da.dtype}.")
+        coords = _coords_dict(coords, coords_kwargs)
+        name = "<this-array>" if da.name is None or da.name in da.coords else da.name
+        ds = xr.Dataset({name: da.variable}, coords=da.coords)
+        out = _interp_dataset(ds, coords, method, assume_sorted, kwargs, "nearest", mode, tol)
+        res = out[name]
+        res.name = da.name
+        return res
+
+    interp.__doc__ = _accessor_doc("DataArray")
+
+
+@xr.register_dataset_accessor("splinelab")
+class SplinelabDatasetAccessor:
+    """``ds.splinelab``: splinelab's interpolation of a Dataset (registered by ``import splinelab.xarray``)."""
+
+    def __init__(self, obj):
+        self._obj = obj
+
+    def interp(self, coords=None, method="cubic", *, assume_sorted=False, kwargs=None, method_non_numeric="nearest",
+               mode=None, tol=None, **coords_kwargs):
+        coords = _coords_dict(coords, coords_kwargs)
+        return _interp_dataset(self._obj, coords, method, assume_sorted, kwargs, method_non_numeric, mode, tol)
+
+    interp.__doc__ = _accessor_doc("Dataset").replace(
+        "**coords_kwargs", "method_non_numeric : str, optional\n    As xarray: how variables that are not "
+        "numbers follow the new coordinates (``Dataset.reindex``'s method, default \"nearest\").\n"
+        "**coords_kwargs")
+
+
+del _accessor_doc
