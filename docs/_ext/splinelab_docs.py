@@ -298,8 +298,9 @@ class ScipyArguments(SphinxDirective):
         out = [nodes.paragraph("", f"Read at build time from inspect.signature of scipy {scipy.__version__}'s "
                                    f"{module_name} and of splinelab {splinelab.__version__}.")]
         for name in names:
-            theirs = inspect.signature(self._lookup(module, name)).parameters
-            ours = inspect.signature(self._lookup(splinelab, name)).parameters
+            # a method's own `self` is no argument a caller passes
+            theirs = {a: p for a, p in inspect.signature(self._lookup(module, name)).parameters.items() if a != "self"}
+            ours = {a: p for a, p in inspect.signature(self._lookup(splinelab, name)).parameters.items() if a != "self"}
             missing = [a for a in theirs if a not in ours]
             if missing:
                 raise self.error(f"scipy-arguments: splinelab.{name} lacks scipy's {missing}")
