@@ -366,7 +366,11 @@ def _interp_dataset(obj, coords, method, assume_sorted, kwargs, method_non_numer
         raise ValueError("tol= goes with mode= (the certified prefilter of map_coordinates)")
     indexers = _validated(obj, coords)
     if not assume_sorted:
-        obj = obj.sortby([k for k in indexers])
+        # xarray's sortby, skipped where a coordinate is increasing already
+        # (sortby copies every variable along it)
+        unsorted = [k for k in indexers if not _increasing(_axis_variable(obj, k).values)]
+        if unsorted:
+            obj = obj.sortby(unsorted)
     axes = {k: _axis_variable(obj, k) for k in indexers}
 
     variables, reindex = {}, []
@@ -409,6 +413,13 @@ def _interp_dataset(obj, coords, method, assume_sorted, kwargs, method_non_numer
                           or variables.get(n) is not obj.variables[n]]).coords
     new_coords = {n: variables[n] for n in coord_names if n not in kept}
     return xr.Dataset(data_vars, coords=kept, attrs=obj.attrs).assign_coords(new_coords)
+
+
+def _increasing(x):
+    x = np.asarray(x)
+    if x.dtype.kind in "Mm":
+        x = x.view(np.int64)
+    return x.dtype.kind in "uif" and bool(np.all(x[1:] > x[:-1]))
 
 
 def _broadcast_dims(var, news):
