@@ -60,6 +60,28 @@ def _check_interp(
     )
 
 
+def _check_grid_spline(grid, samples, points, values, degree=3, max_ulps=None, format=None, out=None):
+    axes = [_vector(g, f"grid[{a}]").astype(np.float64) for a, g in enumerate(grid)]
+    s = np.asarray(_real_array(samples, "samples"), dtype=np.float64)
+    if s.shape != tuple(len(g) for g in axes):
+        raise ValueError(f"samples of shape {s.shape} do not match the grid {tuple(len(g) for g in axes)}")
+    # Descending axes as scipy takes them: flipped with their samples.
+    for a, g in enumerate(axes):
+        if len(g) > 1 and g[0] > g[-1]:
+            axes[a] = g[::-1].copy()
+            s = np.flip(s, axis=a)
+    p = np.asarray(_real_array(points, "points"), dtype=np.float64)
+    if p.ndim == 1 and len(axes) == 1:
+        p = p[:, None]
+    if p.ndim != 2 or p.shape[1] != len(axes):
+        raise ValueError(f"points must have shape (count, {len(axes)}) as RegularGridInterpolator's xi, got {p.shape}")
+    user, fmt = _values(values, format)
+    return _ext.check_grid_spline(
+        [g.tolist() for g in axes], np.ascontiguousarray(s).ravel().tolist(), _count(degree, "degree"),
+        np.ascontiguousarray(p).ravel().tolist(), user, fmt, _opt_float(max_ulps, "max_ulps"), _out(out),
+    )
+
+
 def _check_cond(nodes, values, basis="bernstein", norm="2", max_ulps=None, format=None, out=None):
     if isinstance(nodes, np.ndarray) and nodes.ndim == 1 or (len(nodes) > 0 and np.ndim(nodes[0]) == 0):
         sets = [_list(nodes, "nodes")]
@@ -114,6 +136,7 @@ _KINDS = {
     "knot-insertion": _check_knot_insertion,
     "interp": _check_interp,
     "cond": _check_cond,
+    "grid-spline": _check_grid_spline,
 }
 
 
@@ -122,7 +145,7 @@ def check(kind, **kwargs):
 
     Parameters
     ----------
-    kind : {'prefilter', 'coeffs', 'bspline-eval', 'bezier-eval', 'knot-insertion', 'interp', 'cond'}
+    kind : {'prefilter', 'coeffs', 'bspline-eval', 'bezier-eval', 'knot-insertion', 'interp', 'cond', 'grid-spline'}
         What the numbers are.
     **kwargs
         The keywords of ``kind`` (as the command's options):
@@ -144,7 +167,14 @@ def check(kind, **kwargs):
           period n - 1 —, 'grid-constant'), ``cval=0.0``;
         - 'cond': ``nodes`` (one node set, or a list of sets), ``values``
           (one condition number per set), ``basis='bernstein'`` or
-          'monomial', ``norm='2'`` or 'inf'.
+          'monomial', ``norm='2'`` or 'inf';
+        - 'grid-spline': ``grid`` (one 1-D array of nodes per axis,
+          ascending or descending), ``samples`` (their shape), ``points``
+          (shape (count, ndim), as RegularGridInterpolator's ``xi``),
+          ``values``, ``degree=3`` (odd: scipy's 'slinear' 1, 'cubic' 3,
+          'quintic' 5): the exact not-a-knot tensor-product spline, solved
+          and evaluated in MPFR; the verdict's bound is what a stable
+          banded solve per axis would make from the grid's conditioning.
 
         Every kind takes ``max_ulps=`` (verdict 'fail' when an element
         exceeds it), ``format=`` ('f64'/'f32'; default: the values' dtype)

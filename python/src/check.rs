@@ -16,6 +16,7 @@ use splinelab_verify::check::bezier_eval::check_bezier_eval as bezier;
 use splinelab_verify::check::bspline_eval::{BSplineEvalInput, check_bspline_eval as bspline};
 use splinelab_verify::check::coeffs::check_coeffs as coeffs;
 use splinelab_verify::check::cond::{CondInput, Norm, check_cond as cond};
+use splinelab_verify::check::grid_spline::{GridSplineInput, check_grid_spline as grid_spline};
 use splinelab_verify::check::interp::{InterpInput, ScipyMode, check_interp_with_cval as interp};
 use splinelab_verify::check::knot_insertion::check_knot_insertion as insertion;
 use splinelab_verify::check::outcome::prefilter_extra;
@@ -164,6 +165,36 @@ pub fn check_bspline_eval(
         max_ulps: max_ulps(max_ulps_)?,
     };
     elements(py, || bspline(&input), Map::new(), out)
+}
+
+/// `check grid-spline`: the grid's nodes (ascending per axis), the samples
+/// (C order), the odd degree, the points (point-major) and the user's values.
+#[pyfunction]
+#[pyo3(signature = (grid, samples, degree, points, user, fmt, max_ulps_, out = None))]
+#[allow(clippy::too_many_arguments)]
+pub fn check_grid_spline(
+    py: Python<'_>,
+    grid: Vec<Vec<f64>>,
+    samples: Vec<f64>,
+    degree: usize,
+    points: Vec<f64>,
+    user: Vec<f64>,
+    fmt: &str,
+    max_ulps_: Option<f64>,
+    out: Option<PathBuf>,
+) -> PyResult<Report> {
+    let input = GridSplineInput {
+        grid,
+        samples,
+        degree,
+        points,
+        user,
+        format: format(fmt)?,
+        max_ulps: max_ulps(max_ulps_)?,
+    };
+    let mut extra = Map::new();
+    extra.insert("degree".into(), degree.into());
+    elements(py, || grid_spline(&input), extra, out)
 }
 
 /// `check bezier-eval`: Bernstein coefficients, t, the user's values.

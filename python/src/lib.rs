@@ -68,6 +68,7 @@ fn _splinelab(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(check::check_bezier_eval, m)?)?;
     m.add_function(wrap_pyfunction!(check::check_knot_insertion, m)?)?;
     m.add_function(wrap_pyfunction!(check::check_interp, m)?)?;
+    m.add_function(wrap_pyfunction!(check::check_grid_spline, m)?)?;
     m.add_function(wrap_pyfunction!(check::check_cond, m)?)?;
     m.add_function(wrap_pyfunction!(cli::cli_main, m)?)?;
     // The pages a CI run leaves (report, check, compare, session) share it.

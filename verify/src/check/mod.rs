@@ -21,6 +21,7 @@ pub mod bspline_eval;
 pub mod coeffs;
 pub mod cond;
 pub mod format;
+pub mod grid_spline;
 pub mod interp;
 pub mod interpolation_conditions;
 pub mod knot_insertion;
