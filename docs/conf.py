@@ -60,7 +60,7 @@ numpydoc_xref_param_type = True
 numpydoc_xref_aliases = {"ndarray": "numpy.ndarray", "dtype": "numpy.dtype", "callable": "callable",
                          "array_like": "array_like", "scalar": "scalar"}
 numpydoc_xref_ignore = {"optional", "or", "of", "array_like", "scalar", "sequence", "index", "ints", "type",
-                        "default"}
+                        "default", "DataArray", "Dataset"}  # xarray's: no bundled inventory
 # numpydoc's validation: every check but the ones listed (See Also, an
 # extended summary and an example everywhere, one-line summaries, closing
 # quotes on their own line, capitalised descriptions, infinitive verbs), so

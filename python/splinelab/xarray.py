@@ -1,7 +1,7 @@
 """``import splinelab.xarray``: the ``splinelab`` accessor on xarray's DataArray and Dataset (issue 51).
 
 ``da.splinelab.interp(...)`` and ``ds.splinelab.interp(...)`` are
-:meth:`xarray.DataArray.interp` and :meth:`xarray.Dataset.interp` with
+xarray's ``DataArray.interp`` and ``Dataset.interp`` with
 splinelab's interpolators underneath: the same indexing forms (orthogonal
 1-D coordinates, scalars, pointwise DataArray indexers sharing a dimension,
 a subset of the dimensions), the same coordinates, dimensions and attributes
@@ -266,7 +266,7 @@ def _apply_fill(out, grid, xi, opts, dims):
 
 
 def _evaluate(grid, values, xi, opts, dims):
-    """:func:`_raw` with :func:`_apply_fill`."""
+    """``_raw`` with ``_apply_fill``."""
     return _apply_fill(_raw(grid, values, xi, opts), grid, xi, opts, dims)
 
 
@@ -457,7 +457,7 @@ Parameters
 coords : dict, optional
     Dimension names to new coordinates: a scalar, a 1-D array (the
     dimension's new coordinate) or a DataArray (its dims broadcast: DataArrays
-    sharing a dimension interpolate pointwise), as :meth:`xarray.DataArray.interp`.
+    sharing a dimension interpolate pointwise), as xarray's ``DataArray.interp``.
 method : str, optional
     "cubic" (default; xarray's default is "linear"), "quintic", "linear",
     "nearest", "slinear" or "pchip". "cubic" and "quintic" are the exact
@@ -538,8 +538,8 @@ class SplinelabDatasetAccessor:
     def __init__(self, obj):
         self._obj = obj
 
-    def interp(self, coords=None, method="cubic", *, assume_sorted=False, kwargs=None, method_non_numeric="nearest",
-               mode=None, tol=None, **coords_kwargs):
+    def interp(self, coords=None, method="cubic", *, assume_sorted=False, kwargs=None, mode=None, tol=None,
+               method_non_numeric="nearest", **coords_kwargs):
         coords = _coords_dict(coords, coords_kwargs)
         return _interp_dataset(self._obj, coords, method, assume_sorted, kwargs, method_non_numeric, mode, tol)
 
