@@ -92,7 +92,7 @@ def _whole_grid(data, grid, xi, opts, dims):
         return _evaluate(grid, np.asarray(values), xi, opts, dims)
 
     return da.blockwise(block, p + bi, data, gi + bi, new_axes={p: len(xi)}, concatenate=True,
-                        dtype=_result_dtype(data.dtype, opts.method), meta=np.empty((0,) * (1 + nb)))
+                        dtype=_result_dtype(data.dtype, opts), meta=np.empty((0,) * (1 + nb)))
 
 
 def _cells(g, x, halo, minimum):
@@ -157,7 +157,7 @@ def _windows(data, grid, xi, opts, dims):
 
 def _dtype(data, opts):
     from .xarray import _result_dtype
-    return _result_dtype(data.dtype, opts.method)
+    return _result_dtype(data.dtype, opts)
 
 
 def _refill(out, grid, xi, opts, dims):
@@ -190,7 +190,7 @@ def _separable(data, grid, xi, opts, dims, chunked, unchunked):
     moved = data.transpose(perm)
     nu, nc = len(unchunked), len(chunked)
     ui, ci, bi = _letters(nu), _letters(nc, nu), _letters(nb, nu + nc)
-    dtype = _result_dtype(data.dtype, opts.method)
+    dtype = _result_dtype(data.dtype, opts)
 
     def stage1(values):
         return _raw(gu, np.asarray(values), xu, opts)   # (P, chunked block..., carried block...)

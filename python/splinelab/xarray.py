@@ -151,6 +151,7 @@ class _Options:
         self.method = method
         self.mode = mode
         self.tol = tol
+        self.one_dim = one_dim
         kwargs = dict(kwargs or {})
         unknown = set(kwargs) - _KWARGS
         if unknown:
@@ -218,16 +219,15 @@ def _check_axis(dim, x, method, mode):
         raise ValueError(f"mode= needs uniformly spaced coordinates; dimension {dim!r} is not")
 
 
-def _result_dtype(dtype, method):
-    """xarray's in-memory dtypes: float64 for "linear" and the splines
-    (scipy's ``interp1d`` and ``interpn``), the values' for "nearest"."""
-    if dtype.kind == "c":
-        return np.dtype(np.complex128) if method != "nearest" else dtype
-    if method == "nearest" and dtype.kind == "f":
+def _result_dtype(dtype, opts):
+    """xarray's in-memory dtypes: float64 (complex128) for "linear" and the
+    splines (scipy's ``interp1d`` and ``interpn``), the values' float dtype
+    for "nearest", and for "pchip" along several dimensions (``interpn``;
+    along one, ``PchipInterpolator`` gives float64)."""
+    keeps = opts.method == "nearest" or (opts.method == "pchip" and not opts.one_dim)
+    if keeps and dtype.kind in "fc":
         return dtype
-    if method == "pchip" and dtype.kind == "f":
-        return np.dtype(np.float64)
-    return np.dtype(np.float64)
+    return np.dtype(np.complex128) if dtype.kind == "c" else np.dtype(np.float64)
 
 
 def _raw(grid, values, xi, opts):
@@ -238,7 +238,7 @@ def _raw(grid, values, xi, opts):
         out = np.asarray(ip(xi))
     else:
         out = _evaluate_mode(grid, values, xi, opts)
-    return out.astype(_result_dtype(values.dtype, opts.method), copy=False)
+    return out.astype(_result_dtype(values.dtype, opts), copy=False)
 
 
 def _apply_fill(out, grid, xi, opts, dims):

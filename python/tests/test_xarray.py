@@ -118,6 +118,26 @@ def test_several_dimensions_are_xarrays_where_scipy_is_exact(method, uniform):
         assert rel(ours, theirs) <= 1e-12
 
 
+@pytest.mark.parametrize("dtype", ["float32", "int64", "complex128"])
+@pytest.mark.parametrize("method", METHODS)
+def test_result_dtypes_are_xarrays(method, dtype):
+    """xarray in memory: float64 for linear and the splines, the values' float
+    dtype for nearest and for pchip along several dimensions. float32 input:
+    scipy's interp1d computes "linear" in float32, here in float64 (the two
+    differ by float32 rounding)."""
+    da = cube(True)
+    if dtype == "complex128" and method == "pchip":
+        return
+    da = (da * 10).astype(dtype) if dtype != "complex128" else da + 0.5j * da
+    for kw in (dict(x=[1.5, 2.5]), dict(x=[1.5, 2.5], y=[0.5])):
+        ours, theirs = da.splinelab.interp(method=method, **kw), da.interp(method=method, **kw)
+        assert ours.dtype == theirs.dtype, (kw, ours.dtype, theirs.dtype)
+        if method in ("cubic", "quintic") and len(kw) > 1:
+            continue
+        tol = 1e-6 if dtype == "float32" else 1e-12
+        assert np.abs(ours.values - theirs.values).max() <= tol * np.abs(theirs.values).max()
+
+
 def spline_distances(method, uniform):
     """Ours and xarray's distance from the exact spline, relative to max|data|."""
     da = cube(uniform)
