@@ -16,6 +16,7 @@ use numpy::{
 use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
 use splinelab::gridded::{self, GridAxis, GriddedError};
+use splinelab::ndimage::alloc::try_standard_layout;
 use splinelab::ndimage::samples::Sample;
 
 fn grid_error(e: GriddedError) -> PyErr {
@@ -107,7 +108,8 @@ fn on_samples<S: Sample<f64> + numpy::Element>(
             });
         }
     };
-    let c: CowArray<'_, S, IxDyn> = values.as_standard_layout();
+    // Fallible: a huge strided view is MemoryError, not an abort.
+    let c: CowArray<'_, S, IxDyn> = try_standard_layout(&values, "gridded samples")?;
     let slice = c.as_slice().ok_or(GriddedError::Shape {
         grid,
         got: values.shape().to_vec(),
