@@ -3,9 +3,9 @@
 The data arrives with the interpolated (grid) axes first, any vectorised
 axes next and the carried axes last; the result is a lazy dask array of the
 points' shape followed by the carried axes. No interpolated axis is
-rechunked into one chunk unless the method's value at a point depends on
-the whole axis and no window is certified yet (the not-a-knot splines and
-``mode=``), and then only that axis, block by block of the carried axes:
+rechunked into one chunk unless no window is certified (``mode=``, and the
+not-a-knot splines without scipy), and then only those axes, block by block
+of the carried axes:
 
 - every grid axis in one chunk: each block of the carried axes is
   interpolated on its own (``blockwise``; each output block reads its input
@@ -14,12 +14,18 @@ the whole axis and no window is certified yet (the not-a-knot splines and
   points are grouped by the input chunks their windows touch (the cell, and
   for "pchip" two samples each side, which is all scipy's PCHIP reads), and
   each group reads only the union of its points' windows;
-- "cubic", "quintic" with a chunked grid axis: the spline is separable, so
-  the unchunked grid axes are interpolated first block by block (each input
-  block read once, reduced to one value per point per sample of the
-  chunked axes), then the chunked axes' whole lines of those reduced values
-  are interpolated point by point; where every grid axis is chunked, the
-  data's whole lines along them are read per block of the carried axes.
+- "cubic", "quintic" with a chunked grid axis: along each chunked axis a
+  point's value is ``sum_i w_i(q) y_i``, the cardinal weights computed from
+  the coordinates alone (one banded solve); each point reads the window
+  outside which its weights sum to at most the tolerance, so the result is
+  within ``tol * max|data|`` of the whole-grid spline (certified by the
+  weights themselves, up to the rounding of their solve), and the unchunked
+  axes are interpolated exactly per window. Without scipy (for the weights)
+  the separable route instead: the unchunked axes first, block by block
+  (each block read once), then each point's whole lines along the chunked
+  axes; where every grid axis is chunked, whole lines per carried block.
+- ``mode=`` with a chunked grid axis: whole lines along the grid axes per
+  block of the carried axes.
 """
 
 from __future__ import annotations
@@ -57,6 +63,24 @@ def interp(data, grid, new_f, rdims, vdims, pdims, nb, opts, dims):
     return out if out.shape == target else out.reshape(target)
 
 
+#: The not-a-knot splines on chunked axes read certified windows (below);
+#: False: the separable route that reads every chunk once (the fallback
+#: without scipy, kept testable).
+_WINDOWS = True
+#: The default of ``tol`` for the windows: the certified bound on the
+#: distance from the whole-grid spline, relative to max|data|.
+WINDOW_TOL = 1e-14
+
+
+def _have_scipy():
+    try:
+        import scipy.interpolate  # noqa: F401
+        import scipy.linalg  # noqa: F401
+    except ImportError:  # pragma: no cover
+        return False
+    return True
+
+
 def _letters(n, start=0):
     return string.ascii_letters[start:start + n]
 
@@ -70,6 +94,8 @@ def _interp_points(data, grid, xi, opts, dims):
     if opts.mode is None and opts.method in ("linear", "nearest", "slinear", "pchip"):
         return _windows(data, grid, xi, opts, dims)
     unchunked = [a for a in range(ng) if a not in chunked]
+    if opts.mode is None and _WINDOWS and _have_scipy():
+        return _spline_windows(data, grid, xi, opts, dims, chunked, unchunked)
     if opts.mode is None and unchunked:
         return _separable(data, grid, xi, opts, dims, chunked, unchunked)
     # whole lines along the grid axes, block by block of the carried axes
@@ -216,7 +242,172 @@ def _separable(data, grid, xi, opts, dims, chunked, unchunked):
     return out.map_blocks(_fill_block, grid=grid, xi=xi, opts=opts, dims=dims, dtype=dtype)
 
 
-def _fill_block(values, grid, xi, opts, dims, block_info=None):
+def _fill_block(values, grid, xi, opts, dims, nan=None, block_info=None):
     from .xarray import _apply_fill
     start, stop = block_info[0]["array-location"][0] if block_info else (0, len(values))
-    return _apply_fill(np.array(values), grid, xi[start:stop], opts, dims)
+    out = _apply_fill(np.array(values), grid, xi[start:stop], opts, dims)
+    if nan is not None:
+        out[nan[start:stop]] = np.nan
+    return out
+
+
+# ---------------------------------------------------------------- certified windows
+
+
+def cardinal_weights(x, k, q):
+    """The not-a-knot spline's cardinal weights: ``W[j] @ y`` is the value at
+    ``q[j]`` of the degree-``k`` not-a-knot spline through ``(x, y)`` (the end
+    pieces extended outside), for every ``y``.
+
+    ``W = B(q) A^{-1}`` with ``A`` the collocation matrix (banded, bandwidth
+    ``k``) and ``B(q)`` the B-spline values at ``q``: one banded solve with
+    ``A^T`` (LAPACK ``gbsv``, partial pivoting) for all points. Returns
+    ``(len(q), len(x))``.
+    """
+    from scipy.interpolate import BSpline, make_interp_spline
+    from scipy.linalg import solve_banded
+    n = len(x)
+    t = make_interp_spline(x, np.zeros(n), k=k).t
+    A = BSpline.design_matrix(x, t, k).tocoo()
+    off = A.col - A.row
+    lower, upper = int(max(0, -off.min())), int(max(0, off.max()))
+    # A^T in LAPACK's banded storage: (A^T)[i, j] = A[j, i], upper bandwidth `lower`
+    ab = np.zeros((lower + upper + 1, n))
+    i, j = A.col, A.row          # row, column in A^T
+    ab[lower + i - j, j] = A.data
+    Bq = BSpline.design_matrix(q, t, k, extrapolate=True).toarray()   # (P, n)
+    return solve_banded((lower, upper), ab, Bq.T, check_finite=False).T
+
+
+def _tails(w):
+    """For each row of weights, the tails outside ``[lo, hi)`` as the
+    windows grow: left[i] = sum |w[:i]|, right[i] = sum |w[i:]|, each summed
+    from its own end (the small terms first)."""
+    a = np.abs(w)
+    left = np.concatenate([np.zeros((len(w), 1)), np.cumsum(a, axis=1)], axis=1)
+    right = np.concatenate([np.cumsum(a[:, ::-1], axis=1)[:, ::-1], np.zeros((len(w), 1))], axis=1)
+    return left, right
+
+
+def _windows_of(x, k, q, tol, batch=256):
+    """Per point, the smallest window ``[lo, hi)`` of samples whose
+    cardinal weights outside sum to at most ``tol`` (in absolute value), the
+    weights inside, the tail outside and the whole sum (the Lebesgue
+    function at the point)."""
+    P = len(q)
+    lo = np.empty(P, dtype=np.intp)
+    hi = np.empty(P, dtype=np.intp)
+    tail = np.empty(P)
+    norm = np.empty(P)
+    weights = []
+    for s in range(0, P, batch):
+        w = cardinal_weights(x, k, q[s:s + batch])
+        left, right = _tails(w)
+        total = left[:, -1]
+        for r in range(len(w)):
+            a = int(np.searchsorted(left[r], tol / 2, side="right")) - 1       # left[r][a] <= tol/2
+            b = int(np.searchsorted(-right[r], -tol / 2, side="left"))         # right[r][b] <= tol/2
+            a, b = max(a, 0), min(max(b, a + 1), len(x))
+            lo[s + r], hi[s + r] = a, b
+            tail[s + r] = left[r][a] + right[r][b]
+            norm[s + r] = total[r]
+            weights.append(w[r, a:b].copy())
+    return lo, hi, weights, tail, norm
+
+
+def _spline_windows(data, grid, xi, opts, dims, chunked, unchunked):
+    """The not-a-knot splines with chunked grid axes, reading certified windows.
+
+    Along each chunked axis a point's value is ``sum_i w_i(q) y_i`` (the
+    cardinal weights, from the coordinates alone); the window keeps the
+    samples whose weights outside it sum to at most ``tol_a``, and the
+    truncated sum differs from the whole-grid spline by at most
+
+        (prod_c N_c - prod_c (N_c - tail_c)) * prod_u N_u * max|data|,
+
+    N the weights' 1-norms (the Lebesgue function at the point) over the
+    chunked (c) and unchunked (u) axes; ``tol_a = tol / (len(c) * prod N)``
+    makes that at most ``tol * max|data|`` (up to the rounding of the banded
+    solve that gives the weights). The unchunked axes are interpolated
+    exactly (the whole spline, per window). Points are grouped by the input
+    chunks their windows touch; each group reads the union of its windows.
+    """
+    import dask.array as da
+
+    from .xarray import _apply_fill, _raw, _result_dtype
+
+    k = {"cubic": 3, "quintic": 5}[opts.method]
+    tol = WINDOW_TOL if opts.tol is None else float(opts.tol)
+    ng, P = len(grid), len(xi)
+    safe = np.where(np.isnan(xi), np.array([g[0] for g in grid]), xi)
+    # per axis, the distinct coordinates only (an outer grid has few)
+    distinct = {a: np.unique(safe[:, a], return_inverse=True) for a in range(ng)}
+    norms = np.ones(P)
+    for a in range(ng):
+        uq, inv = distinct[a]
+        norms *= np.abs(cardinal_weights(grid[a], k, uq)).sum(axis=1)[inv.ravel()]
+    tol_a = float(tol / (len(chunked) * norms.max()))
+    wins = {}
+    for a in chunked:
+        uq, inv = distinct[a]
+        inv = inv.ravel()
+        lo, hi, w, _, _ = _windows_of(grid[a], k, uq, tol_a)
+        wins[a] = (lo[inv], hi[inv], [w[i] for i in inv])
+    keys = np.empty((P, 2 * len(chunked)), dtype=np.intp)
+    for c, a in enumerate(chunked):
+        bounds = np.cumsum((0,) + data.chunks[a])
+        keys[:, 2 * c] = np.searchsorted(bounds, wins[a][0], side="right") - 1
+        keys[:, 2 * c + 1] = np.searchsorted(bounds, wins[a][1] - 1, side="right") - 1
+    _, group = np.unique(keys, axis=0, return_inverse=True)
+    group = group.ravel()
+    order = np.argsort(group, kind="stable")
+    starts = np.flatnonzero(np.r_[True, np.diff(group[order]) != 0])
+    ends = np.r_[starts[1:], P]
+    nb = data.ndim - ng
+    gi, bi = _letters(ng), _letters(nb, ng)
+    dtype = _result_dtype(data.dtype, opts)
+    gu = [grid[a] for a in unchunked]
+    parts = []
+    for s, e in zip(starts, ends):
+        members = order[s:e]
+        ulo = {a: int(wins[a][0][members].min()) for a in chunked}
+        uhi = {a: int(wins[a][1][members].max()) for a in chunked}
+        window = data[tuple(slice(ulo[a], uhi[a]) if a in chunked else slice(None) for a in range(ng))]
+        # each point's weights along each chunked axis, on the union window
+        wts = []
+        for j in members:
+            per_axis = []
+            for a in chunked:
+                w = np.zeros(uhi[a] - ulo[a])
+                off = wins[a][0][j] - ulo[a]
+                w[off:off + len(wins[a][2][j])] = wins[a][2][j]
+                per_axis.append(w)
+            wts.append(per_axis)
+        pts_u = safe[members][:, unchunked]
+
+        def block(values, wts=wts, pts_u=pts_u):
+            v = np.asarray(values)
+            if unchunked:   # the exact spline along the unchunked axes: (Pg, window_c..., carried...)
+                v = np.moveaxis(v, unchunked, list(range(len(unchunked))))
+                u = _raw(gu, v, pts_u, opts)
+            else:
+                u = None
+            out = np.empty((len(wts),) + v.shape[ng:], dtype=dtype)
+            for j, per_axis in enumerate(wts):
+                r = u[j] if u is not None else v
+                for w in per_axis:   # contract the chunked axes one by one (each now first)
+                    r = np.tensordot(w, r, axes=(0, 0))
+                out[j] = r
+            return out
+
+        parts.append(da.blockwise(block, "Z" + bi, window, gi + bi, new_axes={"Z": len(members)}, concatenate=True,
+                                  dtype=dtype, meta=np.empty((0,) * (1 + nb))))
+    out = da.concatenate(parts, axis=0)
+    inverse = np.empty(P, dtype=np.intp)
+    inverse[order] = np.arange(P)
+    if not np.array_equal(order, np.arange(P)):
+        out = out[inverse]
+    _apply_fill(np.empty((P, 0)), grid, xi, opts, dims)   # bounds_error before any reading
+    nan = np.isnan(xi).any(axis=1)
+    return out.map_blocks(_fill_block, grid=grid, xi=np.where(nan[:, None], np.nan, xi), opts=opts, dims=dims,
+                          nan=nan, dtype=dtype)

@@ -362,8 +362,6 @@ def _interp_dataset(obj, coords, method, assume_sorted, kwargs, method_non_numer
     if method not in METHODS:
         raise ValueError(f"{method} is not a valid interpolator for splinelab's interp; "
                          f"the methods are {list(METHODS)}")
-    if mode is None and tol is not None:
-        raise ValueError("tol= goes with mode= (the certified prefilter of map_coordinates)")
     indexers = _validated(obj, coords)
     if not assume_sorted:
         # xarray's sortby, skipped where a coordinate is increasing already
@@ -480,7 +478,10 @@ mode : str, optional
     only; ``fill_value`` does not apply (the mode decides outside).
 tol : float, optional
     With ``mode=``: the tolerance of the certified truncated prefilter
-    (:func:`splinelab.map_coordinates`' ``tol``).
+    (:func:`splinelab.map_coordinates`' ``tol``). For "cubic" and
+    "quintic" on dask data chunked along an interpolated dimension: the
+    certified bound, relative to max|data|, on the distance of the result
+    read from windows from the whole-grid spline (default 1e-14).
 **coords_kwargs
     The keyword form of ``coords``.
 
