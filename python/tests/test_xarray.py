@@ -78,8 +78,10 @@ def rel(a, b):
     a, b = np.asarray(a), np.asarray(b)
     assert (np.isnan(a) == np.isnan(b)).all()
     ok = ~np.isnan(b)
-    scale = np.abs(b[ok]).max() if ok.any() else 1.0
-    return float(np.abs(a[ok] - b[ok]).max() / scale) if ok.any() else 0.0
+    if not ok.any():
+        return 0.0
+    scale = np.abs(b[ok]).max() or 1.0   # all zero: absolute
+    return float(np.abs(a[ok] - b[ok]).max() / scale)
 
 
 def targets(da, seed=0):
