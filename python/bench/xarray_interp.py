@@ -111,16 +111,19 @@ def child(lib, name):
     t1 = time.perf_counter()
     peak = rss_kib("VmHWM")
     warm = None
-    if name == "11342" and lib == "splinelab":   # again, imports done: the median of 5
+    warm_peak = None
+    if lib == "splinelab":   # again, imports done: the median of 5, and their peak
         times = []
+        again = reset_peak()
         for _ in range(5):
             s = time.perf_counter()
             call()
             times.append(time.perf_counter() - s)
         warm = float(np.median(times))
+        warm_peak = (rss_kib("VmHWM") - again) * 1024
     np.save(f"/tmp/xarray_interp_{lib}_{name}.npy", values)
     row = {"lib": lib, "case": name, "seconds": t1 - t0, "peak_above_bytes": (peak - before) * 1024,
-           "data_bytes": int(nbytes), "warm_seconds": warm}
+           "data_bytes": int(nbytes), "warm_seconds": warm, "warm_peak_above_bytes": warm_peak}
     if read is not None:
         row["chunk_reads"] = read
         row["chunks"] = 40
@@ -137,9 +140,10 @@ def main():
         print(json.dumps(child(*a.child)))
         return
     libs = ["splinelab", "xarray"] if a.lib == "both" else [a.lib]
-    print("seconds: the first call in a fresh process (imports included); warm: the median of 5 more")
-    print(f"{'case':>6} {'lib':>9} {'seconds':>9} {'warm':>7} {'peak MB':>9} {'data MB':>9} {'reads':>7} "
-          f"{'vs splinelab':>12}")
+    print("seconds, peak: the first call in a fresh process (lazy imports included); warm: the median of 5 "
+          "more, and their peak")
+    print(f"{'case':>6} {'lib':>9} {'seconds':>9} {'warm':>7} {'peak MB':>9} {'warm MB':>8} {'data MB':>9} "
+          f"{'reads':>7} {'vs splinelab':>12}")
     for name in a.cases:
         if name == "6799":
             write_6799()
@@ -162,7 +166,8 @@ def main():
                 dist = f"{np.abs(theirs - ours).max():12.1e}"
             reads = f"{row['chunk_reads']}/{row['chunks']}" if "chunk_reads" in row else ""
             warm = "" if row["warm_seconds"] is None else f"{row['warm_seconds']:7.3f}"
-            print(f"{name:>6} {lib:>9} {row['seconds']:9.3f} {warm:>7} {row['peak_above_bytes'] / 1e6:9.1f} "
+            wpeak = "" if row["warm_peak_above_bytes"] is None else f"{row['warm_peak_above_bytes'] / 1e6:8.1f}"
+            print(f"{name:>6} {lib:>9} {row['seconds']:9.3f} {warm:>7} {row['peak_above_bytes'] / 1e6:9.1f} {wpeak:>8} "
                   f"{row['data_bytes'] / 1e6:9.1f} {reads:>7} {dist}")
 
 

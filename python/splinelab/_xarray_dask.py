@@ -30,6 +30,7 @@ of the carried axes:
 
 from __future__ import annotations
 
+import itertools
 import string
 
 import numpy as np
@@ -171,7 +172,8 @@ def _windows(data, grid, xi, opts, dims):
             return out
 
         part = da.blockwise(block, "Z" + bi, window, gi + bi, new_axes={"Z": len(members)}, concatenate=True,
-                            dtype=_dtype(data, opts), meta=np.empty((0,) * (1 + nb)))
+                            dtype=_dtype(data, opts), meta=np.empty((0,) * (1 + nb)),
+                            name=_name("splinelab-window", window, pts, opts))
         parts.append(part)
     out = da.concatenate(parts, axis=0)
     inverse = np.empty(P, dtype=np.intp)
@@ -179,6 +181,13 @@ def _windows(data, grid, xi, opts, dims):
     if not np.array_equal(order, np.arange(P)):
         out = out[inverse]
     return _refill(out, grid, xi, opts, dims)
+
+
+def _name(prefix, window, points, opts, *more):
+    """A task name from what the task computes (dask would otherwise
+    tokenize the closure by pickling it, milliseconds a group)."""
+    from dask.base import tokenize
+    return f"{prefix}-{tokenize(window.name, points, opts.method, opts.below, opts.above, opts.tol, *more)}"
 
 
 def _dtype(data, opts):
@@ -401,7 +410,8 @@ def _spline_windows(data, grid, xi, opts, dims, chunked, unchunked):
             return out
 
         parts.append(da.blockwise(block, "Z" + bi, window, gi + bi, new_axes={"Z": len(members)}, concatenate=True,
-                                  dtype=dtype, meta=np.empty((0,) * (1 + nb))))
+                                  dtype=dtype, meta=np.empty((0,) * (1 + nb)),
+                                  name=_name("splinelab-spline-window", window, pts_u, opts, *itertools.chain(*wts))))
     out = da.concatenate(parts, axis=0)
     inverse = np.empty(P, dtype=np.intp)
     inverse[order] = np.arange(P)
