@@ -5,7 +5,8 @@ RegularGridInterpolator: the exact spline, and scipy's iterative one
 ``splinelab.RegularGridInterpolator`` is scipy's, with the cubic and quintic
 tensor-product splines computed exactly: one banded solve per grid line along
 each axis. scipy assembles the whole collocation matrix and solves it with
-``gcrotmk``, which stops at ``atol=1e-6``. Left: on a random non-uniform 3-D
+``gcrotmk``, which stops once the residual's norm over the whole grid is below
+``max(1e-5 |b|, 1e-6)``. Left: on a random non-uniform 3-D
 grid, how far each is from the exact not-a-knot spline (computed
 independently, ``make_interp_spline`` along each axis in turn, evaluated by
 ``NdBSpline``), and how far each misses its own data at the nodes. Right: on a

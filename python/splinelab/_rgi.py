@@ -246,8 +246,9 @@ class RegularGridInterpolator:
     1.17): the same arguments, defaults, attributes, results and exceptions,
     except that "slinear", "cubic" and "quintic" give the **exact**
     not-a-knot tensor-product spline (scipy's knots, ``_not_a_knot`` per
-    axis) where scipy solves for its coefficients iteratively (``gcrotmk``
-    at ``atol=1e-6``): here one banded LU solve per grid line along each axis
+    axis) where scipy solves for its coefficients iteratively (``gcrotmk``,
+    stopping at a residual norm of ``max(1e-5 |b|, 1e-6)`` over the whole
+    grid): here one banded LU solve per grid line along each axis
     in turn (with partial pivoting, which the not-a-knot rows need), in
     O(N k) time and one coefficient array of memory. The spline meets the
     data at every node to :attr:`error_bound`.
