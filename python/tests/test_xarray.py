@@ -382,6 +382,25 @@ def test_dask_result_is_lazy_and_equals_the_in_memory_one(cx, cy, ct, method, po
     assert rel(lazy.values, ref.values) <= 1e-13
 
 
+def test_dask_dataset_mode_and_whole_lines_equal_the_in_memory_ones(monkeypatch):
+    """The other dask routes: a Dataset (variables with and without the
+    interpolated dims), ``mode=`` (whole lines along the chunked axes), and
+    the fallback without windows where every interpolated axis is chunked."""
+    from splinelab import _xarray_dask
+    da = cube(True)
+    ds = xr.Dataset({"temp": da, "flat": ("t", [1.0, 2.0, 3.0]), "ints": ("x", np.arange(13))})
+    kw = dict(x=[0.5, 2.0, 4.5], y=xr.DataArray([1.0, -1.5], dims="q"))
+    lazy, ref = ds.chunk(x=4, t=2).splinelab.interp(**kw), ds.splinelab.interp(**kw)
+    assert isinstance(lazy.temp.data, da_mod.Array)
+    xr.testing.assert_allclose(lazy.compute(), ref, rtol=1e-13)
+    pts = dict(x=xr.DataArray([0.3, 5.9], dims="p"), y=xr.DataArray([-1.9, 2.7], dims="p"))
+    lazy = da.chunk(x=5, y=4).splinelab.interp(mode="mirror", **pts)
+    assert rel(lazy.values, da.splinelab.interp(mode="mirror", **pts).values) <= 1e-13
+    monkeypatch.setattr(_xarray_dask, "_WINDOWS", False)
+    lazy = da.chunk(x=5, y=4).splinelab.interp(**pts)
+    assert rel(lazy.values, da.splinelab.interp(**pts).values) <= 1e-13
+
+
 class CountingArray:
     """An array-like that counts the elements its ``__getitem__`` reads, by input chunk."""
 
