@@ -31,7 +31,7 @@ except ImportError as _err:  # pragma: no cover - exercised in a subprocess by t
                       "pip install splinelab[xarray]") from _err
 
 import itertools
-from collections.abc import Hashable, Mapping, Sequence
+from collections.abc import Mapping, Sequence
 
 import numpy as np
 
