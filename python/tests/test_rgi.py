@@ -464,7 +464,7 @@ def _small_case(data, kinds=("slinear", "cubic", "quintic")):
 @settings(max_examples=40, deadline=None)
 @given(data=st.data())
 def test_interpolant_meets_the_data_at_every_node_to_its_error_bound(data):
-    method, k, grid, values, _ = _small_case(data)
+    method, _, grid, values, _ = _small_case(data)
     ip = splinelab.RegularGridInterpolator(grid, values, method=method)
     err = np.max(np.abs(ip(nodes(grid)) - values.ravel()))
     assert err <= ip.error_bound, (err, ip.error_bound)
@@ -492,7 +492,7 @@ def test_coefficients_agree_with_a_dense_kronecker_solve(data):
 @settings(max_examples=30, deadline=None)
 @given(data=st.data())
 def test_reversing_an_axis_reverses_the_interpolant(data):
-    method, k, grid, values, rng = _small_case(data, ("linear", "nearest", "slinear", "cubic", "quintic", "pchip"))
+    method, _, grid, values, rng = _small_case(data, ("linear", "nearest", "slinear", "cubic", "quintic", "pchip"))
     axis = data.draw(st.integers(0, len(grid) - 1), label="axis")
     xi = points_in(rng, grid, 40)
     ip = splinelab.RegularGridInterpolator(grid, values, method=method)
@@ -517,7 +517,7 @@ def test_reversing_an_axis_reverses_the_interpolant(data):
 @settings(max_examples=30, deadline=None)
 @given(data=st.data())
 def test_float32_and_float64_input_agree_where_float32_holds_the_values(data):
-    method, k, grid, values, rng = _small_case(data, ("linear", "nearest", "slinear", "cubic", "quintic", "pchip"))
+    method, _, grid, values, rng = _small_case(data, ("linear", "nearest", "slinear", "cubic", "quintic", "pchip"))
     v32 = values.astype(np.float32)
     v64 = v32.astype(np.float64)  # the same numbers
     xi = points_in(rng, grid, 40, margin=0.1)
