@@ -3,9 +3,8 @@
 The data arrives with the interpolated (grid) axes first, any vectorised
 axes next and the carried axes last; the result is a lazy dask array of the
 points' shape followed by the carried axes. No interpolated axis is
-rechunked into one chunk unless no window is certified (``mode=``, and the
-not-a-knot splines without scipy), and then only those axes, block by block
-of the carried axes:
+rechunked into one chunk unless no window is certified (``mode=``), and
+then only those axes, block by block of the carried axes:
 
 - every grid axis in one chunk: each block of the carried axes is
   interpolated on its own (``blockwise``; each output block reads its input
@@ -16,14 +15,15 @@ of the carried axes:
   each group reads only the union of its points' windows;
 - "cubic", "quintic" with a chunked grid axis: along each chunked axis a
   point's value is ``sum_i w_i(q) y_i``, the cardinal weights computed from
-  the coordinates alone (one banded solve); each point reads the window
+  the coordinates alone (one banded solve, the extension's
+  ``grid_cardinal_weights``); each point reads the window
   outside which its weights sum to at most the tolerance, so the result is
   within ``tol * max|data|`` of the whole-grid spline (certified by the
   weights themselves, up to the rounding of their solve), and the unchunked
-  axes are interpolated exactly per window. Without scipy (for the weights)
-  the separable route instead: the unchunked axes first, block by block
-  (each block read once), then each point's whole lines along the chunked
-  axes; where every grid axis is chunked, whole lines per carried block.
+  axes are interpolated exactly per window. (``_WINDOWS = False`` keeps the
+  separable route testable: the unchunked axes first, block by block, each
+  block read once, then each point's whole lines along the chunked axes;
+  where every grid axis is chunked, whole lines per carried block.)
 - ``mode=`` with a chunked grid axis: whole lines along the grid axes per
   block of the carried axes.
 """
@@ -34,6 +34,8 @@ import itertools
 import string
 
 import numpy as np
+
+from . import _splinelab as _ext
 
 
 def is_dask(data) -> bool:
@@ -65,21 +67,11 @@ def interp(data, grid, new_f, rdims, vdims, pdims, nb, opts, dims):
 
 
 #: The not-a-knot splines on chunked axes read certified windows (below);
-#: False: the separable route that reads every chunk once (the fallback
-#: without scipy, kept testable).
+#: False: the separable route that reads every chunk once (kept testable).
 _WINDOWS = True
 #: The default of ``tol`` for the windows: the certified bound on the
 #: distance from the whole-grid spline, relative to max|data|.
 WINDOW_TOL = 1e-14
-
-
-def _have_scipy():
-    try:
-        import scipy.interpolate  # noqa: F401
-        import scipy.linalg  # noqa: F401
-    except ImportError:  # pragma: no cover
-        return False
-    return True
 
 
 def _letters(n, start=0):
@@ -95,7 +87,7 @@ def _interp_points(data, grid, xi, opts, dims):
     if opts.mode is None and opts.method in ("linear", "nearest", "slinear", "pchip"):
         return _windows(data, grid, xi, opts, dims)
     unchunked = [a for a in range(ng) if a not in chunked]
-    if opts.mode is None and _WINDOWS and _have_scipy():
+    if opts.mode is None and _WINDOWS:
         return _spline_windows(data, grid, xi, opts, dims, chunked, unchunked)
     if opts.mode is None and unchunked:
         return _separable(data, grid, xi, opts, dims, chunked, unchunked)
@@ -269,23 +261,12 @@ def cardinal_weights(x, k, q):
     pieces extended outside), for every ``y``.
 
     ``W = B(q) A^{-1}`` with ``A`` the collocation matrix (banded, bandwidth
-    ``k``) and ``B(q)`` the B-spline values at ``q``: one banded solve with
-    ``A^T`` (LAPACK ``gbsv``, partial pivoting) for all points. Returns
-    ``(len(q), len(x))``.
+    ``k``) and ``B(q)`` the B-spline values at ``q``: row ``j`` is one banded
+    solve with ``A^T`` (the extension's ``grid_cardinal_weights``, the LU of
+    the grid spline's own solves). Returns ``(len(q), len(x))``.
     """
-    from scipy.interpolate import BSpline, make_interp_spline
-    from scipy.linalg import solve_banded
-    n = len(x)
-    t = make_interp_spline(x, np.zeros(n), k=k).t
-    A = BSpline.design_matrix(x, t, k).tocoo()
-    off = A.col - A.row
-    lower, upper = int(max(0, -off.min())), int(max(0, off.max()))
-    # A^T in LAPACK's banded storage: (A^T)[i, j] = A[j, i], upper bandwidth `lower`
-    ab = np.zeros((lower + upper + 1, n))
-    i, j = A.col, A.row          # row, column in A^T
-    ab[lower + i - j, j] = A.data
-    Bq = BSpline.design_matrix(q, t, k, extrapolate=True).toarray()   # (P, n)
-    return solve_banded((lower, upper), ab, Bq.T, check_finite=False).T
+    return _ext.grid_cardinal_weights(np.ascontiguousarray(x, dtype=np.float64), int(k),
+                                      np.ascontiguousarray(q, dtype=np.float64))
 
 
 def _tails(w):

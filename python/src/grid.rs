@@ -302,3 +302,36 @@ pub fn grid_pchip<'py>(
 ) -> PyResult<Bound<'py, PyAny>> {
     eval_samples(py, grid, values, xi, threads, OnSamples::Pchip)
 }
+
+/// The cardinal weights of the not-a-knot spline of odd `degree` on the
+/// ascending nodes `x` at the points `q`: row `p` is `w(q_p) = A^{−T} b(q_p)`
+/// (`gridded::cardinal`), so `W @ y` is the spline through `(x, y)` at `q`
+/// (the end pieces continued outside). `len(q) × len(x)` float64.
+#[pyfunction]
+#[pyo3(signature = (x, degree, q, threads=None))]
+pub fn grid_cardinal_weights<'py>(
+    py: Python<'py>,
+    x: PyReadonlyArray1<'py, f64>,
+    degree: usize,
+    q: PyReadonlyArray1<'py, f64>,
+    threads: Option<usize>,
+) -> PyResult<Bound<'py, PyAny>> {
+    use rayon::prelude::*;
+    let axis = gridded::CardinalAxis::new(x.as_array().to_vec(), degree, 0).map_err(grid_error)?;
+    let q = q.as_array();
+    let n = axis.axis().len();
+    let out = crate::alloc::zeros::<f64>(py, &[q.len(), n])?;
+    {
+        let mut view = out.readwrite();
+        let rows = view.as_slice_mut()?;
+        let q: Vec<f64> = q.to_vec();
+        py.detach(|| {
+            run_with(threads, || {
+                rows.par_chunks_mut(n.max(1))
+                    .zip(q.par_iter())
+                    .for_each(|(row, at)| row.copy_from_slice(&axis.full_weights(at)));
+            })
+        })?;
+    }
+    Ok(out.into_any())
+}

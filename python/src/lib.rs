@@ -55,6 +55,7 @@ fn _splinelab(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<local::LocalSplineF64>()?;
     m.add_class::<local::LocalSplineF32>()?;
     m.add_class::<grid::GridSpline>()?;
+    m.add_function(wrap_pyfunction!(grid::grid_cardinal_weights, m)?)?;
     m.add_function(wrap_pyfunction!(grid::grid_linear, m)?)?;
     m.add_function(wrap_pyfunction!(grid::grid_pchip, m)?)?;
     m.add_function(wrap_pyfunction!(resample::resample, m)?)?;

@@ -296,7 +296,10 @@ fn gamma(n: usize, u: f64) -> f64 {
 }
 
 /// The collocation matrix `(B_j(x_i))` of an axis, factored.
-fn collocation_lu<T: Real>(axis: &GridAxis<T>, a: usize) -> Result<BandedLu<T>, GriddedError> {
+pub(crate) fn collocation_lu<T: Real>(
+    axis: &GridAxis<T>,
+    a: usize,
+) -> Result<BandedLu<T>, GriddedError> {
     let (n, k) = (axis.len(), axis.degree());
     let mut rows: Vec<(usize, [T; MAX_GRID_DEGREE + 1])> = Vec::with_capacity(n);
     let (mut kl, mut ku) = (0usize, 0usize);

@@ -13,7 +13,8 @@
 //!
 //! The objects, one per module: [`axis`] (nodes, not-a-knot knots, cells
 //! and B-spline weights), [`banded_lu`] (the 1-D solves), [`grid_spline`]
-//! (the coefficients and their error bound), [`evaluate`] (the tensor
+//! (the coefficients and their error bound), [`cardinal`] (certified
+//! windows: the samples a value needs, for chunked data), [`evaluate`] (the tensor
 //! product at points), [`pchip`], [`error`].
 //!
 //! Against [`crate::ndimage`] on a uniform grid: the same B-splines, but
@@ -23,6 +24,7 @@
 
 pub mod axis;
 pub mod banded_lu;
+pub mod cardinal;
 pub mod error;
 pub mod evaluate;
 pub mod grid_spline;
@@ -32,6 +34,7 @@ mod tests;
 
 pub use axis::GridAxis;
 pub use banded_lu::BandedLu;
+pub use cardinal::{CardinalAxis, CardinalWeights, point_windows, windowed_value};
 pub use error::GriddedError;
 pub use evaluate::tensor_eval;
 pub use grid_spline::GridSpline;

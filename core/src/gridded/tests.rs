@@ -297,3 +297,48 @@ proptest! {
         prop_assert!((a - b).abs() <= bound + sf.error_bound(), "{} vs {}", a, b);
     }
 }
+
+/// The windowed value against the whole spline: within `tol·max|v|` plus
+/// rounding, windows narrower than the axis, and the whole window exact.
+#[test]
+fn cardinal_windows_certify_the_truncation() {
+    let grid = vec![nodes(200, 41, 0.3), nodes(150, 42, 0.3)];
+    let v = values(&grid, 1, |x, _| {
+        (0.7 * x[0]).sin() * (0.3 * x[1]).cos() + 0.01 * x[0]
+    });
+    let vmax = v.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    for k in [3usize, 5] {
+        let s = GridSpline::interpolate(grid.clone(), v.view(), k).unwrap();
+        let axes: Vec<CardinalAxis<f64>> = grid
+            .iter()
+            .enumerate()
+            .map(|(a, g)| CardinalAxis::new(g.clone(), k, a).unwrap())
+            .collect();
+        for tol in [1e-4, 1e-8, 1e-12] {
+            for t in 0..15 {
+                let x = [
+                    grid[0][0] + 2.37 * t as f64 + 0.11,
+                    grid[1][0] + 1.91 * t as f64 + 0.05,
+                ];
+                let w = point_windows(&axes, &x, tol);
+                let got = windowed_value(&w, |j| v[[j[0], j[1], 0]]);
+                let want = s.eval(&x, &[]).unwrap()[0];
+                let rounding = 1e3 * s.error_bound();
+                assert!(
+                    (got - want).abs() <= tol * vmax + rounding,
+                    "k={k} tol={tol}: {got} vs {want}"
+                );
+                let width = w[0].weights.len();
+                assert!(width < 200, "k={k} tol={tol}: window {width} of 200");
+                if tol == 1e-4 {
+                    assert!(width < 40, "k={k}: window {width} at 1e-4");
+                }
+            }
+        }
+        // tol = 0 keeps every sample: the exact spline, to rounding.
+        let x = [grid[0][7] + 0.1, grid[1][9] + 0.2];
+        let w = point_windows(&axes, &x, 0.0);
+        let got = windowed_value(&w, |j| v[[j[0], j[1], 0]]);
+        assert!((got - s.eval(&x, &[]).unwrap()[0]).abs() <= 1e3 * s.error_bound());
+    }
+}
