@@ -107,6 +107,20 @@ impl<T: Real> CardinalAxis<T> {
 /// The windows of one point on every axis for a total truncation of at
 /// most `tol · max|v|` (module doc): the per-axis budgets from the weights'
 /// norms, then the trimmed weights.
+///
+/// ```
+/// use splinelab::gridded::{CardinalAxis, GridSpline, point_windows, windowed_value};
+/// use ndarray::Array2;
+/// // 400 samples of a cubic spline; its value at 123.4 from ~20 of them.
+/// let x: Vec<f64> = (0..400).map(|i| i as f64 + 0.3 * ((i * 7) % 5) as f64).collect();
+/// let v = Array2::from_shape_fn((400, 1), |(i, _)| (0.1 * x[i]).sin());
+/// let axis = CardinalAxis::new(x.clone(), 3, 0).unwrap();
+/// let w = point_windows(&[axis], &[123.4], 1e-10);
+/// assert!(w[0].weights.len() < 40);
+/// let near = windowed_value(&w, |j| v[[j[0], 0]]);
+/// let s = GridSpline::interpolate(vec![x], v.view().into_dyn(), 3).unwrap();
+/// assert!((near - s.eval(&[123.4], &[]).unwrap()[0]).abs() <= 1e-10 + s.error_bound());
+/// ```
 pub fn point_windows<T: Real>(
     axes: &[CardinalAxis<T>],
     x: &[T],

@@ -27,6 +27,19 @@ const POINTS_PER_TASK: usize = 256;
 /// `out[p·m + b]`: the recursive PCHIP of the `m = batch` interleaved value
 /// arrays `values` (C order, grid × `m`) at the points `x` (`n × d`).
 /// `axes` carry the nodes (any degree: only nodes and cells are used).
+///
+/// ```
+/// use splinelab::gridded::{GridAxis, pchip_eval};
+/// // Monotone data stays monotone, and PCHIP meets the data at the nodes.
+/// let x = vec![0.0, 1.0, 1.5, 4.0, 5.0];
+/// let y = [0.0, 0.1, 3.0, 3.1, 9.0];
+/// let axes = [GridAxis::not_a_knot(x, 1, 0).unwrap()];
+/// let at: Vec<f64> = (0..=50).map(|i| 0.1 * i as f64).collect();
+/// let mut out = vec![0.0; at.len()];
+/// pchip_eval(&axes, &y, 1, &at, &mut out);
+/// assert!(out.windows(2).all(|p| p[1] >= p[0]));
+/// assert!((out[15] - 3.0).abs() < 1e-15 && (out[40] - 3.1).abs() < 1e-15);
+/// ```
 pub fn pchip_eval<T: Real, S: Sample<T>>(
     axes: &[GridAxis<T>],
     values: &[S],
