@@ -48,11 +48,64 @@ def engine_args(mode, d, prefilter, exact_edges):
     return mode, "fold", 0
 
 
+#: The engine's pricing constants in nanoseconds (``splinelab::ndimage::
+#: local::route``): the local route's set-up per call, per point located and
+#: per point evaluated, per sample read and per convolution tap; the global
+#: route's prefilter per sample and axis and its copy per sample.
+_COST = _ext.LOCAL_ROUTE_COST
+
+#: The local route's certified half-width per ``(degree, tol)``, asked of
+#: the engine once (:func:`may_be_local`).
+_HALF_WIDTH = {}
+
+
+def may_be_local(shape, k, d, prefilter, tol):
+    """Whether the local route can cost less than the global one for ``k``
+    points on an array of ``shape`` (degree ``d``, ``tol`` as the call's):
+    its floor below the global route's prefilter (or copy) of the whole
+    array. The floor (the engine's ``floor_ns``): the set-up, every point
+    located and, where there is one, the cheapest box evaluated (a tile of
+    edge 1, whose samples reach the certified half-width ``n`` beyond it,
+    or without a prefilter one point's support). False decides the global
+    route with no call into the engine (the engine's first test in
+    ``LocalPlan::new_if_local``, the same formula from the same constants,
+    :data:`_COST`; its price of the local route never falls below it).
+    Arithmetic on the shape and the count, and ``n`` asked of the engine
+    once per ``(d, tol)``."""
+    filtered = prefilter and d >= 2
+    global_ns = math.prod(shape) * ((_COST["global"] * len(shape) if filtered else 0.0) + _COST["copy"])
+    # The set-up and locating alone first: no half-width needed where they decide.
+    return _COST["call"] + k * _COST["locate"] < global_ns and floor_ns(len(shape), k, d, filtered, tol) < global_ns
+
+
+def floor_ns(ndim, k, d, filtered, tol):
+    """The local route's floor for ``k`` points (:func:`may_be_local`; the
+    engine's ``route::floor_ns``, in its order of operations)."""
+    c = _COST
+    floor = c["call"] + k * c["locate"]
+    if not k:
+        return floor
+    if not filtered:
+        return floor + c["point"] + c["read"] * float(d + 1) ** ndim
+    key = (d, tol)
+    n = _HALF_WIDTH.get(key)
+    if n is None:
+        n = _HALF_WIDTH.setdefault(key, _ext.local_half_width(d, tol))
+    # route::tile_ns(ndim, d, n, 1).
+    b = float(1 + d)
+    e = b + 2.0 * n
+    outputs = sum(e ** (ndim - j) * b ** j for j in range(1, ndim + 1))
+    tile = c["tap"] * float(2 * n + 1) * outputs + c["read"] * e ** ndim
+    return floor + c["point"] + tile
+
+
 def try_map(a, flat, d, mode, cv, prefilter, tol, threads, exact_edges, deriv, nan_policy):
     """map_coordinates of the real float64/float32 array ``a`` at ``flat``
     (``(ndim, k)``) on the local route, or None where the global route is
     cheaper (or forced by :data:`ROUTE`)."""
     if ROUTE == "global" or a.dtype not in _FLOATS or a.ndim == 0:
+        return None
+    if ROUTE == "auto" and not may_be_local(a.shape, np.shape(flat)[1], d, prefilter, tol):
         return None
     engine_mode, rule, pad = engine_args(mode, d, prefilter, exact_edges)
     run = _ext.local_map_f64 if a.dtype == np.float64 else _ext.local_map_f32

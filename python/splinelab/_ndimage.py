@@ -815,8 +815,11 @@ def _map_points(a, points, d, mode, cv, prefilter, tol, threads, exact_edges, de
     reads less than the global one (:mod:`splinelab._local`; float64
     arithmetic only, and float32 samples only for float32 results, which
     it rounds once as the global route does)."""
-    flat = _local_candidates(points)
-    if flat is not None and not work.f32 and (a.dtype == np.float64 or work.out32):
+    flat = None
+    if not work.f32 and (a.dtype == np.float64 or work.out32) and (
+            _local.ROUTE == "local" or _local.may_be_local(a.shape, points.count(), d, prefilter, tol)):
+        flat = _local_candidates(points)
+    if flat is not None:
         local = _local.try_map(a, flat, d, mode, cv, prefilter, tol, threads, exact_edges, deriv, nan_policy)
         if local is not None:
             return local.astype(work.dtype, copy=False)

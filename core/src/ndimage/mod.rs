@@ -15,6 +15,8 @@
 //!   and fold points;
 //! - [`line_filter`]: the prefilter of one line under a mode, exact
 //!   (recursive) or truncated (certified convolution), and its growth bound;
+//!   [`filter_cache`]: those filters kept between calls (their poles and
+//!   widths are computed in MPFR);
 //! - [`nd_prefilter`]: `spline_filter1d` / `spline_filter` over an
 //!   `ndarray`, lines in parallel, strided axes in vector strips;
 //! - [`block_filter`]: one long line in parallel blocks whose overlap is the
@@ -51,6 +53,7 @@
 pub mod alloc;
 pub mod block_filter;
 pub mod error;
+pub mod filter_cache;
 pub mod interpolant;
 mod lanes;
 pub mod line_filter;
