@@ -553,6 +553,8 @@ def _coordinates(coordinates, ndim):
 
 
 def _cval(cval, complex_input):
+    if type(cval) is float and not complex_input:  # the common case, without the ABC checks
+        return cval
     if complex_input:
         if isinstance(cval, (bool, np.bool_)) or not isinstance(cval, numbers.Number):
             raise TypeError(f"cval must be a number, got {type(cval).__name__}")
@@ -703,7 +705,14 @@ class _Grid(_Points):
             fill = 0.0 if deriv and any(deriv) else cv
             grid = values.reshape([len(x) for x in self.flat])
             for axis, (x, n) in enumerate(zip(self.flat, a.shape)):
-                outside = np.flatnonzero((np.asarray(x) < 0) | (np.asarray(x) > n - 1))
+                x = np.asarray(x)
+                # An axis' coordinates are monotone in the index (zoom's and
+                # shift's arithmetic, k * z + s and its variants: each
+                # rounding is monotone), so its ends bound it: no mask of
+                # an axis that lies inside (a NaN end fails the test).
+                if x.size and 0 <= x[0] <= n - 1 and 0 <= x[-1] <= n - 1:
+                    continue
+                outside = np.flatnonzero((x < 0) | (x > n - 1))
                 if outside.size:
                     grid[(slice(None),) * axis + (outside,)] = fill
         return values

@@ -30,6 +30,8 @@ from ._validate import DEFAULT_TOL, _degree, _int, _nan_policy, _threads, _tol_f
 
 def _per_axis(value, ndim, what):
     """scipy's ``_normalize_sequence``: a number for every axis, or one each."""
+    if type(value) is float or type(value) is int:  # the common case, without the ABC checks
+        return [float(value)] * ndim
     if not isinstance(value, str) and np.iterable(value):
         values = list(value)
         if len(values) != ndim:
@@ -482,6 +484,34 @@ def rotate(input, angle, axes=(1, 0), reshape=True, output=None, order=3, mode="
     return full
 
 
+def _mapped_points(mapping, extra, kwargs, ndim, out_shape):
+    """``mapping`` called at every output index (a tuple of ints, C order),
+    its coordinates as an array ``(ndim, prod(out_shape))``: the returns
+    collected, then converted by numpy at once; where that conversion
+    fails or gives another shape, the returns are stored one by one, which
+    names the first that is not ``ndim`` numbers."""
+    rows = []
+    append = rows.append
+    for index in itertools.product(*[range(n) for n in out_shape]):
+        p = mapping(index, *extra, **kwargs)
+        if len(p) != ndim:
+            raise MappingError(f"mapping returned {len(p)} coordinates at {index}, expected {ndim}")
+        append(p)
+    try:
+        points = np.array(rows, dtype=np.float64)
+        if points.shape == (len(rows), ndim):
+            return np.ascontiguousarray(points.T).reshape(ndim, len(rows))
+    except (TypeError, ValueError):
+        pass
+    points = np.empty((ndim, len(rows)))
+    for k, (p, index) in enumerate(zip(rows, itertools.product(*[range(n) for n in out_shape]))):
+        try:
+            points[:, k] = p
+        except (TypeError, ValueError) as e:
+            raise MappingError(f"mapping returned {p!r} at {index}: not {ndim} numbers ({e})") from None
+    return points
+
+
 @fill
 def geometric_transform(input, mapping, output_shape=None, output=None, order=3, mode="constant", cval=0.0,
                         prefilter=True, extra_arguments=(), extra_keywords=None, *, vectorized=False,
@@ -568,15 +598,7 @@ def geometric_transform(input, mapping, output_shape=None, output=None, order=3,
             raise MappingError(f"mapping returned shape {points.shape}, expected {(a.ndim, *out_shape)}")
         points = points.reshape(a.ndim, -1)
     else:
-        points = np.empty((a.ndim, math.prod(out_shape)))
-        for k, index in enumerate(np.ndindex(*out_shape)):
-            p = mapping(tuple(int(i) for i in index), *extra, **kwargs)
-            if len(p) != a.ndim:
-                raise MappingError(f"mapping returned {len(p)} coordinates at {index}, expected {a.ndim}")
-            try:
-                points[:, k] = p
-            except (TypeError, ValueError) as e:
-                raise MappingError(f"mapping returned {p!r} at {index}: not {a.ndim} numbers ({e})") from None
+        points = _mapped_points(mapping, extra, kwargs, a.ndim, out_shape)
     if spec.nan_policy == "raise" and not np.isfinite(points).all():
         raise ValueError("mapping returned a non-finite coordinate")
     return spec.at_points(a, output, out_shape, lambda _: points)

@@ -21,9 +21,12 @@ MAX_INDEX = 2**63 - 1
 def _int(value, what, lo=None, hi=None, error=ValueError):
     """``value`` as an int, refused (naming ``what``) outside ``lo..hi``
     with ``error`` (a ValueError)."""
-    if isinstance(value, bool) or not isinstance(value, numbers.Integral):
+    if type(value) is int:  # the common case, without the ABC checks
+        v = value
+    elif isinstance(value, bool) or not isinstance(value, numbers.Integral):
         raise TypeError(f"{what} must be an integer, got {type(value).__name__}")
-    v = int(value)
+    else:
+        v = int(value)
     if (lo is not None and v < lo) or (hi is not None and v > hi):
         lo_s = "" if lo is None else str(lo)
         hi_s = "" if hi is None else str(hi)
@@ -50,8 +53,8 @@ def _degree_or_order(degree, order, default=3):
 
 
 def _opt_float(value, what):
-    if value is None:
-        return None
+    if value is None or type(value) is float:
+        return value
     if isinstance(value, bool) or not isinstance(value, numbers.Real):
         raise TypeError(f"{what} must be a real number or None, got {type(value).__name__}")
     return float(value)
