@@ -139,3 +139,23 @@ def _tol_for(tol, nan_policy, degree):
             f"(the default under 'local' is {LOCAL_TOL:g}) or use nan_policy='propagate'"
         )
     return tol
+
+
+def _flag(value, what):
+    if not isinstance(value, (bool, np.bool_)):
+        raise TypeError(f"{what} must be True or False, got {type(value).__name__}")
+    return bool(value)
+
+
+def _cval(cval, complex_input):
+    """``cval`` as the engine takes it: a float for real input, a complex
+    for complex input."""
+    if type(cval) is float and not complex_input:  # the common case, without the ABC checks
+        return cval
+    if complex_input:
+        if isinstance(cval, (bool, np.bool_)) or not isinstance(cval, numbers.Number):
+            raise TypeError(f"cval must be a number, got {type(cval).__name__}")
+        return complex(cval)
+    if isinstance(cval, numbers.Complex) and not isinstance(cval, numbers.Real):
+        raise TypeError("cval is complex but the input is real")
+    return _opt_float(cval, "cval")
