@@ -17,7 +17,6 @@
 //! multiply-adds. **Error**: the coefficients' (see [`LineFilter`]) plus the
 //! rounding of `m^D` non-negative-weight terms, `≤ m D u Σ|D_i| w_i`.
 
-use super::NdimageError;
 use super::alloc::try_padded_zeros;
 use super::filter_cache;
 use super::line_filter::{LineFilter, Route};
@@ -25,8 +24,8 @@ use super::mode::Mode;
 use super::nan_policy::NanPolicy;
 use super::nd_prefilter::{check_finite, padded_coefficients, spline_filter_from};
 use super::samples::Sample;
+use super::{NdimageError, spline_order};
 use crate::scalar::Real;
-use crate::sspline::MAX_ORDER;
 use crate::sspline::bspline_uniform::{cell_derivatives_into, centred_cell};
 use ndarray::{
     ArrayBase, ArrayD, ArrayView2, ArrayViewD, ArrayViewMutD, Data, Dimension, IxDyn, Slice,
@@ -353,13 +352,10 @@ impl<T: Real + Send + Sync> Interpolant<T> {
         let Options {
             degree, mode, cval, ..
         } = opts;
-        if degree >= MAX_ORDER {
-            return Err(NdimageError::Degree(degree));
-        }
+        let order = spline_order(degree)?;
         if coeffs.is_empty() {
             return Err(NdimageError::Empty);
         }
-        let order = degree + 1;
         let pad = given_pad(mode, order);
         let (mut padded, finite) = extend_padded(coeffs, mode, &T::from_f64_exact(cval), pad)?;
         match opts.nan_policy {
@@ -566,11 +562,9 @@ fn prefilter_of<T: Real + Send + Sync>(
     mode: Mode,
     cval: f64,
 ) -> Result<(u32, Arc<LineFilter<T>>), NdimageError> {
-    if opts.degree >= MAX_ORDER {
-        return Err(NdimageError::Degree(opts.degree));
-    }
+    let order = spline_order(opts.degree)?;
     let filter = filter_cache::line_filter(opts.degree, mode, cval, opts.route, opts.nan_policy)?;
-    Ok((opts.degree + 1, filter))
+    Ok((order, filter))
 }
 
 /// The pad of given coefficients of B-spline order `order` under `mode`:

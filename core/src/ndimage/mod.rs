@@ -67,3 +67,21 @@ mod stash;
 mod window_recursion;
 
 pub use error::NdimageError;
+
+/// The B-spline order `m = degree + 1` of a spline of `degree` (scipy's
+/// `order`), refused with [`NdimageError::Degree`] at and above
+/// [`MAX_ORDER`](crate::sspline::MAX_ORDER), the first order whose poles
+/// are not computed: the one home of that conversion and its limit (the
+/// interpolant, the local route's spec and `nan_reach` ask here).
+///
+/// ```
+/// use splinelab::ndimage::{NdimageError, spline_order};
+/// assert_eq!(spline_order(3).unwrap(), 4);
+/// assert!(matches!(spline_order(200), Err(NdimageError::Degree(200))));
+/// ```
+pub fn spline_order(degree: u32) -> Result<u32, NdimageError> {
+    if degree >= crate::sspline::MAX_ORDER {
+        return Err(NdimageError::Degree(degree));
+    }
+    Ok(degree + 1)
+}

@@ -5,13 +5,12 @@
 
 use super::axis_map::AxisMap;
 use super::route::default_tol;
-use crate::ndimage::NdimageError;
 use crate::ndimage::filter_cache;
 use crate::ndimage::line_filter::{LineFilter, Route};
 use crate::ndimage::mode::Mode;
 use crate::ndimage::nan_policy::NanPolicy;
+use crate::ndimage::{NdimageError, spline_order};
 use crate::scalar::Real;
-use crate::sspline::MAX_ORDER;
 use std::sync::Arc;
 
 /// How to build the local route of a spline (the global route's
@@ -88,10 +87,7 @@ impl<T: Real> LocalSpec<T> {
         if shape.is_empty() || shape.contains(&0) {
             return Err(NdimageError::Empty);
         }
-        if opts.degree >= MAX_ORDER {
-            return Err(NdimageError::Degree(opts.degree));
-        }
-        let order = opts.degree + 1;
+        let order = spline_order(opts.degree)?;
         let filtered = opts.prefilter && opts.degree >= 2;
         let (filter, tol) = if filtered {
             let tol = match opts.tol {
