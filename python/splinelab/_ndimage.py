@@ -54,6 +54,8 @@ def _filter(input, axes, order, output, mode, tol, threads, exact_edges=False, c
         if nan_policy == "raise":
             _refuse_non_finite(a)
         # scipy: output[...] = input (numpy's conversion), no filter.
+        if target is None and a.dtype == dtype:
+            return a.copy()  # no conversion, so no warning to silence
         out = target if target is not None else np.empty(a.shape, dtype)
         with np.errstate(invalid="ignore", over="ignore"):
             np.copyto(out, a, casting="unsafe")
