@@ -126,6 +126,8 @@ def default_output(input_dtype, complex_input):
 def real_dtype(dtype):
     """The real dtype of one part of a complex dtype (itself when real)."""
     dtype = np.dtype(dtype)
+    if dtype.kind != "c":
+        return dtype
     return np.empty(0, dtype).real.dtype
 
 

@@ -9,7 +9,8 @@ import numpy as np
 
 from . import _local
 from . import _splinelab as _ext
-from ._ndimage import _coordinates, _derivative, _interp_mode, _reflection_sign
+from ._modes import interp_mode as _interp_mode
+from ._ndimage import _coordinates, _derivative, _reflection_sign
 from ._validate import _count, _degree, _nan_policy, _opt_float, _threads
 
 #: The default tile cache budget (bytes).

@@ -28,6 +28,7 @@ import math
 import numpy as np
 
 from . import _splinelab as _ext
+from ._modes import engine_args
 
 #: "auto" (the default): the route by cost; "local" / "global": forced
 #: (tests and benchmarks compare the two routes on the same call).
@@ -36,28 +37,72 @@ ROUTE = "auto"
 _FLOATS = (np.dtype(np.float64), np.dtype(np.float32))
 
 
-def engine_args(mode, d, prefilter, exact_edges):
-    """scipy's ``mode`` as the local route's ``(engine mode, point rule,
-    pad)``, as :func:`splinelab.map_coordinates` maps it on the global route."""
-    if mode == "constant":
-        return "mirror", "cval-outside", 0
-    if mode == "wrap":
-        return "mirror", "wrap", 0
-    if mode in ("nearest", "grid-constant") and prefilter and 1 < d <= 5 and not exact_edges:
-        return mode, "fold", 12
-    return mode, "fold", 0
+#: The engine's pricing constants in nanoseconds (``splinelab::ndimage::
+#: local::route``): the local route's set-up per call, per point located and
+#: per point evaluated, per sample read and per convolution tap; the global
+#: route's prefilter per sample and axis and its copy per sample.
+_COST = _ext.LOCAL_ROUTE_COST
+
+#: The local route's certified half-width per ``(degree, tol)``, asked of
+#: the engine once (:func:`may_be_local`).
+_HALF_WIDTH = {}
 
 
-def try_map(a, flat, d, mode, cv, prefilter, tol, threads, exact_edges, deriv, nan_policy):
+def may_be_local(shape, k, d, prefilter, tol):
+    """Whether the local route can cost less than the global one for ``k``
+    points on an array of ``shape`` (degree ``d``, ``tol`` as the call's):
+    its floor below the global route's prefilter (or copy) of the whole
+    array. The floor (the engine's ``floor_ns``): the set-up, every point
+    located and, where there is one, the cheapest box evaluated (a tile of
+    edge 1, whose samples reach the certified half-width ``n`` beyond it,
+    or without a prefilter one point's support). False decides the global
+    route with no call into the engine (the engine's first test in
+    ``LocalPlan::new_if_local``, the same formula from the same constants,
+    :data:`_COST`; its price of the local route never falls below it).
+    Arithmetic on the shape and the count, and ``n`` asked of the engine
+    once per ``(d, tol)``."""
+    filtered = prefilter and d >= 2
+    global_ns = math.prod(shape) * ((_COST["global"] * len(shape) if filtered else 0.0) + _COST["copy"])
+    # The set-up and locating alone first: no half-width needed where they decide.
+    return _COST["call"] + k * _COST["locate"] < global_ns and floor_ns(len(shape), k, d, filtered, tol) < global_ns
+
+
+def floor_ns(ndim, k, d, filtered, tol):
+    """The local route's floor for ``k`` points (:func:`may_be_local`; the
+    engine's ``route::floor_ns``, in its order of operations)."""
+    c = _COST
+    floor = c["call"] + k * c["locate"]
+    if not k:
+        return floor
+    if not filtered:
+        return floor + c["point"] + c["read"] * float(d + 1) ** ndim
+    key = (d, tol)
+    n = _HALF_WIDTH.get(key)
+    if n is None:
+        n = _HALF_WIDTH.setdefault(key, _ext.local_half_width(d, tol))
+    # route::tile_ns(ndim, d, n, 1).
+    b = float(1 + d)
+    e = b + 2.0 * n
+    outputs = sum(e ** (ndim - j) * b ** j for j in range(1, ndim + 1))
+    tile = c["tap"] * float(2 * n + 1) * outputs + c["read"] * e ** ndim
+    return floor + c["point"] + tile
+
+
+def try_map(a, flat, s, cv, deriv):
     """map_coordinates of the real float64/float32 array ``a`` at ``flat``
-    (``(ndim, k)``) on the local route, or None where the global route is
-    cheaper (or forced by :data:`ROUTE`)."""
+    (``(ndim, k)``) under the settings ``s`` (``cv`` its ``cval``, a float)
+    on the local route, or None where the global route is cheaper (or
+    forced by :data:`ROUTE`)."""
+    d, mode, prefilter, tol = s.degree, s.mode, s.prefilter, s.tol
     if ROUTE == "global" or a.dtype not in _FLOATS or a.ndim == 0:
         return None
-    engine_mode, rule, pad = engine_args(mode, d, prefilter, exact_edges)
+    if ROUTE == "auto" and not may_be_local(a.shape, np.shape(flat)[1], d, prefilter, tol):
+        return None
+    engine_mode, rule, pad = engine_args(mode, d, prefilter, s.exact_edges)
     run = _ext.local_map_f64 if a.dtype == np.float64 else _ext.local_map_f32
     points = np.ascontiguousarray(np.asarray(flat, dtype=np.float64))
-    return run(a, points, d, engine_mode, cv, tol, prefilter, threads, deriv, rule, nan_policy, pad, ROUTE == "local")
+    return run(a, points, d, engine_mode, cv, tol, prefilter, s.threads, deriv, rule, s.nan_policy, pad,
+               ROUTE == "local")
 
 
 _NEEDS = "an array-like needs shape, dtype, ndim and basic-slice __getitem__ (numpy, zarr, h5py and dask arrays have them)"
@@ -95,7 +140,7 @@ def source(input):
 _BOX = 10**4
 
 
-def read_whole(src, flat, d, mode, prefilter, tol, exact_edges, nan_policy):
+def read_whole(src, flat, s):
     """The array-like ``src`` read whole (one basic-slice read, as a numpy
     array) where that costs no more than its windows read a box each on
     the local route, else None: by :data:`ROUTE` ("local": never, "global":
@@ -105,12 +150,14 @@ def read_whole(src, flat, d, mode, prefilter, tol, exact_edges, nan_policy):
     array of at most that size is read whole: at most ``B + W`` samples a
     point, never more than the boxes' own bound (a dask block of
     reproject, whose points cover it, costs one ``np.asarray`` as on scipy;
-    a few points of a large array still read only their windows)."""
+    a few points of a large array still read only their windows). ``s``:
+    the call's settings (:class:`splinelab._settings.Settings`)."""
     if ROUTE == "local":
         return None
     if ROUTE == "auto":
         k = flat.shape[1]
-        if math.prod(src.shape) > k * (_BOX + _window(src.shape, d, mode, prefilter, tol, exact_edges, nan_policy)):
+        window = _window(src.shape, s.degree, s.mode, s.prefilter, s.tol, s.exact_edges, s.nan_policy)
+        if math.prod(src.shape) > k * (_BOX + window):
             return None
     return np.asarray(src[tuple(slice(None) for _ in src.shape)])
 
@@ -171,19 +218,21 @@ def _size(box):
     return math.prod(h - l for l, h in zip(*box))
 
 
-def evaluate_array_like(src, flat, d, mode, cval, prefilter, tol, threads, exact_edges, deriv, nan_policy, work):
-    """map_coordinates of an array-like on the local route, computed in
-    float64 and returned as ``work`` (float64, or float32 rounded once, as
-    the global route): the boxes the windows need fetched (:func:`fetch`:
-    float32 samples as they are, others as float64) and evaluated; flat
-    values (no reflection sign)."""
-    engine_mode, rule, pad = engine_args(mode, d, prefilter, exact_edges)
+def evaluate_array_like(src, flat, s, cval, deriv, work):
+    """map_coordinates of an array-like on the local route under the
+    settings ``s`` (``cval`` checked, a float), computed in float64 and
+    returned as ``work`` (float64, or float32 rounded once, as the global
+    route): the boxes the windows need fetched (:func:`fetch`: float32
+    samples as they are, others as float64) and evaluated; flat values (no
+    reflection sign)."""
+    d, tol, prefilter = s.degree, s.tol, s.prefilter
+    engine_mode, rule, pad = engine_args(s.mode, d, prefilter, s.exact_edges)
     f32 = np.dtype(src.dtype) == np.float32 and np.dtype(work) == np.float32
     cls, read = (_ext.LocalSplineF32, np.float32) if f32 else (_ext.LocalSplineF64, np.float64)
-    engine = cls(list(src.shape), d, engine_mode, cval, tol, nan_policy, prefilter, pad, 2**62, True)
+    engine = cls(list(src.shape), d, engine_mode, cval, tol, s.nan_policy, prefilter, pad, 2**62, True)
     points = np.ascontiguousarray(flat, dtype=np.float64)
     fetched = fetch(src, engine.boxes_for_eval(points, rule), read)
-    return engine.eval_blocks(list(src.shape), fetched, points, rule, deriv, threads).astype(work, copy=False)
+    return engine.eval_blocks(list(src.shape), fetched, points, rule, deriv, s.threads).astype(work, copy=False)
 
 
 def cheaper(shape, flat, d, mode, prefilter, tol, exact_edges=False):

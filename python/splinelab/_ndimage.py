@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import math
-import numbers
 
 import numpy as np
 
@@ -11,31 +10,12 @@ from . import _splinelab as _ext
 from . import _dtypes as _dt
 from . import _local
 from ._doc import fill
-from .errors import CoordinateShapeError, ModeError
-from ._validate import DEFAULT_TOL, _degree, _int, _mode, _nan_policy, _opt_float, _real_array, _threads, _tol_for
-
-_SCIPY_FILTER_RULE = {
-    "mirror": "mirror",
-    "constant": "mirror",
-    "grid-constant": "mirror",
-    "wrap": "mirror",
-    "reflect": "reflect",
-    "grid-mirror": "reflect",
-    "nearest": "reflect",
-    "grid-wrap": "grid-wrap",
-}
-_EXACT_EDGES = ("nearest", "grid-constant")
-_MODES = "mirror, reflect, grid-mirror, grid-wrap, wrap, nearest, grid-constant, constant"
-
-
-def _filter_mode(mode, exact_edges):
-    """The engine's filter for scipy's `mode` (its rule), or with
-    `exact_edges` the exact extension for nearest / grid-constant (cval 0)."""
-    mode = _interp_mode(mode)
-    if exact_edges and mode in _EXACT_EDGES:
-        return mode
-    return _SCIPY_FILTER_RULE[mode]
-
+from ._engine import _interpolate, _map_real, _refuse_non_finite
+from ._engine import _wrap_coordinates  # noqa: F401 (python/tests/test_scipy.py reads it here)
+from ._modes import filter_mode as _filter_mode
+from ._settings import Settings
+from .errors import CoordinateShapeError
+from ._validate import DEFAULT_TOL, _cval, _degree, _flag, _int, _nan_policy, _real_array, _threads, _tol_for
 
 def _same_layout(a, b):
     """Whether `a` and `b` are the same elements in the same places."""
@@ -74,6 +54,8 @@ def _filter(input, axes, order, output, mode, tol, threads, exact_edges=False, c
         if nan_policy == "raise":
             _refuse_non_finite(a)
         # scipy: output[...] = input (numpy's conversion), no filter.
+        if target is None and a.dtype == dtype:
+            return a.copy()  # no conversion, so no warning to silence
         out = target if target is not None else np.empty(a.shape, dtype)
         with np.errstate(invalid="ignore", over="ignore"):
             np.copyto(out, a, casting="unsafe")
@@ -96,19 +78,6 @@ def _filter(input, axes, order, output, mode, tol, threads, exact_edges=False, c
     for axis in axes:
         a = _dt.store_truncated(_dt.settled(_filter_float(a, work, None, ([axis], *spec), compute)), carried)
     return _dt.deliver(a.astype(dtype, copy=False), target, a.shape)
-
-
-def _refuse_non_finite(a):
-    """nan_policy='raise' where no prefilter runs (degrees 0 and 1): the
-    first non-finite sample named as the engine names it."""
-    if a.dtype.kind not in "fc":
-        return
-    bad = ~np.isfinite(a)
-    if bad.any():
-        k = int(np.flatnonzero(bad.ravel())[0])
-        v = a.ravel()[k]
-        v = v.real if np.isfinite(v.imag) and not np.isfinite(v.real) else (v.imag if np.iscomplexobj(v) else v)
-        raise ValueError(f"sample {k} is not finite ({'nan' if np.isnan(v) else 'inf' if v > 0 else '-inf'})")
 
 
 def _filter_float(a, dtype, target, args, compute="float64"):
@@ -389,11 +358,9 @@ def map_coordinates(
     at = _coordinates(coordinates, np.ndim(input))
     shape = at.shape[1:]
     flat = np.ascontiguousarray(at.reshape(at.shape[0], -1))
-    d, mode = _degree(order), _interp_mode(mode)
-    nan_policy = _nan_policy(nan_policy)
-    tol, threads = _tol_for(tol, nan_policy, d if prefilter else 0), _threads(threads)
+    s = Settings.of(order, mode, cval, prefilter, tol, threads, exact_edges, nan_policy, compute)
     deriv = _derivative(derivative, at.shape[0])
-    sign = _reflection_sign(flat, np.shape(input), mode, deriv) if deriv else None
+    sign = _reflection_sign(flat, np.shape(input), s.mode, deriv) if deriv else None
     if _local.is_array_like(input) and math.prod(input.shape) == 0:
         # Nothing to read: the in-memory rules, as scipy reads it (cval
         # under the constant modes; reproject passes empty dask blocks).
@@ -402,21 +369,19 @@ def map_coordinates(
         # Not in memory (zarr, h5py, dask): read whole where that costs no
         # more than the windows' boxes (then the in-memory call's bits),
         # else only the windows' boxes.
-        whole = _local.read_whole(_local.source(input), flat, d, mode, prefilter, tol, exact_edges, nan_policy)
+        whole = _local.read_whole(_local.source(input), flat, s)
         if whole is None:
-            return _map_array_like(input, flat, shape, output, d, mode, cval, prefilter, tol, threads, exact_edges,
-                                   deriv, nan_policy, sign)
+            return _map_array_like(input, flat, shape, output, s, deriv, sign)
         input = whole
 
     def evaluate(a, cv, work):
-        values = _map_real(a, flat, d, mode, cv, prefilter, tol, threads, exact_edges, deriv, nan_policy, work)
+        values = _map_real(a, flat, s, cv, deriv, work)
         return values if sign is None else values * sign.astype(values.dtype)
 
-    return _interpolate(input, output, shape, cval, evaluate, coordinates, compute=compute)
+    return _interpolate(input, output, shape, cval, evaluate, coordinates, compute=s.compute)
 
 
-def _map_array_like(src, flat, shape, output, d, mode, cval, prefilter, tol, threads, exact_edges, deriv,
-                    nan_policy, sign):
+def _map_array_like(src, flat, shape, output, s, deriv, sign):
     """map_coordinates of an array-like that is not in memory, on the local
     route: the boxes the windows need fetched (:func:`splinelab._local.fetch`)
     and evaluated; the dtype rules of :func:`_interpolate` (real input)."""
@@ -424,8 +389,7 @@ def _map_array_like(src, flat, shape, output, d, mode, cval, prefilter, tol, thr
     dtype, target = _dt.output_dtype(output, src.dtype, _dt.default_output(src.dtype, False), False)
     _dt.check_output_shape(target, shape)
     work = np.dtype(np.float32 if _dt.real_dtype(dtype) == np.float32 else np.float64)
-    values = _local.evaluate_array_like(src, flat, d, mode, _cval(cval, False), prefilter, tol, threads, exact_edges,
-                                        deriv, nan_policy, work)
+    values = _local.evaluate_array_like(src, flat, s, _cval(s.cval, False), deriv, work)
     if sign is not None:
         values = values * sign.astype(values.dtype)
     result = values.reshape(shape)
@@ -527,19 +491,6 @@ def spline_gradient(
     return np.stack(rows)
 
 
-def _flag(value, what):
-    if not isinstance(value, (bool, np.bool_)):
-        raise TypeError(f"{what} must be True or False, got {type(value).__name__}")
-    return bool(value)
-
-
-def _interp_mode(mode):
-    mode = _mode(mode)
-    if mode not in _SCIPY_FILTER_RULE:
-        raise ModeError(f"unknown mode {mode!r}: expected one of {_MODES}")
-    return mode
-
-
 def _coordinates(coordinates, ndim):
     """scipy's coordinate array, ``(ndim, ...)``, as float64. Finiteness is
     the engine's check (on the pool, while it reads the points: a NaN or an
@@ -550,324 +501,3 @@ def _coordinates(coordinates, ndim):
     if at.ndim < 1 or at.shape[0] != ndim:
         raise CoordinateShapeError(f"coordinates must have shape ({ndim}, ...), got {at.shape}")
     return at
-
-
-def _cval(cval, complex_input):
-    if complex_input:
-        if isinstance(cval, (bool, np.bool_)) or not isinstance(cval, numbers.Number):
-            raise TypeError(f"cval must be a number, got {type(cval).__name__}")
-        return complex(cval)
-    if isinstance(cval, numbers.Complex) and not isinstance(cval, numbers.Real):
-        raise TypeError("cval is complex but the input is real")
-    return _opt_float(cval, "cval")
-
-
-def _interpolate(input, output, shape, cval, evaluate, *others, compute="float64"):
-    """The interpolation functions' dtype handling, as scipy's: every input
-    computed in float64 (complex input part by part, ``cval``'s real and
-    imaginary parts) and the result of ``output``'s dtype (None: the
-    input's) rounded once from it: float32 (and complex64) results by the
-    engine as it stores them, float16 by numpy, integer and boolean results
-    as scipy rounds them (:func:`splinelab._dtypes.store_rounded`).
-    ``compute="float32"``: float32 arithmetic instead (:class:`_dt.Work`).
-    ``evaluate(a, cv, work)`` takes the real array the engine reads
-    (``work.samples``) and returns the flat values in ``work.dtype``.
-    The values are computed into new arrays and only then written into
-    ``output``, so an ``output`` that shares memory with ``input`` or the
-    coordinates gets the same result as a separate one (scipy's too where it
-    reads a prefiltered copy, degrees 2 and above; at degrees 0 and 1 it
-    reads samples it has already overwritten)."""
-    a = _dt.input_array(input)
-    cplx = a.dtype.kind == "c"
-    dtype, target = _dt.output_dtype(output, a.dtype, _dt.default_output(a.dtype, cplx), cplx)
-    _dt.check_output_shape(target, shape)
-    cv = _cval(cval, cplx)
-    work = _dt.Work(compute, _dt.real_dtype(dtype))
-    if cplx:
-        result = np.empty(shape, dtype)
-        result.real = evaluate(work.samples(a.real), cv.real, work).reshape(shape)
-        result.imag = evaluate(work.samples(a.imag), cv.imag, work).reshape(shape)
-    else:
-        values = evaluate(work.samples(a), cv, work).reshape(shape)
-        if dtype.kind == "b":
-            values = _dt.settled(values)  # truncated: see settled
-        result = values if values.dtype == dtype else _dt.store_rounded(values, dtype)
-    return _dt.deliver(result, target, shape)
-
-
-def _wrap_axis(x, n):
-    """scipy's 'wrap' point rule (``map_coordinate`` in ni_interpolation.c)
-    on one axis of ``n`` samples: a coordinate outside ``[0, n - 1]`` moves
-    by whole periods ``n - 1`` (the first and last samples overlap) into
-    it, with scipy's operations (a C truncating division), so the same
-    bits; ``n = 1``: 0."""
-    x = np.array(x, dtype=np.float64)
-    if n <= 1:
-        return np.zeros_like(x)
-    sz = float(n - 1)
-    low, high = x < 0, x > n - 1
-    with np.errstate(invalid="ignore"):  # ±inf becomes NaN: the engine refuses it
-        x[low] += sz * (np.trunc(-x[low] / sz) + 1)
-        x[high] -= sz * np.trunc(x[high] / sz)
-    return x
-
-
-def _wrap_coordinates(flat, shape):
-    """:func:`_wrap_axis` on every row of ``flat`` (``(ndim, k)``)."""
-    return np.stack([_wrap_axis(x, n) for x, n in zip(flat, shape)]) if len(shape) else flat
-
-
-_F64 = _dt.Work("float64", np.float64)
-
-
-def _engine(run, *args, work=_F64, filter_rule=None):
-    """The extension's ``run(*args)`` in ``work``'s arithmetic (float64,
-    float64 or float32 results; or float32) with ``filter_rule``."""
-    return run(*args, out32=work.out32, filter_rule=filter_rule, f32=work.f32)
-
-
-class _Points:
-    """Points at which to evaluate: scattered, ``(ndim, k)`` (scipy's
-    coordinate array), evaluated point by point; the engine's
-    ``map_coordinates``. ``work`` (:class:`_dt.Work`): the arithmetic and
-    the values' dtype; ``filter_rule``: prefilter the samples under that
-    rule and evaluate them as given coefficients (scipy's 'nearest' and
-    'grid-constant')."""
-
-    def __init__(self, flat):
-        self.flat = flat
-
-    def shifted(self, pad):
-        """The points moved by ``pad`` on every axis (scipy's ``x + 12``)."""
-        return type(self)([x + pad for x in self.flat])
-
-    def wrapped(self, shape):
-        """The points folded by scipy's 'wrap' rule (:func:`_wrap_axis`)."""
-        return type(self)([_wrap_axis(x, n) for x, n in zip(self.flat, shape)])
-
-    def count(self):
-        """The number of points."""
-        return np.shape(self.flat)[1]
-
-    def outside(self, shape):
-        """Whether each point lies outside ``[0, n - 1]`` on some axis."""
-        limit = np.array(shape, dtype=np.float64)[:, None] - 1.0
-        flat = np.asarray(self.flat)
-        return ((flat < 0) | (flat > limit)).any(axis=0)
-
-    def run(self, a, d, mode, cv, tol, prefilter, threads, deriv, cval_outside=False, nan_policy="propagate",
-            work=_F64, filter_rule=None):
-        """The values (flat), ``cval`` (its derivative 0) at points outside
-        the grid with ``cval_outside`` (scipy's 'constant')."""
-        opts = dict(nan_policy=nan_policy, work=work, filter_rule=filter_rule)
-        if cval_outside and not deriv and type(self) is _Points:
-            # cval outside decided by the engine per point, in parallel.
-            return self.evaluate(a, d, mode, cv, tol, prefilter, threads, None, cval_outside=True, **opts)
-        values = self.evaluate(a, d, mode, cv, tol, prefilter, threads, deriv, **opts)
-        if cval_outside:
-            fill = 0.0 if deriv and any(deriv) else cv
-            values = np.where(self.outside(a.shape), np.asarray(fill, values.dtype), values)
-        return values
-
-    def evaluate(self, a, d, mode, cv, tol, prefilter, threads, deriv, cval_outside=False, nan_policy="propagate",
-                 work=_F64, filter_rule=None):
-        flat = np.ascontiguousarray(np.asarray(self.flat, dtype=np.float64))
-        return _engine(_ext.map_coordinates, a, flat, d, mode, cv, tol, prefilter, threads, deriv, cval_outside,
-                       nan_policy, work=work, filter_rule=filter_rule)
-
-    def finite(self):
-        """The points with every non-finite coordinate replaced by 0, and
-        per axis the masks (NaN, +inf, -inf) of the originals."""
-        rows = [np.asarray(x, dtype=np.float64) for x in self.flat]
-        masks = [(np.isnan(x), x == np.inf, x == -np.inf) for x in rows]
-        return type(self)([np.where(np.isfinite(x), x, 0.0) for x in rows]), masks
-
-    def combine(self, per_axis):
-        """Per point, whether any axis' flag (one bool vector per axis) holds."""
-        return np.logical_or.reduce([np.asarray(f) for f in per_axis])
-
-
-class _Grid(_Points):
-    """The tensor grid of one coordinate vector per axis (zoom, shift),
-    evaluated separably by the engine (``degree + 1`` multiply-adds per
-    output sample and axis); values flat in C order."""
-
-    def run(self, a, d, mode, cv, tol, prefilter, threads, deriv, cval_outside=False, nan_policy="propagate",
-            work=_F64, filter_rule=None):
-        """As :meth:`_Points.run`; ``cval`` written in place into the slabs
-        of output indices outside ``[0, n - 1]`` on some axis (no mask of
-        the whole output, no second output array)."""
-        values = self.evaluate(a, d, mode, cv, tol, prefilter, threads, deriv, nan_policy=nan_policy, work=work,
-                               filter_rule=filter_rule)
-        if cval_outside:
-            fill = 0.0 if deriv and any(deriv) else cv
-            grid = values.reshape([len(x) for x in self.flat])
-            for axis, (x, n) in enumerate(zip(self.flat, a.shape)):
-                outside = np.flatnonzero((np.asarray(x) < 0) | (np.asarray(x) > n - 1))
-                if outside.size:
-                    grid[(slice(None),) * axis + (outside,)] = fill
-        return values
-
-    def count(self):
-        return math.prod(len(x) for x in self.flat)
-
-    def evaluate(self, a, d, mode, cv, tol, prefilter, threads, deriv, cval_outside=False, nan_policy="propagate",
-                 work=_F64, filter_rule=None):
-        axes = [np.ascontiguousarray(x, dtype=np.float64) for x in self.flat]
-        return _engine(_ext.resample, a, axes, d, mode, cv, tol, prefilter, list(deriv or [0] * a.ndim), threads,
-                       nan_policy, work=work, filter_rule=filter_rule).reshape(-1)
-
-    def combine(self, per_axis):
-        """Per grid point (C order), whether any axis' flag holds."""
-        flags = np.zeros([len(x) for x in self.flat], dtype=bool)
-        for axis, f in enumerate(per_axis):
-            shape = [1] * len(per_axis)
-            shape[axis] = -1
-            flags = flags | np.asarray(f).reshape(shape)
-        return flags.reshape(-1)
-
-
-def _affine_points(m, offsets, out_shape):
-    """The points ``m @ o + offset`` of every output index ``o`` as an
-    array ``(ndim, prod(out_shape))``: for a matrix or offset that is not
-    finite, whose NaN and infinite points then get scipy's values there
-    (the engine generates finite points only), and for the local route
-    (:meth:`_Affine.explicit`)."""
-    index = np.indices(out_shape, dtype=np.float64).reshape(len(out_shape), -1)
-    with np.errstate(invalid="ignore", over="ignore"):
-        return m @ index + offsets[:, None]
-
-
-class _Affine(_Points):
-    """The points ``matrix @ o + offset`` of every output index ``o``
-    (affine_transform, rotate), generated by the engine where they are
-    evaluated (no coordinate array; scipy's operations, so its bits)."""
-
-    def __init__(self, matrix, offset, out_shape, shift=0.0, wrap=False):
-        self.matrix, self.offset, self.out_shape = matrix, offset, tuple(out_shape)
-        self.shift, self.wrap = shift, wrap
-
-    def count(self):
-        return math.prod(self.out_shape)
-
-    def shifted(self, pad):
-        return _Affine(self.matrix, self.offset, self.out_shape, self.shift + pad, self.wrap)
-
-    def wrapped(self, shape):
-        return _Affine(self.matrix, self.offset, self.out_shape, self.shift, True)
-
-    def explicit(self):
-        """The points as an array ``(ndim, count)`` (:func:`_affine_points`:
-        the engine's values to rounding), for the local route."""
-        return _affine_points(self.matrix, self.offset, self.out_shape)
-
-    def run(self, a, d, mode, cv, tol, prefilter, threads, deriv, cval_outside=False, nan_policy="propagate",
-            work=_F64, filter_rule=None):
-        if deriv:
-            raise ValueError("derivatives are taken by map_coordinates, not by the affine resampling")
-        rule = "wrap" if self.wrap else "cval-outside" if cval_outside else "fold"
-        return _engine(_ext.affine, a, self.matrix, self.offset, list(self.out_shape), d, mode, cv, tol, prefilter,
-                       self.shift, rule, threads, nan_policy, work=work, filter_rule=filter_rule).reshape(-1)
-
-
-def _map_real(a, flat, d, mode, cv, prefilter, tol, threads, exact_edges, deriv=None, nan_policy="propagate",
-              work=_F64):
-    """map_coordinates of a real array the engine reads (``work.samples``)
-    at ``flat`` (``(ndim, k)``, or a :class:`_Points`): the values (or the
-    partial derivative ``deriv``), flat, in ``work.dtype``. A non-finite
-    coordinate: refused under 'raise', else scipy's value there
-    (:func:`_at_non_finite`)."""
-    points = flat if isinstance(flat, _Points) else _Points(flat)
-    if a.size == 0 and mode in ("constant", "grid-constant"):
-        # An empty axis puts every point outside the grid: cval, as scipy
-        # (its other modes read outside the array there; the engine refuses
-        # an empty signal).
-        return np.full(points.count(), 0.0 if deriv else cv, work.dtype)
-    args = (d, mode, cv, prefilter, tol, threads, exact_edges, deriv, nan_policy, work)
-    try:
-        return _map_points(a, points, *args)
-    except _ext.NonFiniteCoordinateError:
-        if nan_policy == "raise" or isinstance(points, _Affine):
-            raise
-        return _at_non_finite(a, points, *args)
-
-
-#: The largest affine output offered to the local route: its points are
-#: formed explicitly to price it (16 bytes per point and axis).
-_AFFINE_LOCAL_MAX = 1 << 16
-
-
-def _local_candidates(points):
-    """The explicit points ``(ndim, k)`` the local route may take
-    (:mod:`splinelab._local` decides by cost): map_coordinates' points, and
-    those of an affine map (affine_transform, rotate) with a small output,
-    whose few samples a large input gives from their windows alone (issue
-    45); None for grids (zoom, shift: outputs as large as the input)."""
-    if type(points) is _Points:
-        return points.flat
-    if type(points) is _Affine and not points.shift and not points.wrap and points.count() <= _AFFINE_LOCAL_MAX:
-        return points.explicit()
-    return None
-
-
-def _map_points(a, points, d, mode, cv, prefilter, tol, threads, exact_edges, deriv, nan_policy, work=_F64):
-    """:func:`_map_real` at finite points: on the local route where it
-    reads less than the global one (:mod:`splinelab._local`; float64
-    arithmetic only, and float32 samples only for float32 results, which
-    it rounds once as the global route does)."""
-    flat = _local_candidates(points)
-    if flat is not None and not work.f32 and (a.dtype == np.float64 or work.out32):
-        local = _local.try_map(a, flat, d, mode, cv, prefilter, tol, threads, exact_edges, deriv, nan_policy)
-        if local is not None:
-            return local.astype(work.dtype, copy=False)
-    if prefilter and 1 < d <= 5 and mode in _EXACT_EDGES and not exact_edges:
-        # scipy's route (_prepad_for_spline_filter): pad 12, filter with
-        # its rule, evaluate the coefficients at x + 12 as given (the
-        # engine does both in one coefficient array: the padded copy and
-        # that array, as scipy holds).
-        pad = 12
-        if nan_policy == "raise":
-            _refuse_non_finite(a)  # named in the input, not in the padded copy
-        kind = {"mode": "edge"} if mode == "nearest" else {"mode": "constant", "constant_values": cv}
-        return points.shifted(pad).run(np.pad(a, pad, **kind), d, mode, cv, tol, True, threads, deriv,
-                                       nan_policy=nan_policy, work=work, filter_rule=_SCIPY_FILTER_RULE[mode])
-    opts = dict(nan_policy=nan_policy, work=work)
-    if mode == "wrap":
-        # The mirror spline (scipy filters 'wrap' with the mirror rule and
-        # reads the window with it) at the point folded with period n - 1.
-        return points.wrapped(a.shape).run(a, d, "mirror", cv, tol, prefilter, threads, deriv, **opts)
-    engine_mode = "mirror" if mode == "constant" else mode
-    # scipy's 'constant': no interpolation beyond the edges.
-    return points.run(a, d, engine_mode, cv, tol, prefilter, threads, deriv, cval_outside=mode == "constant", **opts)
-
-
-_PERIODIC = ("grid-wrap", "wrap")
-
-
-def _at_non_finite(a, points, d, mode, cv, prefilter, tol, threads, exact_edges, deriv, nan_policy, work=_F64):
-    """Values at points some of whose coordinates are NaN or ±inf, as scipy
-    1.17.1 gives them (its C casts the coordinate to an integer, undefined
-    behaviour; measured on every mode and order): under the periodic modes
-    a NaN or -inf coordinate gives ``cval``, +inf the sample at index 0 on
-    that axis for order 0 and NaN above; 'nearest' gives that sample for
-    order 0 and NaN above; 'grid-constant' ``cval`` for order 0 and NaN
-    above; every other mode ``cval``. The finite points as usual (the
-    non-finite coordinates replaced by 0, which also gives the index-0
-    samples)."""
-    clean, masks = points.finite()
-    values = _map_points(a, clean, d, mode, cv, prefilter, tol, threads, exact_edges, deriv, nan_policy, work).copy()
-    bad = points.combine([n | p | m for n, p, m in masks])
-    if mode in _PERIODIC:
-        to_cval = points.combine([n | m for n, _, m in masks])
-        nan = bad & ~to_cval & (d >= 1)
-        keep = bad & ~to_cval & (d == 0)
-    elif mode in ("nearest", "grid-constant"):
-        to_cval = bad & (mode == "grid-constant") & (d == 0)
-        nan = bad & (d >= 1)
-        keep = bad & (mode == "nearest") & (d == 0)
-    else:
-        to_cval, nan, keep = bad, np.zeros_like(bad), np.zeros_like(bad)
-    fill = 0.0 if deriv and any(deriv) else cv
-    values[bad & to_cval & ~keep] = fill
-    values[nan] = np.nan
-    return values

@@ -24,12 +24,15 @@ import numpy as np
 from . import _dtypes as _dt
 from ._doc import fill
 from .errors import ArgumentTypeError, MappingError, MatrixShapeError, RankError, SequenceLengthError
-from ._ndimage import _Affine, _affine_points, _flag, _Grid, _interp_mode, _interpolate, _map_real
-from ._validate import DEFAULT_TOL, _degree, _int, _nan_policy, _threads, _tol_for
+from ._engine import _Affine, _affine_points, _Grid, _interpolate, _map_real
+from ._settings import Settings
+from ._validate import DEFAULT_TOL, _flag, _int
 
 
 def _per_axis(value, ndim, what):
     """scipy's ``_normalize_sequence``: a number for every axis, or one each."""
+    if type(value) is float or type(value) is int:  # the common case, without the ABC checks
+        return [float(value)] * ndim
     if not isinstance(value, str) and np.iterable(value):
         values = list(value)
         if len(values) != ndim:
@@ -44,40 +47,25 @@ def _per_axis(value, ndim, what):
     return [float(v) for v in values]
 
 
-class _Spec:
-    """The interpolation arguments shared by every function."""
+def _at_points(s, input, output, shape, flat_of):
+    """The values under the settings ``s`` at the points ``flat_of(a)``
+    (``(ndim, prod(shape))``)."""
 
-    def __init__(self, order, mode, cval, prefilter, tol, threads, exact_edges, nan_policy="propagate",
-                 compute="float64"):
-        self.d = _degree(order)
-        self.mode = _interp_mode(mode)
-        self.cval = cval
-        self.prefilter = _flag(prefilter, "prefilter")
-        self.nan_policy = _nan_policy(nan_policy)
-        self.tol = _tol_for(tol, self.nan_policy, self.d if self.prefilter else 0)
-        self.threads = _threads(threads)
-        self.exact_edges = bool(exact_edges)
-        self.compute = _dt.compute_name(compute)
+    def evaluate(a, cv, work):
+        return _map_real(a, flat_of(a), s, cv, work=work)
 
-    def at_points(self, input, output, shape, flat_of):
-        """The values at the points ``flat_of(a)`` (``(ndim, prod(shape))``)."""
+    return _interpolate(input, output, shape, s.cval, evaluate, compute=s.compute)
 
-        def evaluate(a, cv, work):
-            return _map_real(a, flat_of(a), self.d, self.mode, cv, self.prefilter, self.tol, self.threads,
-                             self.exact_edges, nan_policy=self.nan_policy, work=work)
 
-        return _interpolate(input, output, shape, self.cval, evaluate, compute=self.compute)
+def _on_grid(s, input, output, shape, axis_coordinates):
+    """The values under the settings ``s`` on the tensor grid of per-axis
+    coordinate vectors."""
+    grid = _Grid(axis_coordinates)
 
-    def on_grid(self, input, output, shape, axis_coordinates):
-        """The values on the tensor grid of per-axis coordinate vectors."""
+    def evaluate(a, cv, work):
+        return _map_real(a, grid, s, cv, work=work)
 
-        grid = _Grid(axis_coordinates)
-
-        def evaluate(a, cv, work):
-            return _map_real(a, grid, self.d, self.mode, cv, self.prefilter, self.tol, self.threads,
-                             self.exact_edges, nan_policy=self.nan_policy, work=work)
-
-        return _interpolate(input, output, shape, self.cval, evaluate, compute=self.compute)
+    return _interpolate(input, output, shape, s.cval, evaluate, compute=s.compute)
 
 
 def _zoom_shift_coordinates(out_shape, zooms=None, shifts=None, grid_mode=False):
@@ -171,17 +159,17 @@ def zoom(input, zoom, output=None, order=3, mode="constant", cval=0.0, prefilter
     out_shape = tuple(int(round(n * z)) for n, z in zip(a.shape, zooms))
     if any(m < 0 for m in out_shape):
         raise ValueError(f"zoom gives a negative output shape {out_shape}")
-    spec = _Spec(order, mode, cval, prefilter, tol, threads, exact_edges, nan_policy, compute)
+    s = Settings.of(order, mode, cval, prefilter, tol, threads, exact_edges, nan_policy, compute)
     try:
         _reserve_output(a, output, out_shape)
     except ValueError as e:  # numpy's, for a shape beyond its largest: name the argument
         raise ValueError(f"zoom={zoom!r} gives the output shape {out_shape}, which numpy cannot make: {e}") from None
-    if all(z == 1 for z in zooms) and spec.prefilter:
+    if all(z == 1 for z in zooms) and s.prefilter:
         return _early_copy(a, output, out_shape)
     grid_mode = _flag(grid_mode, "grid_mode")
-    if grid_mode and spec.mode in ("constant", "wrap"):
-        better = {"constant": "grid-constant", "wrap": "grid-wrap"}[spec.mode]
-        warnings.warn(f"It is recommended to use mode = {better} instead of {spec.mode} when grid_mode is True.",
+    if grid_mode and s.mode in ("constant", "wrap"):
+        better = {"constant": "grid-constant", "wrap": "grid-wrap"}[s.mode]
+        warnings.warn(f"It is recommended to use mode = {better} instead of {s.mode} when grid_mode is True.",
                       stacklevel=2)
     num = np.array(a.shape)
     div = np.array(out_shape)
@@ -189,7 +177,7 @@ def zoom(input, zoom, output=None, order=3, mode="constant", cval=0.0, prefilter
         num, div = num - 1, div - 1
     factors = np.divide(num, div, out=np.ones(a.ndim, dtype=np.float64), where=div != 0)
     coords = _zoom_shift_coordinates(out_shape, zooms=factors, grid_mode=grid_mode)
-    return spec.on_grid(a, output, out_shape, coords)
+    return _on_grid(s, a, output, out_shape, coords)
 
 
 @fill
@@ -233,9 +221,9 @@ def shift(input, shift, output=None, order=3, mode="constant", cval=0.0, prefilt
     if a.ndim < 1:
         raise RankError("input must have at least one dimension")
     shifts = [-s for s in _per_axis(shift, a.ndim, "shift")]
-    spec = _Spec(order, mode, cval, prefilter, tol, threads, exact_edges, nan_policy, compute)
+    s = Settings.of(order, mode, cval, prefilter, tol, threads, exact_edges, nan_policy, compute)
     coords = _zoom_shift_coordinates(a.shape, shifts=shifts)
-    return spec.on_grid(a, output, a.shape, coords)
+    return _on_grid(s, a, output, a.shape, coords)
 
 
 def _affine_parts(matrix, offset, ndim, out_ndim):
@@ -349,7 +337,7 @@ def affine_transform(input, matrix, offset=0.0, output_shape=None, output=None, 
     if len(out_shape) < 1:
         raise RankError("output must have at least one dimension")
     m, offsets = _affine_parts(matrix, offset, a.ndim, len(out_shape))
-    spec = _Spec(order, mode, cval, prefilter, tol, threads, exact_edges, nan_policy, compute)
+    s = Settings.of(order, mode, cval, prefilter, tol, threads, exact_edges, nan_policy, compute)
     _reserve_output(a, output, out_shape)
     if m.ndim == 1:
         if len(out_shape) != a.ndim:
@@ -357,10 +345,10 @@ def affine_transform(input, matrix, offset=0.0, output_shape=None, output=None, 
         with np.errstate(divide="ignore", invalid="ignore"):
             shifts = offsets / m
         coords = _zoom_shift_coordinates(out_shape, zooms=m, shifts=shifts)
-        return spec.on_grid(a, output, out_shape, coords)
+        return _on_grid(s, a, output, out_shape, coords)
     if not (np.isfinite(m).all() and np.isfinite(offsets).all()):
-        return spec.at_points(a, output, out_shape, lambda _: _affine_points(m, offsets, out_shape))
-    return spec.at_points(a, output, out_shape, lambda _: _Affine(m, offsets, out_shape))
+        return _at_points(s, a, output, out_shape, lambda _: _affine_points(m, offsets, out_shape))
+    return _at_points(s, a, output, out_shape, lambda _: _Affine(m, offsets, out_shape))
 
 
 def _sincos_degrees(angle):
@@ -482,6 +470,34 @@ def rotate(input, angle, axes=(1, 0), reshape=True, output=None, order=3, mode="
     return full
 
 
+def _mapped_points(mapping, extra, kwargs, ndim, out_shape):
+    """``mapping`` called at every output index (a tuple of ints, C order),
+    its coordinates as an array ``(ndim, prod(out_shape))``: the returns
+    collected, then converted by numpy at once; where that conversion
+    fails or gives another shape, the returns are stored one by one, which
+    names the first that is not ``ndim`` numbers."""
+    rows = []
+    append = rows.append
+    for index in itertools.product(*[range(n) for n in out_shape]):
+        p = mapping(index, *extra, **kwargs)
+        if len(p) != ndim:
+            raise MappingError(f"mapping returned {len(p)} coordinates at {index}, expected {ndim}")
+        append(p)
+    try:
+        points = np.array(rows, dtype=np.float64)
+        if points.shape == (len(rows), ndim):
+            return np.ascontiguousarray(points.T).reshape(ndim, len(rows))
+    except (TypeError, ValueError):
+        pass
+    points = np.empty((ndim, len(rows)))
+    for k, (p, index) in enumerate(zip(rows, itertools.product(*[range(n) for n in out_shape]))):
+        try:
+            points[:, k] = p
+        except (TypeError, ValueError) as e:
+            raise MappingError(f"mapping returned {p!r} at {index}: not {ndim} numbers ({e})") from None
+    return points
+
+
 @fill
 def geometric_transform(input, mapping, output_shape=None, output=None, order=3, mode="constant", cval=0.0,
                         prefilter=True, extra_arguments=(), extra_keywords=None, *, vectorized=False,
@@ -560,7 +576,7 @@ def geometric_transform(input, mapping, output_shape=None, output=None, order=3,
         extra = tuple(extra_arguments)
     except (TypeError, ValueError) as e:
         raise ArgumentTypeError(f"extra_arguments must be a sequence and extra_keywords a mapping: {e}") from None
-    spec = _Spec(order, mode, cval, prefilter, tol, threads, exact_edges, nan_policy, compute)
+    s = Settings.of(order, mode, cval, prefilter, tol, threads, exact_edges, nan_policy, compute)
     _reserve_output(a, output, out_shape)
     if vectorized:
         points = np.asarray(mapping(np.indices(out_shape, dtype=np.float64), *extra, **kwargs), dtype=np.float64)
@@ -568,15 +584,7 @@ def geometric_transform(input, mapping, output_shape=None, output=None, order=3,
             raise MappingError(f"mapping returned shape {points.shape}, expected {(a.ndim, *out_shape)}")
         points = points.reshape(a.ndim, -1)
     else:
-        points = np.empty((a.ndim, math.prod(out_shape)))
-        for k, index in enumerate(np.ndindex(*out_shape)):
-            p = mapping(tuple(int(i) for i in index), *extra, **kwargs)
-            if len(p) != a.ndim:
-                raise MappingError(f"mapping returned {len(p)} coordinates at {index}, expected {a.ndim}")
-            try:
-                points[:, k] = p
-            except (TypeError, ValueError) as e:
-                raise MappingError(f"mapping returned {p!r} at {index}: not {a.ndim} numbers ({e})") from None
-    if spec.nan_policy == "raise" and not np.isfinite(points).all():
+        points = _mapped_points(mapping, extra, kwargs, a.ndim, out_shape)
+    if s.nan_policy == "raise" and not np.isfinite(points).all():
         raise ValueError("mapping returned a non-finite coordinate")
-    return spec.at_points(a, output, out_shape, lambda _: points)
+    return _at_points(s, a, output, out_shape, lambda _: points)

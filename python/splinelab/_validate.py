@@ -21,9 +21,12 @@ MAX_INDEX = 2**63 - 1
 def _int(value, what, lo=None, hi=None, error=ValueError):
     """``value`` as an int, refused (naming ``what``) outside ``lo..hi``
     with ``error`` (a ValueError)."""
-    if isinstance(value, bool) or not isinstance(value, numbers.Integral):
+    if type(value) is int:  # the common case, without the ABC checks
+        v = value
+    elif isinstance(value, bool) or not isinstance(value, numbers.Integral):
         raise TypeError(f"{what} must be an integer, got {type(value).__name__}")
-    v = int(value)
+    else:
+        v = int(value)
     if (lo is not None and v < lo) or (hi is not None and v > hi):
         lo_s = "" if lo is None else str(lo)
         hi_s = "" if hi is None else str(hi)
@@ -50,8 +53,8 @@ def _degree_or_order(degree, order, default=3):
 
 
 def _opt_float(value, what):
-    if value is None:
-        return None
+    if value is None or type(value) is float:
+        return value
     if isinstance(value, bool) or not isinstance(value, numbers.Real):
         raise TypeError(f"{what} must be a real number or None, got {type(value).__name__}")
     return float(value)
@@ -136,3 +139,23 @@ def _tol_for(tol, nan_policy, degree):
             f"(the default under 'local' is {LOCAL_TOL:g}) or use nan_policy='propagate'"
         )
     return tol
+
+
+def _flag(value, what):
+    if not isinstance(value, (bool, np.bool_)):
+        raise TypeError(f"{what} must be True or False, got {type(value).__name__}")
+    return bool(value)
+
+
+def _cval(cval, complex_input):
+    """``cval`` as the engine takes it: a float for real input, a complex
+    for complex input."""
+    if type(cval) is float and not complex_input:  # the common case, without the ABC checks
+        return cval
+    if complex_input:
+        if isinstance(cval, (bool, np.bool_)) or not isinstance(cval, numbers.Number):
+            raise TypeError(f"cval must be a number, got {type(cval).__name__}")
+        return complex(cval)
+    if isinstance(cval, numbers.Complex) and not isinstance(cval, numbers.Real):
+        raise TypeError("cval is complex but the input is real")
+    return _opt_float(cval, "cval")

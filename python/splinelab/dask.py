@@ -53,14 +53,22 @@ by a stated tolerance.
 
 from __future__ import annotations
 
+import itertools
+
+import dask
 import dask.array as da
 import numpy as np
 
 import splinelab
 from splinelab import _dtypes as _dt
+from splinelab import _local
 from splinelab._doc import fill
-from splinelab._ndimage import _axis, _filter, _filter_mode
-from splinelab._validate import _nan_policy
+from splinelab._engine import _Points, _refuse_non_finite, _wrap_axis
+from splinelab._modes import engine_args, filter_mode as _filter_mode, interp_mode as _interp_mode
+from splinelab._ndimage import _axis, _filter
+from splinelab._resample import _affine_parts, _per_axis, _rotation, _zoom_shift_coordinates
+from splinelab._settings import Settings
+from splinelab._validate import _cval, _degree, _nan_policy, _tol_for
 
 __all__ = ["spline_filter", "spline_filter1d", "depth", "bound", "map_coordinates", "zoom", "shift", "affine_transform", "rotate"]
 
@@ -347,15 +355,15 @@ class _Plan:
     engine mode for given coefficients, and the points' transformation."""
 
     def __init__(self, darr, order, mode, cval, tol, route, threads, nan_policy="propagate", compute="float64"):
-        from splinelab._ndimage import _EXACT_EDGES, _interp_mode
-
         self.d, self.mode, self.cval = order, _interp_mode(mode), float(cval)
         self.compute = _dt.compute_name(compute)
         if self.compute == "float32":
             darr = darr.astype(np.float32)
         self.shape = darr.shape
-        self.pad = 12 if (1 < order <= 5 and self.mode in _EXACT_EDGES) else 0
-        if order > 5 and self.mode in _EXACT_EDGES:
+        # The engine's mode and scipy's 12-sample pad ('nearest',
+        # 'grid-constant' at degrees 2 to 5), as the in-memory call maps them.
+        self.engine_mode, _, self.pad = engine_args(self.mode, order, True, False)
+        if order > 5 and self.mode in ("nearest", "grid-constant"):
             raise ValueError(f"mode {self.mode!r} above degree 5 (the exact extension) is not offered on dask")
         if self.pad:
             kind = {"mode": "edge"} if self.mode == "nearest" else {"mode": "constant", "constant_values": self.cval}
@@ -373,15 +381,12 @@ class _Plan:
         elif _nan_policy(nan_policy) == "raise":
             darr = darr.map_blocks(_refused_if_missing, dtype=darr.dtype)
         self.coeffs = darr
-        self.engine_mode = {"constant": "mirror", "wrap": "mirror", "grid-mirror": "reflect"}.get(self.mode, self.mode)
 
     def prepared(self, flat):
         """Global points (``(ndim, k)``) the way the engine reads them: the
         scipy rules applied, then folded into the grid (folding modes) or
         clamped where the spline is constant (padded ones); and the mask of
         'constant' points that take ``cval``."""
-        from splinelab._ndimage import _wrap_axis
-
         mask = None
         if self.mode == "constant":
             limit = np.array(self.shape, dtype=np.float64)[:, None] - 1.0
@@ -424,8 +429,6 @@ class _Plan:
 
 def _refused_if_missing(x):
     """nan_policy='raise' where no prefilter runs (degrees 0 and 1)."""
-    from splinelab._ndimage import _refuse_non_finite
-
     _refuse_non_finite(x)
     return x
 
@@ -434,8 +437,6 @@ def _evaluate_region(region_coeffs, lo, x, mask, plan, dtype):
     """The values at global points ``x`` (prepared) from the coefficient
     region starting at ``lo``; every window inside the region. Computed in
     the plan's arithmetic (float64: float32 results rounded once)."""
-    from splinelab._ndimage import _Points
-
     work = _dt.Work(plan.compute, dtype)
     local = x - np.array(lo, dtype=np.float64)[:, None]
     coeffs = work.samples(np.ascontiguousarray(region_coeffs))
@@ -447,8 +448,6 @@ def _evaluate_region(region_coeffs, lo, x, mask, plan, dtype):
 
 def _chunk(plan, flat, dtype):
     """One output chunk (flat values) as a lazy array."""
-    import dask
-
     x, mask = plan.prepared(flat)
     bounds = plan.region(x)
     region = plan.coeffs[tuple(slice(a, b) for a, b in bounds)]
@@ -468,8 +467,6 @@ def _on_output_grid(darr, out_shape, chunks, points_of, order, mode, cval, tol, 
                     nan_policy="propagate", compute="float64"):
     """The output of ``out_shape`` in ``chunks``, chunk ``slices`` at the
     points ``points_of(slices)`` (``(ndim, k)``, scipy's arithmetic)."""
-    import itertools
-
     darr = da.asarray(darr)
     dtype = _work_dtype(darr, output)
     plan = _Plan(darr, order, mode, cval, tol, route, threads, nan_policy, compute)
@@ -532,8 +529,6 @@ def map_coordinates(input, coordinates, order=3, mode="constant", cval=0.0, tol=
     >>> bool(np.abs(v - splinelab.map_coordinates(x, at.compute(), order=3, mode="mirror")).max() < 1e-11)
     True
     """
-    import dask
-
     darr = da.asarray(input)
     at = da.asarray(coordinates)
     if at.ndim < 1 or at.shape[0] != darr.ndim:
@@ -555,19 +550,15 @@ def _local_points(darr, parts, at, order, mode, cval, tol, threads, nan_policy, 
     the chunked prefilter (issue 45): one graph computing only the chunks
     under the points' windows; the same bits as ``splinelab.map_coordinates``
     of the same data in memory. None where the chunked route is cheaper."""
-    from splinelab import _local
-    from splinelab._ndimage import _cval, _degree, _interp_mode
-    from splinelab._validate import _nan_policy, _tol_for
-
     d, mode = _degree(order), _interp_mode(mode)
     pts = np.concatenate([np.asarray(p, dtype=np.float64) for p in parts], axis=1)
     nan_policy = _nan_policy(nan_policy)
     tol = _tol_for(tol, nan_policy, d)
+    s = Settings(d, mode, cval, True, tol, nan_policy, threads, False, "float64")
     if darr.dtype.kind not in "biuf" or not np.isfinite(pts).all() or not _local.cheaper(darr.shape, pts, d, mode,
                                                                                           True, tol):
         return None
-    values = _local.evaluate_array_like(darr, pts, d, mode, _cval(cval, False), True, tol, threads, False, None,
-                                        nan_policy, dtype)
+    values = _local.evaluate_array_like(darr, pts, s, _cval(cval, False), None, dtype)
     return da.from_array(values.reshape(at.shape[1:]), chunks=at.chunks[1:])
 
 
@@ -600,8 +591,6 @@ def zoom(input, zoom, order=3, mode="constant", cval=0.0, *, grid_mode=False, to
     -----
     Error bound as :func:`map_coordinates`.
     """
-    from splinelab._resample import _per_axis, _zoom_shift_coordinates
-
     darr = da.asarray(input)
     zooms = _per_axis(zoom, darr.ndim, "zoom")
     out_shape = tuple(int(round(n * z)) for n, z in zip(darr.shape, zooms))
@@ -641,8 +630,6 @@ def shift(input, shift, order=3, mode="constant", cval=0.0, *, tol=DEFAULT_TOL, 
     -----
     Error bound as :func:`map_coordinates`.
     """
-    from splinelab._resample import _per_axis, _zoom_shift_coordinates
-
     darr = da.asarray(input)
     shifts = [-s for s in _per_axis(shift, darr.ndim, "shift")]
     axes = _zoom_shift_coordinates(darr.shape, shifts=shifts)
@@ -687,8 +674,6 @@ def affine_transform(input, matrix, offset=0.0, output_shape=None, order=3, mode
     -----
     Error bound as :func:`map_coordinates`.
     """
-    from splinelab._resample import _affine_parts, _zoom_shift_coordinates
-
     darr = da.asarray(input)
     out_shape = tuple(output_shape) if output_shape is not None else darr.shape
     m, offsets = _affine_parts(matrix, offset, darr.ndim, len(out_shape))
@@ -749,8 +734,6 @@ def rotate(input, angle, axes=(1, 0), reshape=True, order=3, mode="constant", cv
     scipy's plane-by-plane rotation within ``bound(order, tol, ndim) *
     max|input|`` (plus rounding).
     """
-    from splinelab._resample import _rotation
-
     darr = da.asarray(input)
     axes, rot, plane_offset, _, out_shape = _rotation(angle, axes, darr.shape, reshape)
     matrix = np.eye(darr.ndim)

@@ -5,6 +5,7 @@
 //! writer).
 
 use crate::error::value_error;
+use crate::pool::parallel;
 use crate::width::family;
 use pyo3::exceptions::PyOSError;
 use pyo3::prelude::*;
@@ -53,7 +54,7 @@ fn report(
 ) -> PyResult<Report> {
     let json = o.to_json(extra);
     if let Some(dir) = out {
-        py.detach(|| write_check_dir(&dir, &o, &json))
+        py.detach(|| parallel(|| write_check_dir(&dir, &o, &json)))
             .map_err(|e| match e {
                 CliError::Output { .. } => PyOSError::new_err(e.to_string()),
                 e => value_error(e),
@@ -68,7 +69,7 @@ fn elements(
     extra: Map<String, serde_json::Value>,
     out: Option<PathBuf>,
 ) -> PyResult<Report> {
-    let s = py.detach(run).map_err(value_error)?;
+    let s = py.detach(|| parallel(run)).map_err(value_error)?;
     report(py, Outcome::Elements(Box::new(s)), &extra, out)
 }
 
@@ -229,7 +230,9 @@ pub fn check_knot_insertion(
     };
     let (b, a) = (spline(&before, "before")?, spline(&after, "after")?);
     let (f, k) = (format(fmt)?, max_ulps(max_ulps_)?);
-    let s = py.detach(|| insertion(&b, &a, f, k)).map_err(value_error)?;
+    let s = py
+        .detach(|| parallel(|| insertion(&b, &a, f, k)))
+        .map_err(value_error)?;
     report(py, Outcome::Insertion(s), &Map::new(), out)
 }
 

@@ -12,5 +12,5 @@ use std::ffi::OsString;
 /// stdout and stderr.
 #[pyfunction]
 pub fn cli_main(py: Python<'_>, args: Vec<OsString>) -> u8 {
-    py.detach(|| status_number(main(args)))
+    py.detach(|| crate::pool::parallel(|| status_number(main(args))))
 }

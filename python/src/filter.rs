@@ -21,13 +21,14 @@
 //! (no separate copy); other layouts are copied and checked in one pass on
 //! the pool first.
 
-use crate::cache;
 use crate::error::{engine_error, value_error};
 use crate::pool::run_with;
 use ndarray::{ArrayView1, ArrayViewD, ArrayViewMut1, ArrayViewMutD};
 use numpy::{Element, PyReadwriteArrayDyn};
 use pyo3::prelude::*;
 use splinelab::ndimage::NdimageError;
+use splinelab::ndimage::filter_cache;
+use splinelab::ndimage::local::route::global_ns;
 use splinelab::ndimage::nd_prefilter::{filter_missing, spline_filter_from_as};
 use splinelab::ndimage::samples::{Sample, Stored};
 use splinelab::prelude::*;
@@ -77,18 +78,12 @@ impl Spec {
         if self.degree < 2 {
             return Ok(None);
         }
-        let build = || {
-            let family = SplineFamily::order(self.degree.saturating_add(1))?;
-            LineFilter::new(&family, self.mode, self.cval, self.route)?
-                .with_nan_policy(self.nan_policy)
-        };
-        cache::line_filter(
+        filter_cache::line_filter(
             self.degree,
             self.mode,
             self.cval,
             self.route,
             self.nan_policy,
-            build,
         )
         .map(Some)
     }
@@ -257,12 +252,18 @@ where
         let f = spec.line_filter::<T>().ok().flatten()?;
         BlockPrefilter::from_line_filter(&f).filter(|b| b.pays_off(out.len()))
     };
+    let work = if one_line(out.shape(), out.len(), &axes) && blocks().is_none() {
+        // One thread's work whatever the pool.
+        0.0
+    } else {
+        global_ns(out.len(), axes.len(), true)
+    };
     let threads = match threads {
-        Some(n) if n > 0 && one_line(out.shape(), out.len(), &axes) && blocks().is_none() => None,
+        Some(n) if n > 0 && work == 0.0 => None,
         t => t,
     };
     py.detach(|| {
-        run_with(threads, || {
+        run_with(threads, work, || {
             filter_into::<T, E, O>(src, &mut out, &axes, &spec)
         })
     })?

@@ -45,18 +45,27 @@ fn points<'a>(xi: &'a PyReadonlyArray2<'_, f64>, d: usize) -> PyResult<(&'a [f64
     }
 }
 
-/// A new float64 array `n × m` filled by `fill` without the GIL.
+/// Estimated nanoseconds of one thread's work (`pool::run_with` runs a
+/// call at most [`crate::pool::SMALL_NS`] on the calling thread): about a
+/// nanosecond per multiply-add, as the engine's other estimates.
+fn work_ns(multiply_adds: usize) -> f64 {
+    multiply_adds as f64
+}
+
+/// A new float64 array `n × m` filled by `fill` without the GIL
+/// (`work` estimated nanoseconds).
 fn results<'py>(
     py: Python<'py>,
     n: usize,
     m: usize,
     threads: Option<usize>,
+    work: f64,
     fill: impl FnOnce(&mut [f64]) -> Result<(), GriddedError> + Send,
 ) -> PyResult<Bound<'py, PyAny>> {
     let out = crate::alloc::zeros::<f64>(py, &[n, m])?;
     let mut view = out.readwrite();
     let slice = view.as_slice_mut()?;
-    py.detach(|| run_with(threads, || fill(slice)))?
+    py.detach(|| run_with(threads, work, || fill(slice)))?
         .map_err(grid_error)?;
     drop(view);
     Ok(out.into_any())
@@ -136,11 +145,14 @@ impl GridSpline {
         threads: Option<usize>,
     ) -> PyResult<Self> {
         let nodes = nodes(&grid);
+        // Per sample and axis: a copy in, then about 3k + 2 multiply-adds.
+        let work =
+            work_ns(nodes.iter().map(Vec::len).product::<usize>() * nodes.len() * (3 * degree + 2));
         let built = match Values::extract(values)? {
             Values::F64(v) => {
                 let v = v.as_array();
                 py.detach(|| {
-                    run_with(threads, || {
+                    run_with(threads, work, || {
                         gridded::GridSpline::interpolate(nodes, v, degree)
                     })
                 })?
@@ -148,7 +160,7 @@ impl GridSpline {
             Values::F32(v) => {
                 let v = v.as_array();
                 py.detach(|| {
-                    run_with(threads, || {
+                    run_with(threads, work, || {
                         gridded::GridSpline::interpolate(nodes, v, degree)
                     })
                 })?
@@ -171,7 +183,12 @@ impl GridSpline {
         let s = &self.inner;
         let (x, n) = points(&xi, s.axes().len())?;
         let nu = nu.unwrap_or_default();
-        results(py, n, s.batch(), threads, |out| s.eval_into(x, &nu, out))
+        let (d, k) = (s.axes().len(), s.degree());
+        let per_point = d * k * k + (k + 1).saturating_pow(d as u32) * s.batch();
+        let work = work_ns(n.saturating_mul(per_point));
+        results(py, n, s.batch(), threads, work, |out| {
+            s.eval_into(x, &nu, out)
+        })
     }
 
     /// The B-spline coefficients (a float64 copy, grid × m).
@@ -259,16 +276,23 @@ fn eval_samples<'py>(
         })
     }
     let m = |shape: &[usize]| shape.last().copied().unwrap_or(0);
+    // Multiply-adds a point: 2^d (linear), about 8 · 4^d (PCHIP).
+    let (taps, ops): (usize, usize) = match how {
+        OnSamples::Linear => (2, 1),
+        OnSamples::Pchip => (4, 8),
+    };
+    let per_point = |m: usize| taps.saturating_pow(axes.len() as u32) * ops * m.max(1);
+    let work = |m: usize| work_ns(n.saturating_mul(per_point(m)));
     match Values::extract(values)? {
         Values::F64(v) => {
             let v = v.as_array();
-            results(py, n, m(v.shape()), threads, |out| {
+            results(py, n, m(v.shape()), threads, work(m(v.shape())), |out| {
                 run(&axes, v, x, out, how)
             })
         }
         Values::F32(v) => {
             let v = v.as_array();
-            results(py, n, m(v.shape()), threads, |out| {
+            results(py, n, m(v.shape()), threads, work(m(v.shape())), |out| {
                 run(&axes, v, x, out, how)
             })
         }
@@ -326,7 +350,7 @@ pub fn grid_cardinal_weights<'py>(
         let rows = view.as_slice_mut()?;
         let q: Vec<f64> = q.to_vec();
         py.detach(|| {
-            run_with(threads, || {
+            run_with(threads, work_ns(q.len() * n * 8), || {
                 rows.par_chunks_mut(n.max(1))
                     .zip(q.par_iter())
                     .for_each(|(row, at)| row.copy_from_slice(&axis.full_weights(at)));

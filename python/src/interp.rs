@@ -19,6 +19,7 @@ use ndarray::ArrayViewD;
 use numpy::{Element, PyArrayMethods, PyReadonlyArray2};
 use pyo3::prelude::*;
 use splinelab::ndimage::interpolant::PointRule;
+use splinelab::ndimage::local::route::global_ns;
 use splinelab::ndimage::samples::{Sample, Stored};
 use splinelab::prelude::*;
 
@@ -58,6 +59,16 @@ impl Coefficients {
             (true, Some(rule)) => Coefficients::FilteredAs(rule.parse().map_err(value_error)?),
         })
     }
+}
+
+/// Estimated nanoseconds on one thread of a call that builds the
+/// interpolant of `shape` under `opts` and `how` and makes `taps`
+/// multiply-adds evaluating it ([`crate::pool::run_with`] decides by it):
+/// the prefilter, or the copy of given coefficients, as the local route
+/// prices the global route ([`global_ns`]), and a nanosecond a tap.
+pub(crate) fn work_ns(shape: &[usize], opts: &Options, how: Coefficients, taps: f64) -> f64 {
+    let filtered = !matches!(how, Coefficients::Given) && opts.degree >= 2;
+    global_ns(shape.iter().product(), shape.len(), filtered) + taps
 }
 
 /// The interpolant of `data` (samples of any type read into `T`).
@@ -115,7 +126,10 @@ where
             None => f.eval_many_with_as(at.t(), rule, out),
         }
     };
-    py.detach(|| run_with(threads, run))?
+    let m = f64::from(opts.degree) + 1.0;
+    let taps = at.ncols() as f64 * m.powi(at.nrows() as i32);
+    let work = work_ns(data.shape(), &opts, how, taps);
+    py.detach(|| run_with(threads, work, run))?
         .map_err(engine_error)?;
     drop(view);
     Ok(result.into_any())

@@ -19,7 +19,6 @@
 #![deny(clippy::todo, clippy::unimplemented)]
 
 mod alloc;
-mod cache;
 mod check;
 mod cli;
 mod error;
@@ -45,6 +44,22 @@ fn _splinelab(m: &Bound<'_, PyModule>) -> PyResult<()> {
     )?;
     // `nan_policy="local"`'s default tolerance: the engine's, as the CLI's.
     m.add("LOCAL_TOL", splinelab::prelude::LOCAL_TOL)?;
+    // The local route's pricing constants (nanoseconds) that decide the
+    // global route before any call (`splinelab._local.may_be_local`).
+    {
+        use splinelab::ndimage::local::route::{
+            C_CALL, C_COPY, C_GLOBAL, C_LOCATE, C_POINT, C_READ, C_TAP,
+        };
+        let cost = pyo3::types::PyDict::new(m.py());
+        cost.set_item("call", C_CALL)?;
+        cost.set_item("locate", C_LOCATE)?;
+        cost.set_item("point", C_POINT)?;
+        cost.set_item("read", C_READ)?;
+        cost.set_item("tap", C_TAP)?;
+        cost.set_item("global", C_GLOBAL)?;
+        cost.set_item("copy", C_COPY)?;
+        m.add("LOCAL_ROUTE_COST", cost)?;
+    }
     m.add_function(wrap_pyfunction!(filter::nan_reach, m)?)?;
     m.add_function(wrap_pyfunction!(filter::filter, m)?)?;
     m.add_function(wrap_pyfunction!(filter::filter_bound, m)?)?;
@@ -52,6 +67,7 @@ fn _splinelab(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(local::local_map_f64, m)?)?;
     m.add_function(wrap_pyfunction!(local::local_map_f32, m)?)?;
     m.add_function(wrap_pyfunction!(local::local_route_cost, m)?)?;
+    m.add_function(wrap_pyfunction!(local::local_half_width, m)?)?;
     m.add_class::<local::LocalSplineF64>()?;
     m.add_class::<local::LocalSplineF32>()?;
     m.add_class::<grid::GridSpline>()?;

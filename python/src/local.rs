@@ -10,12 +10,13 @@
 //! each result rounded once to float32; issue 42).
 
 use crate::error::{engine_error, value_error};
-use crate::pool::run_with;
+use crate::pool::{parallel, run_with};
 use crate::resample::point_rule;
 use numpy::{
     Element, IntoPyArray, PyArray1, PyReadonlyArray1, PyReadonlyArray2, PyReadonlyArrayDyn,
 };
 use pyo3::prelude::*;
+use splinelab::ndimage::local::route::{C_POINT, locate_ns};
 use splinelab::ndimage::local::{LocalInterpolant, LocalOptions, LocalPlan, LocalSpec};
 use splinelab::ndimage::samples::{Blocks, Sample, SampleSource, Stored};
 use splinelab::prelude::*;
@@ -64,23 +65,32 @@ where
     let at = coordinates.as_array();
     let rule = point_rule(rule)?;
     let deriv = nonzero(deriv);
-    let run = || -> Result<Option<Vec<f64>>, NdimageError> {
+    // The route decided where the points' count says (locating them is
+    // the decision's cost), then the tiles evaluated where their price says.
+    let plan = || -> Result<Option<(LocalSpec<f64>, LocalPlan)>, NdimageError> {
         let spec = LocalSpec::<f64>::new(data.shape(), opts)?;
         let plan = if force {
-            LocalPlan::new(&spec, at.t(), rule, None)?
+            Some(LocalPlan::new(&spec, at.t(), rule, None)?)
         } else {
-            match LocalPlan::new_if_local(&spec, at.t(), rule)? {
-                Some(plan) => plan,
-                None => return Ok(None),
-            }
+            LocalPlan::new_if_local(&spec, at.t(), rule)?
         };
+        Ok(plan.map(|p| (spec, p)))
+    };
+    let run = |(spec, plan): (LocalSpec<f64>, LocalPlan)| -> Result<Vec<f64>, NdimageError> {
         let mut out = vec![0.0; at.ncols()];
         plan.evaluate(&spec, &data, deriv.as_deref(), &mut out)?;
-        Ok(Some(out))
+        Ok(out)
     };
-    let out = py
-        .detach(|| run_with(threads, run))?
-        .map_err(engine_error)?;
+    let out = py.detach(|| -> PyResult<Option<Vec<f64>>> {
+        let decided = run_with(threads, locate_ns(at.ncols()), plan)?.map_err(engine_error)?;
+        let Some((spec, plan)) = decided else {
+            return Ok(None);
+        };
+        let work = plan.cost().local_ns;
+        Ok(Some(
+            run_with(threads, work, || run((spec, plan)))?.map_err(engine_error)?,
+        ))
+    })?;
     Ok(out.map(|v| E::store_vec(v).into_pyarray(py)))
 }
 
@@ -148,7 +158,20 @@ pub fn local_route_cost(
         let c = LocalPlan::new(&spec, at.t(), rule, None)?.cost();
         Ok((c.local_ns, c.global_ns, c.tile, c.tiles))
     };
-    py.detach(run).map_err(engine_error)
+    py.detach(|| run_with(None, locate_ns(at.ncols()), run))?
+        .map_err(engine_error)
+}
+
+/// The local route's certified half-width for `degree` (2 or more) and
+/// `tol` (`None`: its default, `default_tol`), in float64: what
+/// `splinelab._local.may_be_local` prices a tile with (kept there per
+/// setting; the filter behind it is kept by the engine).
+#[pyfunction]
+#[pyo3(signature = (degree, tol))]
+pub fn local_half_width(degree: u32, tol: Option<f64>) -> PyResult<usize> {
+    let opts = local_options(degree, "mirror", 0.0, tol, "propagate", true, 0)?;
+    let spec = LocalSpec::<f64>::new(&[1], opts).map_err(engine_error)?;
+    Ok(spec.half_width())
 }
 
 /// `(k, ndim)` non-negative indices (numpy's `intp`) as a flat `usize` list.
@@ -189,7 +212,10 @@ where
     let deriv = nonzero(deriv);
     let mut out = vec![T::zero(); coordinates.ncols()];
     let run = || f.eval_many(source, coordinates.t(), rule, deriv.as_deref(), &mut out);
-    run_with(threads, run)?.map_err(engine_error)?;
+    // A point's share of a tile unknown before the plan: a point priced
+    // as the local route prices one (`C_POINT`).
+    let work = coordinates.ncols() as f64 * C_POINT;
+    run_with(threads, work, run)?.map_err(engine_error)?;
     Ok(out)
 }
 
@@ -228,7 +254,7 @@ macro_rules! spline_class {
             ) -> PyResult<Self> {
                 let opts = local_options(degree, mode, cval, tol, nan_policy, prefilter, scipy_pad)?;
                 let inner = py
-                    .detach(|| LocalInterpolant::new(&shape, opts, cache_bytes))
+                    .detach(|| parallel(|| LocalInterpolant::new(&shape, opts, cache_bytes)))
                     .map_err(engine_error)?;
                 let inner = if one_call { inner.for_one_call() } else { inner };
                 Ok($name { inner })
@@ -286,8 +312,8 @@ macro_rules! spline_class {
                 rule: &str,
             ) -> PyResult<Vec<(Vec<usize>, Vec<usize>)>> {
                 let rule = point_rule(rule)?;
-                self.inner
-                    .boxes_for_eval(coordinates.as_array().t(), rule)
+                let at = coordinates.as_array();
+                run_with(None, locate_ns(at.ncols()), || self.inner.boxes_for_eval(at.t(), rule))?
                     .map_err(engine_error)
             }
 
@@ -308,7 +334,7 @@ macro_rules! spline_class {
                 let (idx, v) = (flat_indices(&indices)?, widened(&values));
                 let data = input.as_array();
                 let inner = &mut self.inner;
-                let s = py.detach(|| inner.update(&data, &idx, &v)).map_err(engine_error)?;
+                let s = py.detach(|| parallel(|| inner.update(&data, &idx, &v))).map_err(engine_error)?;
                 Ok((s.tiles, s.coefficients))
             }
 
@@ -324,7 +350,7 @@ macro_rules! spline_class {
                 let source = blocks(&shape, &fetched)?;
                 let (idx, v) = (flat_indices(&indices)?, widened(&values));
                 let inner = &mut self.inner;
-                let s = py.detach(|| inner.update(&source, &idx, &v)).map_err(engine_error)?;
+                let s = py.detach(|| parallel(|| inner.update(&source, &idx, &v))).map_err(engine_error)?;
                 Ok((s.tiles, s.coefficients))
             }
 

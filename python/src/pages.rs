@@ -13,5 +13,6 @@ use splinelab_reports::session::{SessionCheck, session_files};
 #[pyfunction]
 pub fn session_page(py: Python<'_>, checks_json: &str) -> PyResult<Vec<(String, String)>> {
     let checks: Vec<SessionCheck> = serde_json::from_str(checks_json).map_err(value_error)?;
-    py.detach(|| session_files(&checks)).map_err(value_error)
+    py.detach(|| crate::pool::parallel(|| session_files(&checks)))
+        .map_err(value_error)
 }

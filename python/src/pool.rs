@@ -1,7 +1,23 @@
-//! The `threads=` argument: `None` runs on rayon's global pool (one thread
-//! per core), `n` on a pool of `n` threads kept for later calls (building a
-//! pool costs thread start-ups, too much to pay per call), its workers on
-//! different CPUs (`spread`).
+//! The `threads=` argument, and where a call runs. `threads=n` runs on a
+//! pool of `n` threads kept for later calls (building a pool costs thread
+//! start-ups, too much to pay per call), its workers on different CPUs
+//! (`spread`); `None` on the default pool (one thread per core, or
+//! `RAYON_NUM_THREADS` clamped as the CLI clamps it, as rayon's global
+//! pool). A small call (`threads=1`, or an estimated [`SMALL_NS`] of work
+//! or less) runs on the calling thread instead, its parallel loops inline
+//! (issue 50): handing it to a pool and waiting costs a wake-up of a
+//! worker and of the caller, 10–50 µs on a loaded 2-core machine, where
+//! scipy's whole call on 16² takes 8–40 µs.
+//!
+//! **How a call runs inline.** rayon splits a parallel loop whenever its
+//! pool has more than one thread, and a thread outside every pool hands
+//! each split to the global pool. The calling thread is therefore made,
+//! on its first small call, the only worker of a one-thread pool of its
+//! own (`use_current_thread`): its loops then run where they are, as one
+//! thread runs them. That is permanent for the thread (rayon keeps no way
+//! back), so every call from Python that runs rayon code and is not small
+//! installs it on a pool explicitly ([`parallel`], [`run_with`]), never on
+//! the global pool implicitly.
 
 use crate::error::value_error;
 use pyo3::PyResult;
@@ -19,6 +35,16 @@ use splinelab_reports::threads::MAX_THREADS;
 /// Pools kept at once: a program that tries many sizes keeps the last few,
 /// not one pool (and its threads) per size ever asked for.
 const KEPT_POOLS: usize = 4;
+
+/// Estimated work (nanoseconds on one thread) up to which a call with
+/// `threads=None` runs on the calling thread: twice the hand-off it saves
+/// (a parallel run of `t` ns on two cores takes `t / 2` plus the hand-off,
+/// 10–50 µs measured by `python/bench/small_calls.py` on the loaded 2-core
+/// machine, `threads=None` against `threads=1`). The estimates are the
+/// local route's pricing constants
+/// ([`splinelab::ndimage::local::C_GLOBAL`] per sample and axis of the
+/// prefilter, a nanosecond per multiply-add of the evaluation).
+pub const SMALL_NS: f64 = 60_000.0;
 
 fn pool(threads: usize) -> PyResult<Arc<ThreadPool>> {
     if !(1..=MAX_THREADS).contains(&threads) {
@@ -45,10 +71,63 @@ fn pool(threads: usize) -> PyResult<Arc<ThreadPool>> {
     Ok(p)
 }
 
-/// Runs `f` with `threads` rayon threads (`None`: the global pool).
-pub fn run_with<R: Send>(threads: Option<usize>, f: impl FnOnce() -> R + Send) -> PyResult<R> {
+/// The pool of `threads=None`: sized as rayon's global pool
+/// ([`splinelab_reports::threads::count`]), its workers on different CPUs
+/// as a `threads=n` pool's (`spread`: rayon's global pool, which the
+/// default was before issue 50, ran a 1024² cubic `spline_filter` in the
+/// time of one thread on the 2-core machine, 2.0 ms against 1.0 ms with
+/// `threads=2`); `None` where no thread can be started (the call then
+/// runs on the calling thread).
+fn default_pool() -> Option<&'static ThreadPool> {
+    static DEFAULT: OnceLock<Option<ThreadPool>> = OnceLock::new();
+    DEFAULT
+        .get_or_init(|| {
+            let n = splinelab_reports::threads::count();
+            let build = |n: usize| {
+                let mut builder = ThreadPoolBuilder::new().num_threads(n);
+                if let Some(spread) = spread::Spread::new(n) {
+                    builder = builder.start_handler(move |i| spread.apply(i));
+                }
+                builder.build().ok()
+            };
+            build(n).or_else(|| build(1))
+        })
+        .as_ref()
+}
+
+/// Runs `f` on the calling thread, its parallel loops inline (module
+/// documentation). A thread that already works for another pool (a call
+/// from inside rayon) runs `f` as it is.
+fn inline<R>(f: impl FnOnce() -> R) -> R {
+    thread_local! {
+        static ONE: Option<ThreadPool> =
+            ThreadPoolBuilder::new().num_threads(1).use_current_thread().build().ok();
+    }
+    ONE.with(|_| ());
+    f()
+}
+
+/// Runs `f` on the default pool: calls from Python that run rayon code
+/// and are not priced (`check`, the local interpolant's set-up).
+pub fn parallel<R: Send>(f: impl FnOnce() -> R + Send) -> R {
+    match default_pool() {
+        Some(p) => p.install(f),
+        None => inline(f),
+    }
+}
+
+/// Runs `f` with `threads` rayon threads (`None`: the default pool), or on
+/// the calling thread for `threads=1` and for work estimated at
+/// `work_ns` ≤ [`SMALL_NS`] under `None` (module documentation).
+pub fn run_with<R: Send>(
+    threads: Option<usize>,
+    work_ns: f64,
+    f: impl FnOnce() -> R + Send,
+) -> PyResult<R> {
     match threads {
-        None => Ok(f()),
+        Some(1) => Ok(inline(f)),
+        None if work_ns <= SMALL_NS => Ok(inline(f)),
+        None => Ok(parallel(f)),
         Some(n) => Ok(pool(n)?.install(f)),
     }
 }

@@ -9,7 +9,7 @@
 //! float32 (the `compute="float32"` opt-in).
 
 use crate::error::{engine_error, value_error};
-use crate::interp::{Coefficients, interpolant, options};
+use crate::interp::{Coefficients, interpolant, options, work_ns};
 use crate::pool::run_with;
 use ndarray::ArrayViewD;
 use numpy::{Element, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2};
@@ -45,11 +45,14 @@ where
     let result = crate::alloc::zeros::<O>(py, &shape)?;
     let mut view = result.readwrite();
     let out = view.as_slice_mut()?;
+    // Separable: `degree + 1` multiply-adds per output sample and axis.
+    let taps = (out.len() * axes.len()) as f64 * (f64::from(opts.degree) + 1.0);
+    let work = work_ns(data.shape(), &opts, how, taps);
     let run = || {
         let f = interpolant::<T, E>(&data, opts, how)?;
         f.resample_grid_as(&axes, deriv, out)
     };
-    py.detach(|| run_with(threads, run))?
+    py.detach(|| run_with(threads, work, run))?
         .map_err(engine_error)?;
     drop(view);
     Ok(result.into_any())
@@ -142,12 +145,14 @@ where
     let result = crate::alloc::zeros::<O>(py, &map.out_shape)?;
     let mut view = result.readwrite();
     let out = view.as_slice_mut()?;
+    let taps = out.len() as f64 * (f64::from(opts.degree) + 1.0).powi(data.ndim() as i32);
+    let work = work_ns(data.shape(), &opts, how, taps);
     let run = || {
         let f = interpolant::<T, E>(&data, opts, how)?;
         let m = map;
         f.resample_affine_as(m.matrix, m.offset, &m.out_shape, m.shift, m.rule, out)
     };
-    py.detach(|| run_with(threads, run))?
+    py.detach(|| run_with(threads, work, run))?
         .map_err(engine_error)?;
     drop(view);
     Ok(result.into_any())

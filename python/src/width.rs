@@ -4,6 +4,7 @@
 //! computations, without their files).
 
 use crate::error::value_error;
+use crate::pool::parallel;
 use numpy::{IntoPyArray, PyArray1};
 use pyo3::prelude::*;
 use rug::Float;
@@ -87,7 +88,7 @@ pub fn truncation_width(
     let saturation = f64_saturation_width(&family).map_err(value_error)?;
     within_budget(&width_search(&family, saturation, tol), budget)?;
     let w = py
-        .detach(|| splinelab::sspline::truncation_width(&family, tol, criterion))
+        .detach(|| parallel(|| splinelab::sspline::truncation_width(&family, tol, criterion)))
         .map_err(value_error)?;
     Ok((
         w.n,
@@ -115,7 +116,7 @@ pub fn coefficients_f64<'py>(
     let family = family(order, tension)?;
     count_ok(count)?;
     let c: Vec<f64> = py
-        .detach(|| coefficients(&family, count, CoefficientMethod::Production))
+        .detach(|| parallel(|| coefficients(&family, count, CoefficientMethod::Production)))
         .map_err(value_error)?;
     Ok(c.into_pyarray(py))
 }
@@ -141,7 +142,7 @@ pub fn coefficients_decimal(
     }
     let digits = (f64::from(bits) * std::f64::consts::LOG10_2).ceil() as usize + 1;
     let c: Vec<Mp<MAX_BITS>> = py
-        .detach(|| coefficients(&family, count, CoefficientMethod::Production))
+        .detach(|| parallel(|| coefficients(&family, count, CoefficientMethod::Production)))
         .map_err(value_error)?;
     let c: Vec<String> = c
         .iter()

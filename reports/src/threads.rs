@@ -8,19 +8,24 @@
 /// Most worker threads: more than any machine this runs on usefully has.
 pub const MAX_THREADS: usize = 256;
 
-/// Builds the global pool from a clamped `RAYON_NUM_THREADS` (unset or
-/// unparsable: rayon's default, one thread per core).
-pub fn configure() {
+/// The pool's size: `RAYON_NUM_THREADS` clamped to [`MAX_THREADS`] (unset,
+/// 0 or unparsable: rayon's default, one thread per core).
+pub fn count() -> usize {
     let requested = std::env::var("RAYON_NUM_THREADS")
         .ok()
         .and_then(|v| v.trim().parse::<usize>().ok())
         .unwrap_or(0);
     let cores = std::thread::available_parallelism().map_or(1, usize::from);
-    let n = if requested == 0 {
+    if requested == 0 {
         cores
     } else {
         requested.min(MAX_THREADS)
-    };
+    }
+}
+
+/// Builds the global pool of [`count`] threads.
+pub fn configure() {
+    let n = count();
     let build = |n: usize| {
         rayon::ThreadPoolBuilder::new()
             .num_threads(n)

@@ -17,19 +17,20 @@
 //! multiply-adds. **Error**: the coefficients' (see [`LineFilter`]) plus the
 //! rounding of `m^D` non-negative-weight terms, `≤ m D u Σ|D_i| w_i`.
 
-use super::NdimageError;
 use super::alloc::try_padded_zeros;
+use super::filter_cache;
 use super::line_filter::{LineFilter, Route};
 use super::mode::Mode;
 use super::nan_policy::NanPolicy;
 use super::nd_prefilter::{check_finite, padded_coefficients, spline_filter_from};
 use super::samples::Sample;
+use super::{NdimageError, spline_order};
 use crate::scalar::Real;
 use crate::sspline::bspline_uniform::{cell_derivatives_into, centred_cell};
-use crate::sspline::{MAX_ORDER, SplineFamily};
 use ndarray::{
     ArrayBase, ArrayD, ArrayView2, ArrayViewD, ArrayViewMutD, Data, Dimension, IxDyn, Slice,
 };
+use std::sync::Arc;
 
 #[cfg(test)]
 mod accuracy;
@@ -351,13 +352,10 @@ impl<T: Real + Send + Sync> Interpolant<T> {
         let Options {
             degree, mode, cval, ..
         } = opts;
-        if degree >= MAX_ORDER {
-            return Err(NdimageError::Degree(degree));
-        }
+        let order = spline_order(degree)?;
         if coeffs.is_empty() {
             return Err(NdimageError::Empty);
         }
-        let order = degree + 1;
         let pad = given_pad(mode, order);
         let (mut padded, finite) = extend_padded(coeffs, mode, &T::from_f64_exact(cval), pad)?;
         match opts.nan_policy {
@@ -563,14 +561,9 @@ fn prefilter_of<T: Real + Send + Sync>(
     opts: &Options,
     mode: Mode,
     cval: f64,
-) -> Result<(u32, LineFilter<T>), NdimageError> {
-    if opts.degree >= MAX_ORDER {
-        return Err(NdimageError::Degree(opts.degree));
-    }
-    let order = opts.degree + 1;
-    let family = SplineFamily::order(order)?;
-    let filter =
-        LineFilter::new(&family, mode, cval, opts.route)?.with_nan_policy(opts.nan_policy)?;
+) -> Result<(u32, Arc<LineFilter<T>>), NdimageError> {
+    let order = spline_order(opts.degree)?;
+    let filter = filter_cache::line_filter(opts.degree, mode, cval, opts.route, opts.nan_policy)?;
     Ok((order, filter))
 }
 
@@ -671,6 +664,7 @@ pub(crate) fn cell_weights_into<T: Real>(m: u32, d: u32, u: f64, w: &mut [T]) {
 mod tests {
     use super::*;
     use crate::ndimage::nd_prefilter::spline_filter;
+    use crate::sspline::SplineFamily;
     use ndarray::{Array, Axis, IxDyn, Zip};
 
     fn samples(shape: &[usize]) -> ArrayD<f64> {

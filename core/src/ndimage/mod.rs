@@ -15,6 +15,8 @@
 //!   and fold points;
 //! - [`line_filter`]: the prefilter of one line under a mode, exact
 //!   (recursive) or truncated (certified convolution), and its growth bound;
+//!   [`filter_cache`]: those filters kept between calls (their poles and
+//!   widths are computed in MPFR);
 //! - [`nd_prefilter`]: `spline_filter1d` / `spline_filter` over an
 //!   `ndarray`, lines in parallel, strided axes in vector strips;
 //! - [`block_filter`]: one long line in parallel blocks whose overlap is the
@@ -51,6 +53,7 @@
 pub mod alloc;
 pub mod block_filter;
 pub mod error;
+pub mod filter_cache;
 pub mod interpolant;
 mod lanes;
 pub mod line_filter;
@@ -64,3 +67,21 @@ mod stash;
 mod window_recursion;
 
 pub use error::NdimageError;
+
+/// The B-spline order `m = degree + 1` of a spline of `degree` (scipy's
+/// `order`), refused with [`NdimageError::Degree`] at and above
+/// [`MAX_ORDER`](crate::sspline::MAX_ORDER), the first order whose poles
+/// are not computed: the one home of that conversion and its limit (the
+/// interpolant, the local route's spec and `nan_reach` ask here).
+///
+/// ```
+/// use splinelab::ndimage::{NdimageError, spline_order};
+/// assert_eq!(spline_order(3).unwrap(), 4);
+/// assert!(matches!(spline_order(200), Err(NdimageError::Degree(200))));
+/// ```
+pub fn spline_order(degree: u32) -> Result<u32, NdimageError> {
+    if degree >= crate::sspline::MAX_ORDER {
+        return Err(NdimageError::Degree(degree));
+    }
+    Ok(degree + 1)
+}

@@ -112,10 +112,7 @@ pub fn nan_reach(degree: u32, tol: f64) -> Result<usize, NdimageError> {
         crate::sspline::width::check_tol(tol)?;
         return Ok(window);
     }
-    if degree >= crate::sspline::MAX_ORDER {
-        return Err(NdimageError::Degree(degree));
-    }
-    let (n, _) = certified_width(&SplineFamily::order(degree + 1)?, tol)?;
+    let (n, _) = certified_width(&SplineFamily::order(super::spline_order(degree)?)?, tol)?;
     Ok(n + window)
 }
 

@@ -10,7 +10,7 @@
 
 use super::axis_map::AxisMap;
 use super::coef_box::{CoefBox, Work, first_index};
-use super::route::{C_POINT, C_READ, RouteCost, global_ns, locate_ns, tile_ns};
+use super::route::{C_POINT, C_READ, RouteCost, floor_ns, global_ns, locate_ns, tile_ns};
 use super::spec::LocalSpec;
 use crate::ndimage::NdimageError;
 use crate::ndimage::interpolant::PointRule;
@@ -93,8 +93,9 @@ impl LocalPlan {
             spec.ndim(),
             spec.filter.is_some(),
         );
-        if locate_ns(points.nrows()) >= global {
-            // Locating the points alone costs what the global route does.
+        let n = spec.filter.is_some().then(|| spec.half_width());
+        if floor_ns(spec.ndim(), spec.degree(), n, points.nrows()) >= global {
+            // The count alone says the local route cannot win.
             return Ok(None);
         }
         let mut plan = Self::located(spec, points, rule)?;
@@ -107,11 +108,11 @@ impl LocalPlan {
 
     /// A lower bound of [`group`](Self::group)'s local cost at every tile
     /// edge: every point located (`locate_ns`), `C_POINT` per evaluated
-    /// point and one tile of edge 1 (a
-    /// tile's cost grows with its edge; one tile at least where a point is
-    /// evaluated); without a prefilter, the cost itself.
+    /// point and one tile of edge 1 (a tile's cost grows with its edge;
+    /// one tile at least where there is a point, [`floor_ns`]); without a
+    /// prefilter, the cost itself.
     fn local_floor_ns<T: Real>(&self, spec: &LocalSpec<T>) -> f64 {
-        let live = self.cval_at.iter().filter(|&&c| !c).count();
+        let live = self.priced_points();
         let (d, m) = (self.ndim, spec.order as usize);
         if spec.filter.is_none() {
             return locate_ns(self.len())
@@ -123,6 +124,13 @@ impl LocalPlan {
             0.0
         };
         locate_ns(self.len()) + one_tile + live as f64 * C_POINT
+    }
+
+    /// The points the local route prices as evaluated: those that do not
+    /// take `cval`, and one at least where there is a point ([`floor_ns`]).
+    fn priced_points(&self) -> usize {
+        let live = self.cval_at.iter().filter(|&&c| !c).count();
+        live.max(usize::from(!self.is_empty()))
     }
 
     /// The points located (cells, `cval` points), not yet grouped.
@@ -197,7 +205,7 @@ impl LocalPlan {
                 .collect();
             let per_point = C_POINT + C_READ * (m as f64).powi(d as i32);
             self.cost = RouteCost {
-                local_ns: locate_ns(self.len()) + live.len() as f64 * per_point,
+                local_ns: locate_ns(self.len()) + self.priced_points() as f64 * per_point,
                 global_ns: global_ns(samples, d, false),
                 tile: 1,
                 tiles: live.len(),
@@ -233,8 +241,14 @@ impl LocalPlan {
                 .min_by(|a, b| a.0.total_cmp(&b.0))
                 .unwrap_or((0.0, 1, 0)),
         };
+        // One tile at least where there is a point ([`floor_ns`]).
+        let (local, priced) = if live.is_empty() && !self.is_empty() {
+            (tile_ns(d, degree, n, t), 1)
+        } else {
+            (local, live.len())
+        };
         self.cost = RouteCost {
-            local_ns: locate_ns(self.len()) + local + live.len() as f64 * C_POINT,
+            local_ns: locate_ns(self.len()) + local + priced as f64 * C_POINT,
             global_ns: global_ns(samples, d, true),
             tile: t,
             tiles,

@@ -25,7 +25,8 @@
 //! a coefficient array of the input's size). The estimate of each in
 //! nanoseconds: local `Σ_tiles (C_TAP (2n + 1) Σ_j e^{D−j} b^j + C_READ
 //! e^D)` with `b = t + d`, `e = b + 2n`, for the tile edge `t` (a power of
-//! two) that minimises it; global `N (C_GLOBAL D + C_COPY)`. Without a
+//! two) that minimises it, plus `C_CALL` per call (its set-up); global
+//! `N (C_GLOBAL D + C_COPY)`. Without a
 //! prefilter (degrees 0, 1, `prefilter=False`) the local route reads each
 //! point's `(d + 1)^D` support and the global route copies the array
 //! (`C_COPY` per sample). Either way the local route first locates every
@@ -35,9 +36,11 @@
 //! give is quoted in the README.
 
 use crate::ndimage::NdimageError;
+use crate::ndimage::filter_cache;
+use crate::ndimage::line_filter::Route;
+use crate::ndimage::mode::Mode;
+use crate::ndimage::nan_policy::NanPolicy;
 use crate::scalar::Real;
-use crate::sspline::SplineFamily;
-use crate::sspline::prefilter::RecursivePrefilter;
 
 /// Nanoseconds per convolution tap (a multiply and two adds) on the local
 /// route (the taps swept over whole rows: vectorised).
@@ -67,6 +70,15 @@ pub const C_POINT: f64 = 1000.0;
 /// is what reproject's 7875 such calls spent deciding.
 pub const C_LOCATE: f64 = 50.0;
 
+/// Nanoseconds of the local route's set-up per call, whatever its points:
+/// the spec (its filter kept between calls, `filter_cache`), the plan's
+/// arrays and the pricing of the tile edges, and the Python package's
+/// call into it. Measured (issue 50, `python/bench/small_calls.py`'s
+/// machine): `splinelab._local.try_map` forced at one point outside an 8²
+/// array under `'constant'` (nothing evaluated): 1.2 µs linear, 1.5 µs
+/// cubic (the engine's part 0.8 and 1.1 µs).
+pub const C_CALL: f64 = 1500.0;
+
 /// The tolerance of the local route under `tol=None` for a spline of
 /// `degree ≥ 2` computed in `T` (module documentation): `u · A / 4`, at
 /// most 1/2.
@@ -77,8 +89,16 @@ pub const C_LOCATE: f64 = 50.0;
 /// assert!((t - 0.75 * 2f64.powi(-53)).abs() < 1e-30);
 /// ```
 pub fn default_tol<T: Real>(degree: u32) -> Result<f64, NdimageError> {
-    let family = SplineFamily::order(degree + 1)?;
-    let a = RecursivePrefilter::<T>::new(&family)?.amplification();
+    // The exact filter kept between calls ([`filter_cache`]): its poles,
+    // hence `A`, are computed in MPFR once.
+    let exact = filter_cache::line_filter::<T>(
+        degree,
+        Mode::Mirror,
+        0.0,
+        Route::Exact,
+        NanPolicy::Propagate,
+    )?;
+    let a = exact.recursive().amplification();
     let u = (-(T::BITS as f64)).exp2();
     Ok((u * a / 4.0).min(0.5))
 }
@@ -104,7 +124,7 @@ impl RouteCost {
 }
 
 /// The local cost of one tile of edge `t` (module documentation).
-pub(crate) fn tile_ns(ndim: usize, degree: u32, n: usize, t: usize) -> f64 {
+pub fn tile_ns(ndim: usize, degree: u32, n: usize, t: usize) -> f64 {
     let b = (t + degree as usize) as f64;
     let e = b + 2.0 * n as f64;
     let d = ndim as i32;
@@ -112,14 +132,42 @@ pub(crate) fn tile_ns(ndim: usize, degree: u32, n: usize, t: usize) -> f64 {
     C_TAP * (2 * n + 1) as f64 * outputs + C_READ * e.powi(d)
 }
 
-/// The local route's cost of locating `points` points ([`C_LOCATE`] each).
-pub(crate) fn locate_ns(points: usize) -> f64 {
-    points as f64 * C_LOCATE
+/// The local route's cost before anything is priced: its set-up
+/// ([`C_CALL`]) and locating `points` points ([`C_LOCATE`] each).
+pub fn locate_ns(points: usize) -> f64 {
+    C_CALL + points as f64 * C_LOCATE
+}
+
+/// The local route's floor for `points` points (`ndim` axes, `degree`,
+/// `half_width` the prefilter's certified half-width, `None` without a
+/// prefilter), from the count alone: [`locate_ns`], and where there is a
+/// point at least one box evaluated, the cheapest (a tile of edge 1, or
+/// without a prefilter one point's support) with its [`C_POINT`]. The
+/// local route is priced at least one box whenever it has a point, also
+/// where every point takes `cval` (a call whose points all lie outside
+/// under `'constant'` takes the global route where the array costs less
+/// than that box: small arrays only). Where the floor reaches the global
+/// route's cost ([`global_ns`]) the global route is taken without a look
+/// at the points; the Python package evaluates the same formula from these
+/// constants before calling the engine (`splinelab._local.may_be_local`).
+///
+/// ```
+/// use splinelab::ndimage::local::route::{C_CALL, C_LOCATE, floor_ns};
+/// assert_eq!(floor_ns(2, 3, Some(29), 0), C_CALL);
+/// assert!(floor_ns(2, 3, Some(29), 1) > 20_000.0 + C_CALL + C_LOCATE);
+/// ```
+pub fn floor_ns(ndim: usize, degree: u32, half_width: Option<usize>, points: usize) -> f64 {
+    let first_box = match half_width {
+        _ if points == 0 => return locate_ns(0),
+        Some(n) => tile_ns(ndim, degree, n, 1),
+        None => C_READ * (f64::from(degree) + 1.0).powi(ndim as i32),
+    };
+    locate_ns(points) + C_POINT + first_box
 }
 
 /// The global route's cost on `samples` samples of `ndim` axes, with a
 /// prefilter or without.
-pub(crate) fn global_ns(samples: usize, ndim: usize, prefilter: bool) -> f64 {
+pub fn global_ns(samples: usize, ndim: usize, prefilter: bool) -> f64 {
     let filter = if prefilter {
         C_GLOBAL * ndim as f64
     } else {

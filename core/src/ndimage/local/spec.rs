@@ -5,12 +5,13 @@
 
 use super::axis_map::AxisMap;
 use super::route::default_tol;
-use crate::ndimage::NdimageError;
+use crate::ndimage::filter_cache;
 use crate::ndimage::line_filter::{LineFilter, Route};
 use crate::ndimage::mode::Mode;
 use crate::ndimage::nan_policy::NanPolicy;
+use crate::ndimage::{NdimageError, spline_order};
 use crate::scalar::Real;
-use crate::sspline::{MAX_ORDER, SplineFamily};
+use std::sync::Arc;
 
 /// How to build the local route of a spline (the global route's
 /// [`Options`](crate::ndimage::interpolant::Options) plus what the Python
@@ -63,7 +64,7 @@ pub struct LocalSpec<T> {
     pub(crate) axes: Vec<AxisMap>,
     /// The truncated convolution ([`Route::Convolution`]); `None`: the
     /// coefficients are the samples (degrees 0 and 1, `prefilter=False`).
-    pub(crate) filter: Option<LineFilter<T>>,
+    pub(crate) filter: Option<Arc<LineFilter<T>>>,
     pub(crate) cval: T,
     pub(crate) nan_policy: NanPolicy,
     tol: Option<f64>,
@@ -86,19 +87,21 @@ impl<T: Real> LocalSpec<T> {
         if shape.is_empty() || shape.contains(&0) {
             return Err(NdimageError::Empty);
         }
-        if opts.degree >= MAX_ORDER {
-            return Err(NdimageError::Degree(opts.degree));
-        }
-        let order = opts.degree + 1;
+        let order = spline_order(opts.degree)?;
         let filtered = opts.prefilter && opts.degree >= 2;
         let (filter, tol) = if filtered {
             let tol = match opts.tol {
                 Some(t) => t,
                 None => default_tol::<T>(opts.degree)?,
             };
-            let family = SplineFamily::order(order)?;
-            let f = LineFilter::new(&family, opts.mode, opts.cval, Route::Convolution { tol })?
-                .with_nan_policy(opts.nan_policy)?;
+            let route = Route::Convolution { tol };
+            let f = filter_cache::line_filter(
+                opts.degree,
+                opts.mode,
+                opts.cval,
+                route,
+                opts.nan_policy,
+            )?;
             (Some(f), Some(tol))
         } else {
             (None, None)
@@ -159,13 +162,13 @@ impl<T: Real> LocalSpec<T> {
     pub fn half_width(&self) -> usize {
         self.filter
             .as_ref()
-            .and_then(LineFilter::half_width)
+            .and_then(|f| f.half_width())
             .unwrap_or(0)
     }
 
     /// `Σ_{|j|>n} |c_j|`, the per-axis truncation bound (0 without a prefilter).
     pub fn bound(&self) -> f64 {
-        self.filter.as_ref().map_or(0.0, LineFilter::bound)
+        self.filter.as_ref().map_or(0.0, |f| f.bound())
     }
 
     /// The tolerance the half-width was certified for (`None` without a prefilter).

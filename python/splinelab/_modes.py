@@ -1,0 +1,65 @@
+"""scipy.ndimage's mode names and what the engine makes of them: the one
+place where a scipy mode becomes the engine's filter rule, its mode, its
+point rule and scipy's padding (issue 50: the drop-in, the local route,
+the interpolant and the dask wrappers all ask here)."""
+
+from __future__ import annotations
+
+from ._validate import _mode
+from .errors import ModeError
+
+#: The filter scipy's spline_filter1d applies under each mode (ni_splines.c
+#: has three: the mirror rule, the reflect (half-sample) rule and the
+#: periodic one).
+SCIPY_FILTER_RULE = {
+    "mirror": "mirror",
+    "constant": "mirror",
+    "grid-constant": "mirror",
+    "wrap": "mirror",
+    "reflect": "reflect",
+    "grid-mirror": "reflect",
+    "nearest": "reflect",
+    "grid-wrap": "grid-wrap",
+}
+#: The modes whose spline of the extended signal scipy approximates by
+#: padding 12 samples (``exact_edges`` evaluates it exactly).
+EXACT_EDGES = ("nearest", "grid-constant")
+MODES = "mirror, reflect, grid-mirror, grid-wrap, wrap, nearest, grid-constant, constant"
+#: The modes whose points are folded by whole periods.
+PERIODIC = ("grid-wrap", "wrap")
+
+
+def interp_mode(mode):
+    """``mode`` checked: a string (ArgumentTypeError) among scipy's names
+    (ModeError)."""
+    mode = _mode(mode)
+    if mode not in SCIPY_FILTER_RULE:
+        raise ModeError(f"unknown mode {mode!r}: expected one of {MODES}")
+    return mode
+
+
+def filter_mode(mode, exact_edges):
+    """The engine's filter for scipy's ``mode`` (its rule), or with
+    ``exact_edges`` the exact extension for nearest / grid-constant (cval 0)."""
+    mode = interp_mode(mode)
+    if exact_edges and mode in EXACT_EDGES:
+        return mode
+    return SCIPY_FILTER_RULE[mode]
+
+
+def engine_args(mode, d, prefilter, exact_edges):
+    """scipy's interpolation ``mode`` as the engine's ``(mode, point rule,
+    pad)``: 'constant' is the mirror spline with ``cval`` at points outside
+    the grid ('cval-outside'); 'wrap' the mirror spline at the point moved
+    by whole periods ``n - 1`` ('wrap'); 'nearest' and 'grid-constant' at
+    degrees 2 to 5 with the prefilter (and without ``exact_edges``) scipy's
+    route, the samples padded by 12 and filtered with scipy's rule
+    (:data:`SCIPY_FILTER_RULE`), the point moved by 12; every other mode
+    the engine's own, points folded ('fold')."""
+    if mode == "constant":
+        return "mirror", "cval-outside", 0
+    if mode == "wrap":
+        return "mirror", "wrap", 0
+    if mode in EXACT_EDGES and prefilter and 1 < d <= 5 and not exact_edges:
+        return mode, "fold", 12
+    return mode, "fold", 0

@@ -1,0 +1,117 @@
+"""Small calls (issue 50): the route is decided before any call into the
+engine where the shapes and the point count decide it, the same decision
+as the engine's pricing of both routes, and a small call makes one call
+into the engine, the evaluation (no local route tried and declined, no
+explicit points formed). Speed is measured by python/bench/small_calls.py,
+not here."""
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+import splinelab
+from splinelab import _local
+from splinelab import _splinelab as ext
+
+MODES = ["constant", "mirror", "reflect", "grid-mirror", "grid-wrap", "wrap", "nearest", "grid-constant"]
+
+
+@st.composite
+def calls(draw):
+    ndim = draw(st.integers(1, 3))
+    shape = tuple(draw(st.lists(st.integers(1, 48 if ndim < 3 else 16), min_size=ndim, max_size=ndim)))
+    k = draw(st.integers(0, 400))
+    seed = draw(st.integers(0, 2**32 - 1))
+    rng = np.random.default_rng(seed)
+    # Inside, near and outside the grid: the local route locates cval points too.
+    flat = np.stack([rng.uniform(-3.0, n + 2.0, k) for n in shape]).reshape(ndim, k)
+    d = draw(st.integers(0, 7))
+    return dict(shape=shape, flat=flat, d=d, mode=draw(st.sampled_from(MODES)), prefilter=draw(st.booleans()),
+                tol=draw(st.sampled_from([None, 1e-6, 1e-12])), exact_edges=draw(st.booleans()))
+
+
+def _priced(c):
+    mode, rule, pad = _local.engine_args(c["mode"], c["d"], c["prefilter"], c["exact_edges"])
+    return ext.local_route_cost(list(c["shape"]), np.ascontiguousarray(c["flat"]), c["d"], mode, c["tol"],
+                                c["prefilter"], rule, pad)
+
+
+@settings(max_examples=300, deadline=None)
+@given(calls())
+def test_the_count_decides_the_global_route_only_where_the_engine_prices_it_so(c):
+    """Where ``may_be_local`` (shape and point count alone) says the local
+    route cannot win, the engine's pricing of both routes, the points
+    located and grouped, prices the local route at least as high as the
+    global one; and wherever it is priced, the local route costs at least
+    the floor the count alone gives, and the global route what the count
+    formula says."""
+    k = c["flat"].shape[1]
+    local_ns, global_ns, _, _ = _priced(c)
+    cost = _local._COST
+    filtered = c["prefilter"] and c["d"] >= 2
+    assert local_ns >= _local.floor_ns(len(c["shape"]), k, c["d"], filtered, c["tol"]) * (1 - 1e-12)
+    per_sample = cost["global"] * len(c["shape"]) * filtered + cost["copy"]
+    assert global_ns == pytest.approx(np.prod(c["shape"]) * per_sample, rel=1e-12)
+    if not _local.may_be_local(c["shape"], k, c["d"], c["prefilter"], c["tol"]):
+        assert local_ns >= global_ns
+
+
+@settings(max_examples=100, deadline=None)
+@given(calls())
+def test_the_engine_declines_where_the_count_decides_the_global_route(c):
+    """The engine's own decision (``local_map_f64`` unforced) is the global
+    route wherever ``may_be_local`` is False."""
+    k = c["flat"].shape[1]
+    if _local.may_be_local(c["shape"], k, c["d"], c["prefilter"], c["tol"]):
+        return
+    a = np.random.default_rng(0).normal(size=c["shape"])
+    mode, rule, pad = _local.engine_args(c["mode"], c["d"], c["prefilter"], c["exact_edges"])
+    nan_policy = "propagate"
+    out = ext.local_map_f64(a, np.ascontiguousarray(c["flat"]), c["d"], mode, 0.0, c["tol"], c["prefilter"], None,
+                            None, rule, nan_policy, pad, False)
+    assert out is None
+
+
+@pytest.fixture
+def engine_calls(monkeypatch):
+    """Every call into the extension's functions, by name, in order."""
+    seen = []
+    for name in dir(ext):
+        f = getattr(ext, name)
+        if type(f).__name__ != "builtin_function_or_method":
+            continue
+
+        def counted(*args, _f=f, _name=name, **kwargs):
+            seen.append(_name)
+            return _f(*args, **kwargs)
+
+        monkeypatch.setattr(ext, name, counted)
+    return seen
+
+
+def _small_calls():
+    rng = np.random.default_rng(3)
+    x, x3 = rng.normal(size=(16, 16)), rng.normal(size=(8, 8, 8))
+    pts = rng.uniform(0, 15, (2, 25))
+    rot = np.array([[0.9, 0.3], [-0.3, 0.9]])
+    yield "map_coordinates", lambda o: splinelab.map_coordinates(x, pts, order=o), "map_coordinates"
+    yield "map_coordinates 1 point", lambda o: splinelab.map_coordinates(x[:8, :8], [[3.3], [4.6]], order=o), \
+        "map_coordinates"
+    yield "map_coordinates float32", lambda o: splinelab.map_coordinates(x.astype(np.float32), pts, order=o), \
+        "map_coordinates"
+    yield "affine_transform", lambda o: splinelab.affine_transform(x, rot, (0.7, -0.2), order=o), "affine"
+    yield "rotate", lambda o: splinelab.rotate(x, 30, order=o), "affine"
+    yield "shift", lambda o: splinelab.shift(x, 0.3, order=o), "resample"
+    yield "zoom", lambda o: splinelab.zoom(x3, 2, order=o), "resample"
+    yield "geometric_transform", lambda o: splinelab.geometric_transform(x, lambda c: (c[0] - 0.3, c[1]), order=o), \
+        "map_coordinates"
+    yield "spline_filter", lambda o: splinelab.spline_filter(x, order=max(o, 2)), "filter"
+    yield "spline_filter1d", lambda o: splinelab.spline_filter1d(x, order=max(o, 2)), "filter"
+
+
+@pytest.mark.parametrize("order", [0, 1, 3, 5])
+@pytest.mark.parametrize("name, call, engine", list(_small_calls()), ids=[c[0] for c in _small_calls()])
+def test_a_small_call_makes_one_engine_call_the_evaluation(engine_calls, name, call, engine, order):
+    call(order)
+    assert engine_calls == [engine]
