@@ -14,6 +14,7 @@ pub mod curves;
 pub mod deform;
 pub mod exact;
 pub mod flatten_reference;
+pub mod gridded;
 pub mod interpolation_residual;
 pub mod local_route;
 pub mod metrics;

@@ -13,6 +13,7 @@ pub mod conditioning;
 pub mod curves;
 pub mod engine;
 pub mod figure;
+pub mod gridded;
 pub mod projection;
 pub mod provenance;
 pub mod qi;

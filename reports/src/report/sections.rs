@@ -63,4 +63,5 @@ pub const SECTIONS: &[Entry] = &[
     timed(by_profile(super::update_cost::section)),
     fixed(super::check::section),
     timed(by_profile(super::engine::section)),
+    timed(by_profile(super::gridded::section)),
 ];

@@ -33,6 +33,7 @@ mod engine_lanes;
 mod engine_properties;
 mod engine_proptest;
 mod engine_scipy;
+mod gridded;
 mod knot_insertion;
 mod module_cycles;
 mod nan_policy;
