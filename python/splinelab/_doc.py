@@ -231,6 +231,24 @@ compute : {'float64', 'float32'}, optional
     read as they lie, float32 results rounded as the unchunked functions
     round them) or 'float32' (the opt-in float32 arithmetic, as
     :func:`splinelab.spline_filter`).""",
+    "dask_prefilter": """
+prefilter : bool, optional
+    True (default, scipy's): the input is the samples, prefiltered by the
+    certified chunked filter. False: the input is taken as the spline's
+    coefficients already (scipy's ``prefilter=False``). dask-image's
+    ``prefilter`` defaults to False; splinelab's does not.""",
+    "dask_output_chunks": """
+output_chunks : tuple or str, optional
+    dask-image's name for ``chunks``; passing both is a TypeError.""",
+    "dask_filter_chunks": """
+output_chunks : tuple or str, optional
+    The result's chunks (default: the input's). dask-image accepts this
+    keyword and ignores it; here the result is rechunked to it.""",
+    "dask_depth": """
+depth : int, optional
+    dask-image's overlap per filtered axis. The overlap used is
+    ``max(depth, depth(order, tol, route))``: never less than the certified
+    one (a larger one only reads more), so the bound stands either way.""",
     "dask_raises": """
 ValueError
     ``tol=None`` or outside (0, 1), an unknown ``route`` or ``nan_policy``,
@@ -238,7 +256,10 @@ ValueError
 splinelab.errors.OrderError
     ``order`` outside 0..199.
 splinelab.errors.ModeError
-    ``mode`` is not one of scipy's eight.""",
+    ``mode`` is not one of scipy's eight.
+TypeError
+    A keyword given under both its splinelab and its dask-image name
+    (``chunks`` and ``output_chunks``, the input and ``image``).""",
 }
 
 BLOCKS = {**_FILTER, **_INTERP, **_COMMON, **_DASK}
@@ -252,7 +273,7 @@ _RUNS = {
     "dask_tail": ("dask_threads", "dask_route", "dask_nan_policy", "dask_compute"),
     "dask_resample": ("dask_order", "dask_mode", "dask_cval"),
     "dask_resample_keywords": ("dask_tol", "dask_output", "dask_chunks", "dask_threads", "dask_route",
-                               "dask_nan_policy", "dask_compute"),
+                               "dask_nan_policy", "dask_compute", "dask_prefilter", "dask_output_chunks"),
 }
 BLOCKS.update({run: "\n".join(BLOCKS[name].strip("\n") for name in names) for run, names in _RUNS.items()})
 

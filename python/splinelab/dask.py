@@ -53,6 +53,8 @@ by a stated tolerance.
 
 from __future__ import annotations
 
+import functools
+import inspect
 import itertools
 
 import dask
@@ -172,12 +174,18 @@ def bound(order, tol=DEFAULT_TOL, ndim=1, route="truncated"):
 _NUMPY_PAD = {"mirror": "reflect", "reflect": "symmetric"}
 
 
-def _map(darr, axes, order, mode, tol, output, threads, route, nan_policy="propagate", compute="float64"):
+def _map(darr, axes, order, mode, tol, output, threads, route, nan_policy="propagate", compute="float64",
+         overlap=None):
     darr = da.asarray(darr)
     dtype = np.dtype(output)
     compute = _dt.compute_name(compute)
     nan_policy = _nan_policy(nan_policy)
     d = depth(order, tol, route)
+    if overlap is not None:
+        # dask-image's `depth=`: never below the certified overlap (more only reads more).
+        if isinstance(overlap, (bool, np.bool_)) or not isinstance(overlap, (int, np.integer)) or overlap < 0:
+            raise ValueError(f"depth must be a non-negative integer (dask-image's overlap), got {overlap!r}")
+        d = max(d, int(overlap))
     # An axis in one chunk has no seam: no overlap. An axis not longer than
     # two overlaps goes into one chunk: filtered whole, exactly.
     short = {ax: -1 for ax in axes if darr.numblocks[ax] > 1 and darr.shape[ax] <= 2 * d}
@@ -231,9 +239,46 @@ def _pad_array_edges(x, seamed, rule, d, location, chunks):
     return np.pad(x, pads, mode=_NUMPY_PAD[rule]), crop
 
 
+def _dask_image_names(**aliases):
+    """Accept dask-image's name for a parameter (``alias=name``) as well as
+    splinelab's: the call goes on under splinelab's name; both given is a
+    TypeError naming both."""
+    def wrap(func):
+        sig = inspect.signature(func)
+
+        @functools.wraps(func)
+        def call(*args, **kwargs):
+            for alias, name in aliases.items():
+                if alias in kwargs:
+                    rest = {k: v for k, v in kwargs.items() if k not in aliases}
+                    try:
+                        given = name in sig.bind_partial(*args, **rest).arguments
+                    except TypeError:
+                        given = name in rest
+                    if given:
+                        raise TypeError(f"{func.__name__}() got both {name}= and {alias}= (dask-image's name for "
+                                        f"{name}): pass one")
+                    kwargs[name] = kwargs.pop(alias)
+            return func(*args, **kwargs)
+        return call
+    return wrap
+
+
+def _either(chunks, output_chunks):
+    """``chunks=`` or dask-image's ``output_chunks=``, not both."""
+    if chunks is not None and output_chunks is not None:
+        raise TypeError("got both chunks= and output_chunks= (dask-image's name for chunks): pass one")
+    return output_chunks if chunks is None else chunks
+
+
+def _rechunked(out, output_chunks):
+    return out if output_chunks is None else out.rechunk(output_chunks)
+
+
+@_dask_image_names(image="darr")
 @fill
 def spline_filter(darr, order=3, mode="mirror", tol=DEFAULT_TOL, output=np.float64, threads=1, route="truncated",
-                  nan_policy="propagate", compute="float64"):
+                  nan_policy="propagate", compute="float64", *, output_chunks=None, depth=None):
     """:func:`splinelab.spline_filter` of a dask array, chunk by chunk.
 
     Parameters
@@ -245,6 +290,8 @@ def spline_filter(darr, order=3, mode="mirror", tol=DEFAULT_TOL, output=np.float
     %(dask_tol)s
     %(dask_output)s
     %(dask_tail)s
+    %(dask_filter_chunks)s
+    %(dask_depth)s
 
     Returns
     -------
@@ -273,13 +320,15 @@ def spline_filter(darr, order=3, mode="mirror", tol=DEFAULT_TOL, output=np.float
     True
     """
     darr = da.asarray(darr)
-    return _map(darr, list(range(darr.ndim)), order, mode, tol, output, threads, route, nan_policy, compute)
+    return _rechunked(_map(darr, list(range(darr.ndim)), order, mode, tol, output, threads, route, nan_policy,
+                           compute, depth), output_chunks)
 
 
+@_dask_image_names(image="darr")
 @fill
 def spline_filter1d(
     darr, order=3, axis=-1, mode="mirror", tol=DEFAULT_TOL, output=np.float64, threads=1, route="truncated",
-    nan_policy="propagate", compute="float64",
+    nan_policy="propagate", compute="float64", *, output_chunks=None, depth=None,
 ):
     """:func:`splinelab.spline_filter1d` of a dask array along ``axis``, chunk by chunk.
 
@@ -294,6 +343,8 @@ def spline_filter1d(
     %(dask_tol)s
     %(dask_output)s
     %(dask_tail)s
+    %(dask_filter_chunks)s
+    %(dask_depth)s
 
     Returns
     -------
@@ -309,7 +360,8 @@ def spline_filter1d(
     As :func:`spline_filter`, along one axis.
     """
     darr = da.asarray(darr)
-    return _map(darr, [_axis(axis, darr.ndim)], order, mode, tol, output, threads, route, nan_policy, compute)
+    return _rechunked(_map(darr, [_axis(axis, darr.ndim)], order, mode, tol, output, threads, route, nan_policy,
+                           compute, depth), output_chunks)
 
 
 # ---------------------------------------------------------------------------
@@ -354,7 +406,8 @@ class _Plan:
     """How a mode reads coefficients: the coefficient array (lazy), the
     engine mode for given coefficients, and the points' transformation."""
 
-    def __init__(self, darr, order, mode, cval, tol, route, threads, nan_policy="propagate", compute="float64"):
+    def __init__(self, darr, order, mode, cval, tol, route, threads, nan_policy="propagate", compute="float64",
+                 prefilter=True):
         self.d, self.mode, self.cval = order, _interp_mode(mode), float(cval)
         self.compute = _dt.compute_name(compute)
         if self.compute == "float32":
@@ -362,13 +415,13 @@ class _Plan:
         self.shape = darr.shape
         # The engine's mode and scipy's 12-sample pad ('nearest',
         # 'grid-constant' at degrees 2 to 5), as the in-memory call maps them.
-        self.engine_mode, _, self.pad = engine_args(self.mode, order, True, False)
+        self.engine_mode, _, self.pad = engine_args(self.mode, order, bool(prefilter), False)
         if order > 5 and self.mode in ("nearest", "grid-constant"):
             raise ValueError(f"mode {self.mode!r} above degree 5 (the exact extension) is not offered on dask")
         if self.pad:
             kind = {"mode": "edge"} if self.mode == "nearest" else {"mode": "constant", "constant_values": self.cval}
             darr = da.pad(darr, self.pad, **kind)
-        if order > 1:
+        if order > 1 and prefilter:
             smallest = min(darr.chunksize)
             need = depth(order, tol, route)
             if smallest < need:  # the overlap needs chunks of at least the depth
@@ -464,12 +517,12 @@ def _work_dtype(darr, output):
 
 
 def _on_output_grid(darr, out_shape, chunks, points_of, order, mode, cval, tol, route, output, threads,
-                    nan_policy="propagate", compute="float64"):
+                    nan_policy="propagate", compute="float64", prefilter=True):
     """The output of ``out_shape`` in ``chunks``, chunk ``slices`` at the
     points ``points_of(slices)`` (``(ndim, k)``, scipy's arithmetic)."""
     darr = da.asarray(darr)
     dtype = _work_dtype(darr, output)
-    plan = _Plan(darr, order, mode, cval, tol, route, threads, nan_policy, compute)
+    plan = _Plan(darr, order, mode, cval, tol, route, threads, nan_policy, compute, prefilter)
     chunks = da.core.normalize_chunks(chunks if chunks is not None else darr.chunksize[: len(out_shape)] if
                                       len(out_shape) == darr.ndim else "auto", out_shape, dtype=dtype)
     starts = [np.concatenate([[0], np.cumsum(c)[:-1]]).astype(int) for c in chunks]
@@ -483,7 +536,7 @@ def _on_output_grid(darr, out_shape, chunks, points_of, order, mode, cval, tol, 
 
 @fill
 def map_coordinates(input, coordinates, order=3, mode="constant", cval=0.0, tol=DEFAULT_TOL, output=None,
-                    threads=1, route="truncated", nan_policy="propagate", compute="float64"):
+                    threads=1, route="truncated", nan_policy="propagate", compute="float64", prefilter=True):
     """:func:`splinelab.map_coordinates` with dask.
 
     ``input`` (dask or numpy) is prefiltered once by the certified chunked
@@ -500,6 +553,7 @@ def map_coordinates(input, coordinates, order=3, mode="constant", cval=0.0, tol=
     %(dask_tol)s
     %(dask_output)s
     %(dask_tail)s
+    %(dask_prefilter)s
 
     Returns
     -------
@@ -536,11 +590,11 @@ def map_coordinates(input, coordinates, order=3, mode="constant", cval=0.0, tol=
     dtype = _work_dtype(darr, output)
     flat = at.reshape(at.shape[0], -1).rechunk({0: -1}).astype(np.float64)
     parts = dask.compute(*flat.to_delayed().ravel())  # each chunk's points, to find its region
-    local = None if compute == "float32" else _local_points(darr, parts, at, order, mode, cval, tol, threads,
+    local = None if compute == "float32" or not prefilter else _local_points(darr, parts, at, order, mode, cval, tol, threads,
                                                              nan_policy, dtype)
     if local is not None:
         return local
-    plan = _Plan(darr, order, mode, cval, tol, route, threads, nan_policy, compute)
+    plan = _Plan(darr, order, mode, cval, tol, route, threads, nan_policy, compute, prefilter)
     pieces = [_chunk(plan, np.asarray(p), dtype) for p in parts]
     return da.concatenate(pieces).reshape(at.shape[1:])
 
@@ -564,7 +618,8 @@ def _local_points(darr, parts, at, order, mode, cval, tol, threads, nan_policy, 
 
 @fill
 def zoom(input, zoom, order=3, mode="constant", cval=0.0, *, grid_mode=False, tol=DEFAULT_TOL, output=None,
-         chunks=None, threads=1, route="truncated", nan_policy="propagate", compute="float64"):
+         chunks=None, threads=1, route="truncated", nan_policy="propagate", compute="float64", prefilter=True,
+         output_chunks=None):
     """:func:`splinelab.zoom` of a dask array (scipy's output shape and coordinates).
 
     Parameters
@@ -599,13 +654,13 @@ def zoom(input, zoom, order=3, mode="constant", cval=0.0, *, grid_mode=False, to
         num, div = num - 1, div - 1
     factors = np.divide(num, div, out=np.ones(darr.ndim, dtype=np.float64), where=div != 0)
     axes = _zoom_shift_coordinates(out_shape, zooms=factors, grid_mode=grid_mode)
-    return _on_output_grid(darr, out_shape, chunks, lambda s: _grid_points(axes, s), order, mode, cval, tol, route,
-                           output, threads, nan_policy, compute)
+    return _on_output_grid(darr, out_shape, _either(chunks, output_chunks), lambda s: _grid_points(axes, s), order,
+                           mode, cval, tol, route, output, threads, nan_policy, compute, prefilter)
 
 
 @fill
 def shift(input, shift, order=3, mode="constant", cval=0.0, *, tol=DEFAULT_TOL, output=None, chunks=None,
-          threads=1, route="truncated", nan_policy="propagate", compute="float64"):
+          threads=1, route="truncated", nan_policy="propagate", compute="float64", prefilter=True, output_chunks=None):
     """:func:`splinelab.shift` of a dask array.
 
     Parameters
@@ -633,8 +688,8 @@ def shift(input, shift, order=3, mode="constant", cval=0.0, *, tol=DEFAULT_TOL, 
     darr = da.asarray(input)
     shifts = [-s for s in _per_axis(shift, darr.ndim, "shift")]
     axes = _zoom_shift_coordinates(darr.shape, shifts=shifts)
-    return _on_output_grid(darr, darr.shape, chunks, lambda s: _grid_points(axes, s), order, mode, cval, tol, route,
-                           output, threads, nan_policy, compute)
+    return _on_output_grid(darr, darr.shape, _either(chunks, output_chunks), lambda s: _grid_points(axes, s), order,
+                           mode, cval, tol, route, output, threads, nan_policy, compute, prefilter)
 
 
 def _grid_points(axes, slices):
@@ -642,10 +697,11 @@ def _grid_points(axes, slices):
     return np.stack([m.reshape(-1) for m in mesh])
 
 
+@_dask_image_names(image="input")
 @fill
 def affine_transform(input, matrix, offset=0.0, output_shape=None, order=3, mode="constant", cval=0.0, *,
                      tol=DEFAULT_TOL, output=None, chunks=None, threads=1, route="truncated", nan_policy="propagate",
-                     compute="float64"):
+                     compute="float64", prefilter=True, output_chunks=None):
     """:func:`splinelab.affine_transform` of a dask array (every matrix form scipy takes).
 
     Parameters
@@ -695,13 +751,15 @@ def affine_transform(input, matrix, offset=0.0, output_shape=None, order=3, mode
                 points[h] = t
             return points
 
-    return _on_output_grid(darr, out_shape, chunks, points_of, order, mode, cval, tol, route, output, threads,
-                           nan_policy, compute)
+    return _on_output_grid(darr, out_shape, _either(chunks, output_chunks), points_of, order, mode, cval, tol, route,
+                           output, threads, nan_policy, compute, prefilter)
 
 
+@_dask_image_names(input_arr="input")
 @fill
 def rotate(input, angle, axes=(1, 0), reshape=True, order=3, mode="constant", cval=0.0, *, tol=DEFAULT_TOL,
-           output=None, chunks=None, threads=1, route="truncated", nan_policy="propagate", compute="float64"):
+           output=None, chunks=None, threads=1, route="truncated", nan_policy="propagate", compute="float64",
+           prefilter=True, output_chunks=None):
     """:func:`splinelab.rotate` of a dask array (scipy's matrix, centre and output shape).
 
     Parameters
@@ -741,5 +799,5 @@ def rotate(input, angle, axes=(1, 0), reshape=True, order=3, mode="constant", cv
     offset = np.zeros(darr.ndim)
     offset[axes] = plane_offset
     return affine_transform(darr, matrix, offset, out_shape, order, mode, cval, tol=tol,
-                            output=output, chunks=chunks, threads=threads, route=route, nan_policy=nan_policy,
-                            compute=compute)
+                            output=output, chunks=_either(chunks, output_chunks), threads=threads, route=route,
+                            nan_policy=nan_policy, compute=compute, prefilter=prefilter)
