@@ -181,12 +181,11 @@ def _stacked(grid_shape, values):
 
 
 def _samples(grid_shape, values):
-    """:func:`_stacked` C-contiguous, for ``grid_linear`` and ``grid_pchip``
-    (which read C-ordered samples): a layout that is not (a descending axis,
-    a broadcast view) is copied here, so an array too large to copy is
-    numpy's ``MemoryError``."""
-    stacked, cdtype = _stacked(grid_shape, values)
-    return np.ascontiguousarray(stacked), cdtype
+    """:func:`_stacked` for ``grid_linear`` and ``grid_pchip``, which read
+    samples in place wherever they fill one block of memory (any strides: a
+    descending axis flipped by numpy included); a broadcast or sliced view
+    is copied once by the extension (``MemoryError`` where it cannot be)."""
+    return _stacked(grid_shape, values)
 
 
 def _from_columns(out, cdtype):
@@ -263,9 +262,9 @@ class RegularGridInterpolator:
         The data on the grid, of shape ``(m1, ..., mn, ...)``; trailing
         dimensions beyond the n axes are interpolated together. Real
         (integers and booleans are converted to float64, as scipy) or
-        complex. float64 and float32 are read as they are (copied once
-        where not C-contiguous, a descending axis included); other dtypes
-        are converted to float64.
+        complex. float64 and float32 are read as they are (in place,
+        descending axes too; a broadcast view is copied once for "linear"
+        and "pchip"); other dtypes are converted to float64.
     method : str, optional
         "linear" (default), "nearest", "slinear", "cubic", "quintic",
         "pchip", or scipy's "slinear_legacy", "cubic_legacy",

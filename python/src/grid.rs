@@ -15,7 +15,7 @@ use numpy::{
 };
 use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
-use splinelab::gridded::{self, GridAxis, GriddedError};
+use splinelab::gridded::{self, GridAxis, GriddedError, Layout};
 use splinelab::ndimage::alloc::try_standard_layout;
 use splinelab::ndimage::samples::Sample;
 
@@ -100,12 +100,14 @@ fn linear_axes(grid: Vec<Vec<f64>>) -> Result<Vec<GridAxis<f64>>, GriddedError> 
         .collect()
 }
 
-/// Checks `values` against the grid and evaluates `f` on its C-ordered
-/// samples (copied only where they are not C-contiguous).
+/// Checks `values` against the grid and evaluates `f` on its samples, read
+/// in place where they fill one block of memory (any order: a flipped
+/// descending axis included), else copied once (fallibly: a huge broadcast
+/// view is MemoryError, not an abort).
 fn on_samples<S: Sample<f64> + numpy::Element>(
     values: ArrayViewD<'_, S>,
     axes: &[GridAxis<f64>],
-    f: impl FnOnce(&[S], usize) -> Result<(), GriddedError>,
+    f: impl FnOnce(&[S], &Layout, usize) -> Result<(), GriddedError>,
 ) -> Result<(), GriddedError> {
     let grid: Vec<usize> = axes.iter().map(GridAxis::len).collect();
     let m = match values.shape().split_last() {
@@ -117,13 +119,15 @@ fn on_samples<S: Sample<f64> + numpy::Element>(
             });
         }
     };
-    // Fallible: a huge strided view is MemoryError, not an abort.
+    if let Some((data, layout)) = Layout::of_view(&values) {
+        return f(data, &layout, m);
+    }
     let c: CowArray<'_, S, IxDyn> = try_standard_layout(&values, "gridded samples")?;
     let slice = c.as_slice().ok_or(GriddedError::Shape {
         grid,
         got: values.shape().to_vec(),
     })?;
-    f(slice, m)
+    f(slice, &Layout::c_order(values.shape()), m)
 }
 
 /// The exact not-a-knot tensor-product spline of odd `degree` through
@@ -267,10 +271,10 @@ fn eval_samples<'py>(
         out: &mut [f64],
         how: OnSamples,
     ) -> Result<(), GriddedError> {
-        on_samples(v, axes, |s, m| {
+        on_samples(v, axes, |s, layout, m| {
             match how {
-                OnSamples::Linear => gridded::tensor_eval(axes, s, m, x, &[], out),
-                OnSamples::Pchip => gridded::pchip_eval(axes, s, m, x, out),
+                OnSamples::Linear => gridded::tensor_eval(axes, s, layout, m, x, &[], out),
+                OnSamples::Pchip => gridded::pchip_eval(axes, s, layout, m, x, out),
             }
             Ok(())
         })

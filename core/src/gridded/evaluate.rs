@@ -5,6 +5,7 @@
 
 use super::GridAxis;
 use super::MAX_GRID_DEGREE;
+use super::layout::Layout;
 use crate::ndimage::samples::Sample;
 use crate::scalar::Real;
 use rayon::prelude::*;
@@ -14,9 +15,9 @@ use rayon::prelude::*;
 const POINTS_PER_TASK: usize = 512;
 
 /// `out[p·m + b] = ∂^ν s_b(x_p)` for the points `x` (`n × d`, row-major)
-/// and the `m = batch` splines whose coefficients interleave in `coefs`
-/// (C order, shape `axes' lengths × m`). `nu[a]` is the derivative order
-/// along axis `a` (empty: values).
+/// and the `m = batch` splines whose coefficients are `coefs` laid out as
+/// `layout` says (shape `axes' lengths × m`, any strides: [`Layout`]).
+/// `nu[a]` is the derivative order along axis `a` (empty: values).
 ///
 /// **Method**: per point and axis the `k + 1` non-zero B-spline weights
 /// ([`GridAxis::weights`]), then the `(k + 1)^d` products against the
@@ -29,6 +30,7 @@ const POINTS_PER_TASK: usize = 512;
 pub fn tensor_eval<T: Real, S: Sample<T>>(
     axes: &[GridAxis<T>],
     coefs: &[S],
+    layout: &Layout,
     batch: usize,
     points: &[T],
     nu: &[usize],
@@ -43,7 +45,7 @@ pub fn tensor_eval<T: Real, S: Sample<T>>(
             (0..d).map(|_| std::array::from_fn(|_| T::zero())).collect();
         let mut acc = vec![T::zero(); batch];
         for (x, y) in pts.chunks_exact(d).zip(o.chunks_exact_mut(batch)) {
-            point(axes, coefs, batch, x, nu, &mut w, &mut acc);
+            point(axes, coefs, layout, x, nu, &mut w, &mut acc);
             y.clone_from_slice(&acc);
         }
     };
@@ -62,7 +64,7 @@ pub fn tensor_eval<T: Real, S: Sample<T>>(
 fn point<T: Real, S: Sample<T>>(
     axes: &[GridAxis<T>],
     coefs: &[S],
-    batch: usize,
+    layout: &Layout,
     x: &[T],
     nu: &[usize],
     w: &mut [[T; MAX_GRID_DEGREE + 1]],
@@ -70,16 +72,14 @@ fn point<T: Real, S: Sample<T>>(
 ) {
     let d = axes.len();
     let k = axes[0].degree();
-    // C-order strides (in elements) and the first coefficient of the box.
-    let mut stride = batch;
-    let mut strides = [0usize; MAX_DIMS];
-    let mut base = 0usize;
-    for a in (0..d).rev() {
+    // The first coefficient of the box, in element steps from the origin.
+    let strides = &layout.strides;
+    let mut base = 0isize;
+    for a in 0..d {
         let s = axes[a].weights(&x[a], nu.get(a).copied().unwrap_or(0), &mut w[a]);
-        strides[a] = stride;
-        base += (s - k) * stride;
-        stride *= axes[a].len();
+        base += (s - k) as isize * strides[a];
     }
+    let step_b = strides[d];
     for v in acc.iter_mut() {
         *v = T::zero();
     }
@@ -91,13 +91,13 @@ fn point<T: Real, S: Sample<T>>(
         let mut offset = base;
         for a in 0..last {
             weight *= &w[a][q[a]];
-            offset += q[a] * strides[a];
+            offset += q[a] as isize * strides[a];
         }
         for (j, wl) in w[last][..=k].iter().enumerate() {
             let f = weight.clone() * wl;
-            let row = &coefs[offset + j * strides[last]..][..batch];
-            for (y, c) in acc.iter_mut().zip(row) {
-                *y += f.clone() * c.widen();
+            let row = offset + j as isize * strides[last];
+            for (b, y) in acc.iter_mut().enumerate() {
+                *y += f.clone() * coefs[layout.at(row + b as isize * step_b)].widen();
             }
         }
         // Next multi-index.

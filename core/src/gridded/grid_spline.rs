@@ -35,6 +35,7 @@
 
 use super::banded_lu::BandedLu;
 use super::evaluate::{MAX_DIMS, tensor_eval};
+use super::layout::Layout;
 use super::{GridAxis, GriddedError, MAX_GRID_DEGREE};
 use crate::ndimage::alloc::{checked_len, try_with_capacity, try_zeros};
 use crate::ndimage::samples::Sample;
@@ -278,7 +279,18 @@ impl<T: Real> GridSpline<T> {
                 got: out.len(),
             });
         }
-        tensor_eval(&self.axes, &self.coefficients, self.batch, x, nu, out);
+        let mut shape: Vec<usize> = self.axes.iter().map(GridAxis::len).collect();
+        shape.push(self.batch);
+        let layout = Layout::c_order(&shape);
+        tensor_eval(
+            &self.axes,
+            &self.coefficients,
+            &layout,
+            self.batch,
+            x,
+            nu,
+            out,
+        );
         Ok(())
     }
 

@@ -28,6 +28,7 @@ pub mod cardinal;
 pub mod error;
 pub mod evaluate;
 pub mod grid_spline;
+pub mod layout;
 pub mod pchip;
 #[cfg(test)]
 mod tests;
@@ -38,6 +39,7 @@ pub use cardinal::{CardinalAxis, CardinalWeights, point_windows, windowed_value}
 pub use error::GriddedError;
 pub use evaluate::tensor_eval;
 pub use grid_spline::GridSpline;
+pub use layout::Layout;
 pub use pchip::pchip_eval;
 
 /// The highest (odd) degree of a grid spline (scipy's RGI stops at 5).

@@ -18,31 +18,33 @@
 //! coefficient array is built.
 
 use super::GridAxis;
+use super::layout::Layout;
 use crate::ndimage::samples::Sample;
 use crate::scalar::Real;
 use rayon::prelude::*;
 
 const POINTS_PER_TASK: usize = 256;
 
-/// `out[p·m + b]`: the recursive PCHIP of the `m = batch` interleaved value
-/// arrays `values` (C order, grid × `m`) at the points `x` (`n × d`).
+/// `out[p·m + b]`: the recursive PCHIP of the `m = batch` value arrays
+/// `values` (grid × `m`, laid out as `layout` says) at the points `x` (`n × d`).
 /// `axes` carry the nodes (any degree: only nodes and cells are used).
 ///
 /// ```
-/// use splinelab::gridded::{GridAxis, pchip_eval};
+/// use splinelab::gridded::{GridAxis, Layout, pchip_eval};
 /// // Monotone data stays monotone, and PCHIP meets the data at the nodes.
 /// let x = vec![0.0, 1.0, 1.5, 4.0, 5.0];
 /// let y = [0.0, 0.1, 3.0, 3.1, 9.0];
 /// let axes = [GridAxis::not_a_knot(x, 1, 0).unwrap()];
 /// let at: Vec<f64> = (0..=50).map(|i| 0.1 * i as f64).collect();
 /// let mut out = vec![0.0; at.len()];
-/// pchip_eval(&axes, &y, 1, &at, &mut out);
+/// pchip_eval(&axes, &y, &Layout::c_order(&[5, 1]), 1, &at, &mut out);
 /// assert!(out.windows(2).all(|p| p[1] >= p[0]));
 /// assert!((out[15] - 3.0).abs() < 1e-15 && (out[40] - 3.1).abs() < 1e-15);
 /// ```
 pub fn pchip_eval<T: Real, S: Sample<T>>(
     axes: &[GridAxis<T>],
     values: &[S],
+    layout: &Layout,
     batch: usize,
     points: &[T],
     out: &mut [T],
@@ -55,7 +57,7 @@ pub fn pchip_eval<T: Real, S: Sample<T>>(
         let mut buf = Vec::new();
         let mut next = Vec::new();
         for (x, y) in pts.chunks_exact(d).zip(o.chunks_exact_mut(batch)) {
-            point(axes, values, batch, x, &mut buf, &mut next);
+            point(axes, values, layout, batch, x, &mut buf, &mut next);
             y.clone_from_slice(&buf[..batch]);
         }
     };
@@ -84,6 +86,7 @@ fn window<T: Real>(axis: &GridAxis<T>, x: &T) -> (usize, usize, usize) {
 fn point<T: Real, S: Sample<T>>(
     axes: &[GridAxis<T>],
     values: &[S],
+    layout: &Layout,
     batch: usize,
     x: &[T],
     buf: &mut Vec<T>,
@@ -93,17 +96,16 @@ fn point<T: Real, S: Sample<T>>(
     let windows: Vec<(usize, usize, usize)> =
         axes.iter().zip(x).map(|(a, v)| window(a, v)).collect();
     let lens: Vec<usize> = windows.iter().map(|w| w.1 - w.0 + 1).collect();
-    // Gather the window box, C order, batch innermost.
-    let mut strides = vec![batch; d];
-    for a in (0..d.saturating_sub(1)).rev() {
-        strides[a] = strides[a + 1] * axes[a + 1].len();
-    }
+    // Gather the window box into `buf`, C order, batch innermost.
+    let strides = &layout.strides;
     let count: usize = lens.iter().product();
     buf.clear();
     let mut q = vec![0usize; d];
     for _ in 0..count {
-        let offset: usize = (0..d).map(|a| (windows[a].0 + q[a]) * strides[a]).sum();
-        buf.extend(values[offset..offset + batch].iter().map(Sample::widen));
+        let offset: isize = (0..d)
+            .map(|a| (windows[a].0 + q[a]) as isize * strides[a])
+            .sum();
+        buf.extend((0..batch).map(|b| values[layout.at(offset + b as isize * strides[d])].widen()));
         for a in (0..d).rev() {
             q[a] += 1;
             if q[a] < lens[a] {

@@ -234,7 +234,30 @@ fn pchip_reproduces_multilinear_data() {
         .collect();
     let pts = [0.1, 0.7, 1.3, -0.5, 2.0, 0.0, 1.9, 1.1, 3.5];
     let mut out = vec![0.0; 6];
-    pchip_eval(&axes, v.as_slice().unwrap(), 2, &pts, &mut out);
+    pchip_eval(
+        &axes,
+        v.as_slice().unwrap(),
+        &Layout::c_order(v.shape()),
+        2,
+        &pts,
+        &mut out,
+    );
+    // The same values read in place through a flipped view (negative strides).
+    let mut flipped = v.view();
+    flipped.invert_axis(ndarray::Axis(1));
+    let rev: Vec<f64> = grid[1].iter().rev().map(|x| -x).collect();
+    let axes_rev = [
+        axes[0].clone(),
+        GridAxis::not_a_knot(rev, 1, 1).unwrap(),
+        axes[2].clone(),
+    ];
+    let (data, layout) = Layout::of_view(&flipped).unwrap();
+    let pts_rev: Vec<f64> = pts.chunks(3).flat_map(|p| [p[0], -p[1], p[2]]).collect();
+    let mut out_rev = vec![0.0; 6];
+    pchip_eval(&axes_rev, data, &layout, 2, &pts_rev, &mut out_rev);
+    for (a, b) in out.iter().zip(&out_rev) {
+        assert!((a - b).abs() < 1e-13 * (1.0 + a.abs()), "{a} vs {b}");
+    }
     for p in 0..3 {
         for b in 0..2 {
             let want = f(&pts[p * 3..p * 3 + 3], b);
