@@ -405,9 +405,25 @@ impl<T: Real, const D: usize> BSpline<T, D> {
 
 /// Cox–de Boor basis values `N_{s−k+1..=s, k}(t)` on span `s` (Piegl–Tiller A2.2).
 pub(crate) fn basis_functions<T: Real>(order: usize, knots: &[T], s: usize, t: &T) -> Vec<T> {
-    let p = order - 1;
     let mut n = vec![T::zero(); order];
     let (mut left, mut right) = (vec![T::zero(); order], vec![T::zero(); order]);
+    basis_into(order, knots, s, t, &mut n, &mut left, &mut right);
+    n
+}
+
+/// [`basis_functions`] into `n[..order]`, with the caller's scratch `left`,
+/// `right` (at least `order` long each): the grid spline's per-point
+/// weights ([`crate::gridded::GridAxis::weights`]) use stack arrays.
+pub(crate) fn basis_into<T: Real>(
+    order: usize,
+    knots: &[T],
+    s: usize,
+    t: &T,
+    n: &mut [T],
+    left: &mut [T],
+    right: &mut [T],
+) {
+    let p = order - 1;
     n[0] = T::one();
     for j in 1..=p {
         left[j] = t.clone() - &knots[s + 1 - j];
@@ -420,7 +436,6 @@ pub(crate) fn basis_functions<T: Real>(order: usize, knots: &[T], s: usize, t: &
         }
         n[j] = saved;
     }
-    n
 }
 
 impl<T: Real, const D: usize> ParamCurve<T, D> for BSpline<T, D> {

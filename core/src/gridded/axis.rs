@@ -3,6 +3,7 @@
 //! weights (and their derivatives) there.
 
 use super::{GriddedError, MAX_GRID_DEGREE};
+use crate::bspline::de_boor::basis_into;
 use crate::scalar::Real;
 
 /// The nodes `x_0 < … < x_{n−1}` of one grid axis with the knots of the
@@ -154,18 +155,7 @@ impl<T: Real> GridAxis<T> {
         // Cox–de Boor, degree p0: out[0..=p0] = B_{s−p0..=s, p0}(x).
         let mut left: [T; MAX_GRID_DEGREE + 1] = std::array::from_fn(|_| T::zero());
         let mut right: [T; MAX_GRID_DEGREE + 1] = std::array::from_fn(|_| T::zero());
-        out[0] = T::one();
-        for j in 1..=p0 {
-            left[j] = x.clone() - &t[s + 1 - j];
-            right[j] = t[s + j].clone() - x;
-            let mut saved = T::zero();
-            for r in 0..j {
-                let temp = out[r].clone() / (right[r + 1].clone() + &left[j - r]);
-                out[r] = saved + right[r + 1].clone() * &temp;
-                saved = left[j - r].clone() * temp;
-            }
-            out[j] = saved;
-        }
+        basis_into(p0 + 1, t, s, x, out, &mut left, &mut right);
         // Up the degrees: out holds B_{s−p+1..=s, p−1} in out[0..p].
         for p in p0 + 1..=k {
             let scale = T::from_int(p as i64);

@@ -26,6 +26,7 @@
 //! axis) and `O(Π_a |W_a|)` for the sum over its box.
 
 use super::banded_lu::BandedLu;
+use super::evaluate::next_index;
 use super::grid_spline::collocation_lu;
 use super::{GridAxis, GriddedError, MAX_GRID_DEGREE};
 use crate::scalar::Real;
@@ -164,17 +165,8 @@ pub fn windowed_value<T: Real>(
             index[a] = windows[a].lo + q[a];
         }
         total += weight * sample(&index);
-        let mut a = d;
-        loop {
-            if a == 0 {
-                return total;
-            }
-            a -= 1;
-            q[a] += 1;
-            if q[a] < windows[a].weights.len() {
-                break;
-            }
-            q[a] = 0;
+        if !next_index(&mut q, |a| windows[a].weights.len()) {
+            return total;
         }
     }
 }

@@ -40,7 +40,7 @@ pub fn tensor_eval<T: Real, S: Sample<T>>(
     if d == 0 || batch == 0 {
         return;
     }
-    let work = |(pts, o): (&[T], &mut [T])| {
+    over_points(points, d, out, batch, POINTS_PER_TASK, |pts, o| {
         let mut w: Vec<[T; MAX_GRID_DEGREE + 1]> =
             (0..d).map(|_| std::array::from_fn(|_| T::zero())).collect();
         let mut acc = vec![T::zero(); batch];
@@ -48,16 +48,49 @@ pub fn tensor_eval<T: Real, S: Sample<T>>(
             point(axes, coefs, layout, x, nu, &mut w, &mut acc);
             y.clone_from_slice(&acc);
         }
-    };
-    let n = points.len() / d;
-    if n <= POINTS_PER_TASK {
-        work((points, out));
+    });
+}
+
+/// `work(points, out)` over the points (`d` coordinates each) and their
+/// `batch` outputs: on the calling thread up to `per_task` points (a small
+/// call pays no thread-pool hand-off), else in parallel tasks of `per_task`.
+pub(crate) fn over_points<T: Real>(
+    points: &[T],
+    d: usize,
+    out: &mut [T],
+    batch: usize,
+    per_task: usize,
+    work: impl Fn(&[T], &mut [T]) + Sync + Send,
+) {
+    if points.len() / d <= per_task {
+        work(points, out);
     } else {
         points
-            .par_chunks(POINTS_PER_TASK * d)
-            .zip(out.par_chunks_mut(POINTS_PER_TASK * batch))
-            .for_each(work);
+            .par_chunks(per_task * d)
+            .zip(out.par_chunks_mut(per_task * batch))
+            .for_each(|(p, o)| work(p, o));
     }
+}
+
+/// Steps the multi-index `q` through `0..len(a)` on each axis `a`, the last
+/// fastest: `false` once it wraps past the last index (then all zeros).
+///
+/// ```
+/// use splinelab::gridded::evaluate::next_index;
+/// let mut q = [0, 1];
+/// assert!(next_index(&mut q, |_| 2) && q == [1, 0]);
+/// assert!(next_index(&mut q, |_| 2) && q == [1, 1]);
+/// assert!(!next_index(&mut q, |_| 2) && q == [0, 0]);
+/// ```
+pub fn next_index(q: &mut [usize], len: impl Fn(usize) -> usize) -> bool {
+    for a in (0..q.len()).rev() {
+        q[a] += 1;
+        if q[a] < len(a) {
+            return true;
+        }
+        q[a] = 0;
+    }
+    false
 }
 
 /// One point into `acc` (length `m`): weights into `w`, then the sum.
@@ -100,18 +133,8 @@ fn point<T: Real, S: Sample<T>>(
                 *y += f.clone() * coefs[layout.at(row + b as isize * step_b)].widen();
             }
         }
-        // Next multi-index.
-        let mut a = last;
-        loop {
-            if a == 0 {
-                return;
-            }
-            a -= 1;
-            q[a] += 1;
-            if q[a] <= k {
-                break;
-            }
-            q[a] = 0;
+        if !next_index(&mut q[..last], |_| k + 1) {
+            return;
         }
     }
 }

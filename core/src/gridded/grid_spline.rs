@@ -40,7 +40,7 @@ use super::{GridAxis, GriddedError, MAX_GRID_DEGREE};
 use crate::ndimage::alloc::{checked_len, try_with_capacity, try_zeros};
 use crate::ndimage::samples::Sample;
 use crate::scalar::Real;
-use ndarray::{ArrayView3, ArrayViewD, ArrayViewMut3, Axis, Zip};
+use ndarray::{ArrayView3, ArrayViewD, ArrayViewMut2, ArrayViewMut3, Axis, Zip};
 use rayon::prelude::*;
 
 /// Grid lines solved side by side: rows of 32 lanes (256 bytes of f64).
@@ -159,50 +159,31 @@ impl<T: Real> GridSpline<T> {
                 grid: vec![outer, n, inner],
                 got: vec![total],
             })?;
-        let parallel = total >= PARALLEL_FROM;
-        let max_after = if inner >= LANES {
-            // Columns of each (n × inner) slab in blocks of LANES.
-            let slab = |mut s: ndarray::ArrayViewMut2<'_, T>| -> Result<T, GriddedError> {
-                let blocks = s
-                    .axis_chunks_iter_mut(Axis(1), LANES)
-                    .map(|b| b.insert_axis(Axis(0)));
-                if parallel {
-                    let blocks: Vec<_> = blocks.collect();
-                    blocks
-                        .into_par_iter()
-                        .map_init(Vec::new, |buf, b| solve_block(&lu, b, buf))
-                        .try_reduce(T::zero, |x, y| Ok(x.max(y)))
-                } else {
-                    let mut buf = Vec::new();
-                    blocks
-                        .map(|b| solve_block(&lu, b, &mut buf))
-                        .try_fold(T::zero(), |m, r| Ok(m.max(r?)))
-                }
-            };
-            if parallel {
-                view.axis_iter_mut(Axis(0))
-                    .into_par_iter()
-                    .map(slab)
-                    .try_reduce(T::zero, |x, y| Ok(x.max(y)))?
-            } else {
-                view.axis_iter_mut(Axis(0))
-                    .map(slab)
-                    .try_fold(T::zero(), |m, r| Ok::<_, GriddedError>(m.max(r?)))?
-            }
+        // Blocks of LANES lanes: columns of each (n × inner) slab, or whole
+        // lines, LANES / inner of them side by side.
+        let mut slabs: Vec<ArrayViewMut2<'_, T>> = Vec::new();
+        let blocks: Vec<ArrayViewMut3<'_, T>> = if inner >= LANES {
+            slabs.extend(view.axis_iter_mut(Axis(0)));
+            slabs
+                .iter_mut()
+                .flat_map(|slab| slab.axis_chunks_iter_mut(Axis(1), LANES))
+                .map(|b| b.insert_axis(Axis(0)))
+                .collect()
         } else {
-            // Whole lines, LANES / inner of them side by side.
-            let group = (LANES / inner.max(1)).max(1);
-            if parallel {
-                view.axis_chunks_iter_mut(Axis(0), group)
-                    .into_par_iter()
-                    .map_init(Vec::new, |buf, b| solve_block(&lu, b, buf))
-                    .try_reduce(T::zero, |x, y| Ok(x.max(y)))?
-            } else {
-                let mut buf = Vec::new();
-                view.axis_chunks_iter_mut(Axis(0), group)
-                    .map(|b| solve_block(&lu, b, &mut buf))
-                    .try_fold(T::zero(), |m, r| Ok::<_, GriddedError>(m.max(r?)))?
-            }
+            view.axis_chunks_iter_mut(Axis(0), (LANES / inner.max(1)).max(1))
+                .collect()
+        };
+        let max_after = if total >= PARALLEL_FROM {
+            blocks
+                .into_par_iter()
+                .map_init(Vec::new, |buf, b| solve_block(&lu, b, buf))
+                .try_reduce(T::zero, |x, y| Ok(x.max(y)))?
+        } else {
+            let mut buf = Vec::new();
+            blocks
+                .into_iter()
+                .map(|b| solve_block(&lu, b, &mut buf))
+                .try_fold(T::zero(), |m, r| Ok::<_, GriddedError>(m.max(r?)))?
         };
         Ok(AxisConditioning {
             kappa: kappa.to_f64(),

@@ -18,10 +18,10 @@
 //! coefficient array is built.
 
 use super::GridAxis;
+use super::evaluate::{next_index, over_points};
 use super::layout::Layout;
 use crate::ndimage::samples::Sample;
 use crate::scalar::Real;
-use rayon::prelude::*;
 
 const POINTS_PER_TASK: usize = 256;
 
@@ -53,22 +53,14 @@ pub fn pchip_eval<T: Real, S: Sample<T>>(
     if d == 0 || batch == 0 {
         return;
     }
-    let work = |(pts, o): (&[T], &mut [T])| {
+    over_points(points, d, out, batch, POINTS_PER_TASK, |pts, o| {
         let mut buf = Vec::new();
         let mut next = Vec::new();
         for (x, y) in pts.chunks_exact(d).zip(o.chunks_exact_mut(batch)) {
             point(axes, values, layout, batch, x, &mut buf, &mut next);
             y.clone_from_slice(&buf[..batch]);
         }
-    };
-    if points.len() / d <= POINTS_PER_TASK {
-        work((points, out));
-    } else {
-        points
-            .par_chunks(POINTS_PER_TASK * d)
-            .zip(out.par_chunks_mut(POINTS_PER_TASK * batch))
-            .for_each(work);
-    }
+    });
 }
 
 /// The samples an axis' PCHIP on the cell of `x` reads: `(lo, hi, cell)`.
@@ -98,20 +90,15 @@ fn point<T: Real, S: Sample<T>>(
     let lens: Vec<usize> = windows.iter().map(|w| w.1 - w.0 + 1).collect();
     // Gather the window box into `buf`, C order, batch innermost.
     let strides = &layout.strides;
-    let count: usize = lens.iter().product();
     buf.clear();
     let mut q = vec![0usize; d];
-    for _ in 0..count {
+    loop {
         let offset: isize = (0..d)
             .map(|a| (windows[a].0 + q[a]) as isize * strides[a])
             .sum();
         buf.extend((0..batch).map(|b| values[layout.at(offset + b as isize * strides[d])].widen()));
-        for a in (0..d).rev() {
-            q[a] += 1;
-            if q[a] < lens[a] {
-                break;
-            }
-            q[a] = 0;
+        if !next_index(&mut q, |a| lens[a]) {
+            break;
         }
     }
     // Fold the last axis, then the one before, …

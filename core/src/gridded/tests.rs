@@ -1,6 +1,7 @@
-//! Tests of the grid spline against closed forms, a dense solve in MPFR
-//! with an independent basis (Piegl–Tiller's in `bspline::de_boor`), and
-//! its own f64/MPFR twins.
+//! Tests of the grid spline against closed forms (which also check the
+//! B-spline values, shared with `bspline::de_boor`), a dense Kronecker
+//! solve in MPFR (which checks the banded solves axis by axis), and its own
+//! f64/MPFR twins.
 
 use super::*;
 use crate::bspline::de_boor::basis_functions;
@@ -140,9 +141,26 @@ fn f64_within_its_bound_of_the_mpfr_twin() {
     }
 }
 
-/// Against the dense Kronecker collocation system, assembled from
-/// Piegl–Tiller's basis (an independent code) and solved by nalgebra's LU
-/// in MPFR.
+/// The dense collocation matrix `(B_j(x_i))` of an axis (Piegl–Tiller's
+/// basis of `bspline::de_boor`).
+fn dense_collocation(ax: &GridAxis<M>) -> DMatrix<M> {
+    let (n, k) = (ax.len(), ax.degree());
+    let mut m = DMatrix::<M>::zeros(n, n);
+    for (i, x) in ax.nodes().iter().enumerate() {
+        let span = ax.span(x);
+        for (q, b) in basis_functions(k + 1, ax.knots(), span, x)
+            .into_iter()
+            .enumerate()
+        {
+            m[(i, span - k + q)] = b;
+        }
+    }
+    m
+}
+
+/// Against the dense Kronecker collocation system solved by nalgebra's LU
+/// in MPFR: the banded solves along each axis in turn are the Kronecker
+/// inverse.
 #[test]
 fn agrees_with_the_dense_solve() {
     let k = 3;
@@ -158,22 +176,7 @@ fn agrees_with_the_dense_solve() {
             GridAxis::not_a_knot(g.iter().map(|&x| M::from_f64_exact(x)).collect(), k, a).unwrap()
         })
         .collect();
-    let colloc = |a: usize| {
-        let ax = &axes[a];
-        let n = ax.len();
-        let mut m = DMatrix::<M>::zeros(n, n);
-        for (i, x) in ax.nodes().iter().enumerate() {
-            let span = ax.span(x);
-            for (q, b) in basis_functions(k + 1, ax.knots(), span, x)
-                .into_iter()
-                .enumerate()
-            {
-                m[(i, span - k + q)] = b;
-            }
-        }
-        m
-    };
-    let full = colloc(0).kronecker(&colloc(1));
+    let full = dense_collocation(&axes[0]).kronecker(&dense_collocation(&axes[1]));
     let rhs = DMatrix::<M>::from_iterator(v.len(), 1, v.iter().map(|&x| M::from_f64_exact(x)));
     let c = full.lu().solve(&rhs).unwrap();
     for (a, b) in s.coefficients().iter().zip(c.iter()) {
@@ -199,16 +202,7 @@ fn condition_is_the_dense_inverse_norm() {
         )
         .unwrap();
         let n = ax.len();
-        let mut a = DMatrix::<M>::zeros(n, n);
-        for (i, x) in ax.nodes().iter().enumerate() {
-            let span = ax.span(x);
-            for (q, b) in basis_functions(k + 1, ax.knots(), span, x)
-                .into_iter()
-                .enumerate()
-            {
-                a[(i, span - k + q)] = b;
-            }
-        }
+        let a = dense_collocation(&ax);
         let inv = a.try_inverse().unwrap();
         let exact = (0..n)
             .map(|i| (0..n).fold(0.0, |s, j| s + inv[(i, j)].to_f64().abs()))

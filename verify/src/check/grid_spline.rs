@@ -25,12 +25,13 @@
 
 use super::agreement::{Reference, certify};
 use super::format::UserFormat;
-use super::stable_bound::unit_roundoff;
+use super::stable_bound::{gamma, unit_roundoff};
 use super::summary::{
     BoundBasis, CheckSummary, Context, ElementError, element_error, from_elements,
 };
 use super::{CheckError, require_finite, require_len};
 use rayon::prelude::*;
+use splinelab::gridded::evaluate::next_index;
 use splinelab::gridded::{GridAxis, GridSpline, MAX_GRID_DEGREE};
 use splinelab::ndarray::{ArrayView, IxDyn};
 use splinelab::scalar::Real;
@@ -154,17 +155,8 @@ fn abs_sums(axes: &[GridAxis<f64>], coefs: &[f64], x: &[f64]) -> (f64, f64) {
         }
         cw += weight * coefs[at].abs();
         sw += weight;
-        let mut a = d;
-        loop {
-            if a == 0 {
-                return (cw, sw);
-            }
-            a -= 1;
-            q[a] += 1;
-            if q[a] <= k {
-                break;
-            }
-            q[a] = 0;
+        if !next_index(&mut q, |_| k + 1) {
+            return (cw, sw);
         }
     }
 }
@@ -186,7 +178,7 @@ pub fn check_grid_spline(input: &GridSplineInput) -> Result<CheckSummary, CheckE
     let coef_error = spline.coefficient_error() * scale;
     let terms = 3 * k * d + d + (k + 1).saturating_pow(d as u32);
     let u = unit_roundoff(input.format);
-    let g_eval = terms as f64 * u / (1.0 - terms as f64 * u);
+    let g_eval = gamma(terms, input.format);
     let elements: Vec<ElementError> = input
         .points
         .par_chunks(d)
