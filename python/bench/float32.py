@@ -34,6 +34,8 @@ import time
 
 import numpy as np
 
+from _peak import reset_peak, rss_kib
+
 
 def cases(size):
     rng = np.random.default_rng(0)
@@ -106,14 +108,6 @@ def speed(args):
             print(f"{name:<20}{m['base']:>10.1f}{m['opt']:>13.1f}{m['base'] / m['opt']:>8.2f}")
 
 
-def rss_kib(field):
-    with open("/proc/self/status") as f:
-        for line in f:
-            if line.startswith(field + ":"):
-                return int(line.split()[1])
-    raise RuntimeError(f"no {field} in /proc/self/status")
-
-
 def child(lib, name, size):
     """One call in this (child) process: ``{peak, result}`` in bytes, the
     peak above the resident size just before the call."""
@@ -125,9 +119,7 @@ def child(lib, name, size):
     call = all_cases[name]
     small = img[:64, :64].copy()
     all_cases[name](f, small)  # imports, pools, caches
-    with open("/proc/self/clear_refs", "w") as fh:
-        fh.write("5")  # resets VmHWM to the current resident size
-    before = rss_kib("VmRSS")
+    before = reset_peak()
     out = call(f, img)
     peak = rss_kib("VmHWM")
     return {"peak": (peak - before) * 1024, "result": out.nbytes, "input": img.nbytes}

@@ -26,6 +26,8 @@ import time
 
 import numpy as np
 
+from _peak import reset_peak, rss_kib
+
 CASES = {
     "100x100x40": ((100, 100, 40), "float64"),
     "300x300x40": ((300, 300, 40), "float64"),
@@ -34,14 +36,6 @@ CASES = {
 }
 SCIPY_SKIPS = {"10000x10000"}
 POINTS = 100_000
-
-
-def rss_kib(field):
-    with open("/proc/self/status") as fh:
-        for line in fh:
-            if line.startswith(field + ":"):
-                return int(line.split()[1])
-    raise RuntimeError(field)
 
 
 def data(name):
@@ -59,9 +53,7 @@ def child(lib, name):
         from scipy.interpolate import RegularGridInterpolator
     else:
         from splinelab import RegularGridInterpolator
-    with open("/proc/self/clear_refs", "w") as fh:
-        fh.write("5")
-    before = rss_kib("VmRSS")
+    before = reset_peak()
     t0 = time.perf_counter()
     f = RegularGridInterpolator(grid, values, method="cubic")
     t1 = time.perf_counter()

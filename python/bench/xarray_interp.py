@@ -34,23 +34,11 @@ import time
 
 import numpy as np
 
+from _peak import reset_peak, rss_kib
+
 ZARR = "/tmp/splinelab_bench_6799.zarr"
 LIMIT_AS = 6 << 30
 TIMEOUT_S = 120
-
-
-def rss_kib(field):
-    with open("/proc/self/status") as fh:
-        for line in fh:
-            if line.startswith(field + ":"):
-                return int(line.split()[1])
-    raise RuntimeError(field)
-
-
-def reset_peak():
-    with open("/proc/self/clear_refs", "w") as fh:
-        fh.write("5")
-    return rss_kib("VmRSS")
 
 
 def case_11342():

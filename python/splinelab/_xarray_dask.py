@@ -138,17 +138,9 @@ def _windows(data, grid, xi, opts, dims):
     P = len(xi)
     lo = np.empty((P, ng), dtype=np.intp)
     hi = np.empty((P, ng), dtype=np.intp)
-    keys = np.empty((P, 2 * ng), dtype=np.intp)
     for a, g in enumerate(grid):
         lo[:, a], hi[:, a] = _cells(g, xi[:, a], _HALO[opts.method], min(METHODS[opts.method], len(g)))
-        bounds = np.cumsum((0,) + data.chunks[a])
-        keys[:, 2 * a] = np.searchsorted(bounds, lo[:, a], side="right") - 1
-        keys[:, 2 * a + 1] = np.searchsorted(bounds, hi[:, a] - 1, side="right") - 1
-    _, group = np.unique(keys, axis=0, return_inverse=True)
-    group = group.ravel()
-    order = np.argsort(group, kind="stable")
-    starts = np.flatnonzero(np.r_[True, np.diff(group[order]) != 0])
-    ends = np.r_[starts[1:], P]
+    order, starts, ends = _chunk_groups(data, [(a, lo[:, a], hi[:, a]) for a in range(ng)])
     nb = data.ndim - ng
     gi, bi = _letters(ng), _letters(nb, ng)
     parts = []
@@ -279,6 +271,32 @@ def _tails(w):
     return left, right
 
 
+def _chunk_groups(data, spans):
+    """The points grouped by the input chunks their windows touch: ``spans``
+    holds ``(axis, lo, hi)`` per grouped axis (per point, the window
+    ``[lo, hi)``). Returns ``(order, starts, ends)``: group ``i`` is
+    ``order[starts[i]:ends[i]]``."""
+    P = len(spans[0][1])
+    keys = np.empty((P, 2 * len(spans)), dtype=np.intp)
+    for c, (a, lo, hi) in enumerate(spans):
+        bounds = np.cumsum((0,) + data.chunks[a])
+        keys[:, 2 * c] = np.searchsorted(bounds, lo, side="right") - 1
+        keys[:, 2 * c + 1] = np.searchsorted(bounds, hi - 1, side="right") - 1
+    _, group = np.unique(keys, axis=0, return_inverse=True)
+    group = group.ravel()
+    order = np.argsort(group, kind="stable")
+    starts = np.flatnonzero(np.r_[True, np.diff(group[order]) != 0])
+    return order, starts, np.r_[starts[1:], P]
+
+
+def _weight_norms(x, k, q, batch=256):
+    """``‖w(q_j)‖₁`` of the cardinal weights at each point, a batch of
+    points at a time (``len(q) × len(x)`` weights at once would not fit
+    for many points on a long axis)."""
+    return np.concatenate([np.abs(cardinal_weights(x, k, q[s:s + batch])).sum(axis=1)
+                           for s in range(0, len(q), batch)] or [np.zeros(0)])
+
+
 def _windows_of(x, k, q, tol, batch=256):
     """Per point, the smallest window ``[lo, hi)`` of samples whose
     cardinal weights outside sum to at most ``tol`` (in absolute value), the
@@ -335,7 +353,7 @@ def _spline_windows(data, grid, xi, opts, dims, chunked, unchunked):
     norms = np.ones(P)
     for a in range(ng):
         uq, inv = distinct[a]
-        norms *= np.abs(cardinal_weights(grid[a], k, uq)).sum(axis=1)[inv.ravel()]
+        norms *= _weight_norms(grid[a], k, uq)[inv.ravel()]
     tol_a = float(tol / (len(chunked) * norms.max()))
     wins = {}
     for a in chunked:
@@ -343,16 +361,7 @@ def _spline_windows(data, grid, xi, opts, dims, chunked, unchunked):
         inv = inv.ravel()
         lo, hi, w, _, _ = _windows_of(grid[a], k, uq, tol_a)
         wins[a] = (lo[inv], hi[inv], [w[i] for i in inv])
-    keys = np.empty((P, 2 * len(chunked)), dtype=np.intp)
-    for c, a in enumerate(chunked):
-        bounds = np.cumsum((0,) + data.chunks[a])
-        keys[:, 2 * c] = np.searchsorted(bounds, wins[a][0], side="right") - 1
-        keys[:, 2 * c + 1] = np.searchsorted(bounds, wins[a][1] - 1, side="right") - 1
-    _, group = np.unique(keys, axis=0, return_inverse=True)
-    group = group.ravel()
-    order = np.argsort(group, kind="stable")
-    starts = np.flatnonzero(np.r_[True, np.diff(group[order]) != 0])
-    ends = np.r_[starts[1:], P]
+    order, starts, ends = _chunk_groups(data, [(a, wins[a][0], wins[a][1]) for a in chunked])
     nb = data.ndim - ng
     gi, bi = _letters(ng), _letters(nb, ng)
     dtype = _result_dtype(data.dtype, opts)
