@@ -8,10 +8,9 @@ from __future__ import annotations
 import numpy as np
 
 from . import _local
-from . import _splinelab as _ext
-from ._modes import interp_mode as _interp_mode
 from ._ndimage import _coordinates, _derivative, _reflection_sign
-from ._validate import _count, _degree, _nan_policy, _opt_float, _threads
+from ._settings import Settings
+from ._validate import _count
 
 #: The default tile cache budget (bytes).
 DEFAULT_CACHE_BYTES = 256 * 2**20
@@ -47,11 +46,12 @@ class Interpolant:
         A numpy array (a memory map is read from its buffer, only the pages
         under the points' windows), or an array-like that is not in memory —
         anything with ``shape``, ``dtype``, ``ndim`` and basic-slice
-        ``__getitem__`` (zarr, h5py, dask): read one ``__getitem__`` per box
-        the windows need (a dask array: one graph computing only the chunks
-        under them). Real dtypes; integers and booleans are computed in
-        float64, float32 samples in float64 (each result rounded once to
-        float32). The caller's array is never written.
+        ``__getitem__`` (zarr, h5py, dask): where it exposes its chunk grid
+        (``chunks``), each stored chunk the windows touch read once a call;
+        else one ``__getitem__`` per box the windows need. Real dtypes;
+        integers and booleans are computed in float64, float32 samples in
+        float64 (each result rounded once to float32). The caller's array is
+        never written.
     order : int, optional
         The spline degree, 0..199. Default 3.
     mode : str, optional
@@ -129,17 +129,11 @@ class Interpolant:
         self._src = src
         self._args = dict(order=order, mode=mode, cval=cval, tol=tol, nan_policy=nan_policy, threads=threads,
                           cache_bytes=cache_bytes)
-        self._degree = _degree(order)
-        self.mode = _interp_mode(mode)
-        cval = _opt_float(cval, "cval")
-        self._nan_policy = _nan_policy(nan_policy)
-        tol = _opt_float(tol, "tol")
-        self._threads = _threads(threads)
+        self._settings = s = Settings.interpolant(order, mode, cval, tol, nan_policy, threads)
+        self.mode = s.mode
         self._work = np.dtype(np.float32) if src.dtype == np.float32 else np.dtype(np.float64)
-        engine_mode, self._rule, pad = _local.engine_args(self.mode, self._degree, True, False)
-        cls = _ext.LocalSplineF32 if self._work == np.float32 else _ext.LocalSplineF64
-        self._engine = cls(list(src.shape), self._degree, engine_mode, cval, tol, self._nan_policy, True, pad,
-                           _count(cache_bytes, "cache_bytes"))
+        self._engine, self._rule = _local.engine(src.shape, s, s.cval, self._work, _count(cache_bytes, "cache_bytes"),
+                                                 False)
 
     @property
     def shape(self):
@@ -154,7 +148,7 @@ class Interpolant:
     @property
     def order(self):
         """The spline degree."""
-        return self._degree
+        return self._settings.degree
 
     def truncation(self):
         """The certified truncation of the prefilter.
@@ -212,11 +206,12 @@ class Interpolant:
         flat = np.ascontiguousarray(at.reshape(at.shape[0], -1))
         deriv = _derivative(derivative, self.ndim)
         if self._direct():
-            values = self._engine.eval(self._src, flat, self._rule, deriv, self._threads)
+            values = self._engine.eval(self._src, flat, self._rule, deriv, self._settings.threads)
         else:
             boxes = self._engine.boxes_for_eval(flat, self._rule)
-            fetched = _local.fetch(self._src, boxes, self._work)
-            values = self._engine.eval_blocks(list(self.shape), fetched, flat, self._rule, deriv, self._threads)
+            fetched = _local.fetch(self._src, boxes, self._work, self._settings.threads)
+            values = self._engine.eval_blocks(list(self.shape), fetched, flat, self._rule, deriv,
+                                              self._settings.threads)
         if deriv:
             values = values * _reflection_sign(flat, self.shape, self.mode, deriv).astype(values.dtype)
         return values.reshape(at.shape[1:])
@@ -253,14 +248,14 @@ class Interpolant:
         if self._direct():
             self._engine.update(self._src, idx, new)
             return
-        fetched = _local.fetch(self._src, self._engine.boxes_for_update(idx), self._work)
+        fetched = _local.fetch(self._src, self._engine.boxes_for_update(idx), self._work, self._settings.threads)
         self._engine.update_blocks(list(self.shape), fetched, idx, new)
 
     def __reduce__(self):
         return _rebuild, (self._src, self._args, self._engine.changed_blocks())
 
     def __repr__(self):
-        return f"Interpolant(shape={self.shape}, order={self._degree}, mode={self.mode!r})"
+        return f"Interpolant(shape={self.shape}, order={self.order}, mode={self.mode!r})"
 
 
 def _rebuild(src, args, changed):

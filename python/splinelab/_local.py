@@ -23,7 +23,12 @@ only a missing sample that some window reads.
 
 from __future__ import annotations
 
+import bisect
+import itertools
 import math
+import numbers
+import os
+from concurrent.futures import ThreadPoolExecutor
 
 import numpy as np
 
@@ -67,6 +72,14 @@ def may_be_local(shape, k, d, prefilter, tol):
     return _COST["call"] + k * _COST["locate"] < global_ns and floor_ns(len(shape), k, d, filtered, tol) < global_ns
 
 
+def half_width(d, tol):
+    """The certified half-width of the local route's prefilter for degree
+    ``d`` (2 or more) and ``tol`` (the same for every mode and
+    ``nan_policy``), asked of the engine once per ``(d, tol)``."""
+    n = _HALF_WIDTH.get((d, tol))
+    return _HALF_WIDTH.setdefault((d, tol), _ext.local_half_width(d, tol)) if n is None else n
+
+
 def floor_ns(ndim, k, d, filtered, tol):
     """The local route's floor for ``k`` points (:func:`may_be_local`; the
     engine's ``route::floor_ns``, in its order of operations)."""
@@ -76,10 +89,7 @@ def floor_ns(ndim, k, d, filtered, tol):
         return floor
     if not filtered:
         return floor + c["point"] + c["read"] * float(d + 1) ** ndim
-    key = (d, tol)
-    n = _HALF_WIDTH.get(key)
-    if n is None:
-        n = _HALF_WIDTH.setdefault(key, _ext.local_half_width(d, tol))
+    n = half_width(d, tol)
     # route::tile_ns(ndim, d, n, 1).
     b = float(1 + d)
     e = b + 2.0 * n
@@ -156,66 +166,161 @@ def read_whole(src, flat, s):
         return None
     if ROUTE == "auto":
         k = flat.shape[1]
-        window = _window(src.shape, s.degree, s.mode, s.prefilter, s.tol, s.exact_edges, s.nan_policy)
+        window = _window(src.shape, s)
         if math.prod(src.shape) > k * (_BOX + window):
             return None
     return np.asarray(src[tuple(slice(None) for _ in src.shape)])
 
 
-def _window(shape, d, mode, prefilter, tol, exact_edges, nan_policy):
-    """The samples one isolated point's box reads: its ``d + 1`` samples a
-    side, with the prefilter's half-width ``n`` and scipy's pad each side
-    where the samples are prefiltered."""
-    engine_mode, _, pad = engine_args(mode, d, prefilter, exact_edges)
-    n = 0
-    if prefilter and d > 1:
-        spline = _ext.LocalSplineF64(list(shape), d, engine_mode, 0.0, tol, nan_policy, True, pad, 2**62, True)
-        n = spline.truncation()[0]
-    return (d + 1 + 2 * (n + pad)) ** len(shape)
+def _window(shape, s):
+    """The samples one isolated point's box reads under the settings ``s``:
+    its ``d + 1`` samples a side, with the prefilter's half-width ``n``
+    (:func:`half_width`) and scipy's pad each side where the samples are
+    prefiltered."""
+    _, _, pad = engine_args(s.mode, s.degree, s.prefilter, s.exact_edges)
+    n = half_width(s.degree, s.tol) if s.prefilter and s.degree > 1 else 0
+    return (s.degree + 1 + 2 * (n + pad)) ** len(shape)
 
 
 def _is_dask(x):
     return type(x).__module__.split(".")[0] == "dask"
 
 
-def fetch(src, boxes, work):
+def fetch(src, boxes, work, threads=None):
     """The blocks ``[(first index, samples)]`` of the boxes ``(lo, hi)``, in
-    ``work``'s dtype: one ``__getitem__`` per box; for a dask array one
-    graph (``dask.compute``) computing only the chunks under the boxes, or,
-    where the bounding box holds fewer samples than the boxes and their
-    slices' graph work (:data:`_DASK_SLICE` each), that box computed once
-    and the boxes cut from it."""
+    ``work``'s dtype. Where ``src`` exposes its chunk grid
+    (:func:`chunk_grid`), each stored chunk the boxes touch is read once
+    (:func:`_fetch_by_chunk`); else one read per box (:func:`_read`).
+    ``threads``: the call's (None: one per core), for the readers that
+    take them."""
+    grid = chunk_grid(src) if boxes else None
+    if grid is not None:
+        return _fetch_by_chunk(src, boxes, grid, work, threads)
     keys = [tuple(slice(lo, hi) for lo, hi in zip(l, h)) for l, h in boxes]
-    if _is_dask(src) and len(keys) > 1 and _size(_bounds(boxes)) <= sum(_size(b) + _DASK_SLICE for b in boxes):
-        # Many boxes: one slice, its graph culled once, the boxes cut from
-        # it (a slice per box culls the graph per box: 45 s for 10^4 cubic
-        # points of a 35x250x150 dask-image spline_filter, scipy 66 ms).
-        lo, hi = _bounds(boxes)
-        whole = np.asarray(src[tuple(slice(a, b) for a, b in zip(lo, hi))].compute())
-        parts = [whole[tuple(slice(k.start - o, k.stop - o) for k, o in zip(key, lo))] for key in keys]
-    elif _is_dask(src):
-        import dask
-
-        parts = dask.compute(*[src[k] for k in keys]) if keys else []
-    else:
-        parts = [src[k] for k in keys]
+    parts = _read(src, keys, threads)
     return [(list(l), np.ascontiguousarray(np.asarray(p), dtype=work)) for (l, _), p in zip(boxes, parts)]
 
 
-#: A dask slice's own graph work, in samples computed in the same time
-#: (measured: 1.6 ms a box in the case above, ~10 ns a sample).
-_DASK_SLICE = 10**5
+def chunk_grid(src):
+    """The edges ``[0, ..., n]`` of the stored chunks of ``src`` on each
+    axis, where it exposes them: ``chunks`` as one edge per axis (zarr,
+    h5py: None when contiguous) or as the sizes on each axis (dask,
+    xarray); else None."""
+    try:
+        chunks = src.chunks
+    except (AttributeError, NotImplementedError):  # zarr 3 without a regular grid
+        return None
+    if not isinstance(chunks, (tuple, list)) or len(chunks) != len(src.shape):
+        return None
+    grid = [_edges(c, int(n)) for c, n in zip(chunks, src.shape)]
+    return None if any(e is None for e in grid) else grid
 
 
-def _bounds(boxes):
-    """The bounding box ``(lo, hi)`` of boxes ``[(lo, hi)]``."""
-    return [min(b[0][a] for b in boxes) for a in range(len(boxes[0][0]))], \
-        [max(b[1][a] for b in boxes) for a in range(len(boxes[0][0]))]
+def _edges(c, n):
+    """One axis' chunk edges from its chunk edge ``c`` or its sizes ``c``
+    (summing to ``n``); None for anything else (unknown dask sizes)."""
+    if isinstance(c, numbers.Integral) and not isinstance(c, bool) and c > 0:
+        return [*range(0, n, int(c)), n]
+    if isinstance(c, (tuple, list)) and all(isinstance(k, numbers.Integral) and k >= 0 for k in c) and sum(c) == n:
+        return [0, *itertools.accumulate(int(k) for k in c)]
+    return None
 
 
-def _size(box):
-    """The number of samples in the box ``(lo, hi)``."""
-    return math.prod(h - l for l, h in zip(*box))
+#: The bytes of chunk parts read at a time (at least one part): the bound
+#: on what a call holds beyond its boxes.
+_GROUP_BYTES = 64 * 2**20
+
+
+def _fetch_by_chunk(src, boxes, grid, work, threads):
+    """:func:`fetch` reading each touched chunk once: the part of it the
+    boxes cover, in groups of :data:`_GROUP_BYTES` ordered by chunk, each
+    part copied into the boxes it serves and released. Held at once: the
+    boxes (as one read per box holds them) and one group. The same samples
+    as one read per box, so the same bits."""
+    out = [np.empty([h - l for l, h in zip(lo, hi)], work) for lo, hi in boxes]
+    itemsize = np.dtype(src.dtype).itemsize
+    for group in _groups(_chunk_parts(boxes, grid), itemsize):
+        parts = _read(src, [key for key, _ in group], threads)
+        for (_, uses), part in zip(group, parts):
+            part = np.asarray(part)
+            for i, into, sub in uses:
+                out[i][into] = part[sub]
+    return [(list(lo), o) for (lo, _), o in zip(boxes, out)]
+
+
+def _chunk_parts(boxes, grid):
+    """Per touched chunk, in C order of chunk index: the key of the part of
+    it the boxes cover (their bounding box within it) and its uses
+    ``(box index, slices into the box, slices into the part)``."""
+    touched = {}
+    for i, (lo, hi) in enumerate(boxes):
+        spans = [range(bisect.bisect_right(e, l) - 1, bisect.bisect_left(e, h)) for e, l, h in zip(grid, lo, hi)]
+        for c in itertools.product(*spans):
+            touched.setdefault(c, []).append(i)
+    parts = []
+    for c in sorted(touched):
+        cuts = {i: _cut(boxes[i], [(e[j], e[j + 1]) for e, j in zip(grid, c)]) for i in touched[c]}
+        first = [min(cut[0][a] for cut in cuts.values()) for a in range(len(c))]
+        last = [max(cut[1][a] for cut in cuts.values()) for a in range(len(c))]
+        uses = [(i, _slices(l, h, boxes[i][0]), _slices(l, h, first)) for i, (l, h) in cuts.items()]
+        parts.append((_slices(first, last, [0] * len(c)), uses))
+    return parts
+
+
+def _cut(box, chunk):
+    """The part ``(lo, hi)`` of ``box`` within the chunk ``[(start, stop)]``."""
+    return [max(l, s) for l, (s, _) in zip(box[0], chunk)], [min(h, t) for h, (_, t) in zip(box[1], chunk)]
+
+
+def _slices(lo, hi, origin):
+    """The box ``lo..hi`` as slices of an array whose first index is ``origin``."""
+    return tuple(slice(l - o, h - o) for l, h, o in zip(lo, hi, origin))
+
+
+def _groups(parts, itemsize):
+    """``parts`` in consecutive groups of at most :data:`_GROUP_BYTES`
+    (a larger part alone)."""
+    group, size = [], 0
+    for part in parts:
+        n = itemsize * math.prod(s.stop - s.start for s in part[0])
+        if group and size + n > _GROUP_BYTES:
+            yield group
+            group, size = [], 0
+        group.append(part)
+        size += n
+    if group:
+        yield group
+
+
+#: The readers that may be called from several threads at once (zarr's
+#: decompression releases the GIL: the chunks of a group decode in parallel).
+_THREAD_SAFE = ("zarr",)
+
+
+def _read(src, keys, threads):
+    """``src[key]`` for each of ``keys``: a dask array's in one graph
+    (``dask.compute``: each chunk under them computed once), a zarr
+    array's on ``threads`` threads (None: one per core), others' one
+    call after another."""
+    if _is_dask(src):
+        import dask
+
+        return list(dask.compute(*[src[k] for k in keys])) if keys else []
+    workers = min(len(keys), threads or os.cpu_count() or 1)
+    if workers > 1 and type(src).__module__.split(".")[0] in _THREAD_SAFE:
+        with ThreadPoolExecutor(workers) as pool:
+            return list(pool.map(src.__getitem__, keys))
+    return [src[k] for k in keys]
+
+
+def engine(shape, s, cval, samples, cache_bytes=2**62, one_call=True):
+    """The local spline of the settings ``s`` (``cval`` checked, a float)
+    on an array of ``shape`` whose samples are read as ``samples``
+    (float32: its float32 class; else float64), and its point rule."""
+    engine_mode, rule, pad = engine_args(s.mode, s.degree, s.prefilter, s.exact_edges)
+    cls = _ext.LocalSplineF32 if np.dtype(samples) == np.float32 else _ext.LocalSplineF64
+    return cls(list(shape), s.degree, engine_mode, cval, s.tol, s.nan_policy, s.prefilter, pad, cache_bytes,
+               one_call), rule
 
 
 def evaluate_array_like(src, flat, s, cval, deriv, work):
@@ -225,14 +330,12 @@ def evaluate_array_like(src, flat, s, cval, deriv, work):
     route): the boxes the windows need fetched (:func:`fetch`: float32
     samples as they are, others as float64) and evaluated; flat values (no
     reflection sign)."""
-    d, tol, prefilter = s.degree, s.tol, s.prefilter
-    engine_mode, rule, pad = engine_args(s.mode, d, prefilter, s.exact_edges)
     f32 = np.dtype(src.dtype) == np.float32 and np.dtype(work) == np.float32
-    cls, read = (_ext.LocalSplineF32, np.float32) if f32 else (_ext.LocalSplineF64, np.float64)
-    engine = cls(list(src.shape), d, engine_mode, cval, tol, s.nan_policy, prefilter, pad, 2**62, True)
+    read = np.float32 if f32 else np.float64
+    spline, rule = engine(src.shape, s, cval, read)
     points = np.ascontiguousarray(flat, dtype=np.float64)
-    fetched = fetch(src, engine.boxes_for_eval(points, rule), read)
-    return engine.eval_blocks(list(src.shape), fetched, points, rule, deriv, s.threads).astype(work, copy=False)
+    fetched = fetch(src, spline.boxes_for_eval(points, rule), read, s.threads)
+    return spline.eval_blocks(list(src.shape), fetched, points, rule, deriv, s.threads).astype(work, copy=False)
 
 
 def cheaper(shape, flat, d, mode, prefilter, tol, exact_edges=False):

@@ -14,7 +14,7 @@ from dataclasses import dataclass
 
 from . import _dtypes as _dt
 from ._modes import interp_mode
-from ._validate import _degree, _flag, _nan_policy, _threads, _tol_for
+from ._validate import _degree, _flag, _nan_policy, _opt_float, _threads, _tol_for
 
 
 @dataclass(frozen=True, slots=True)
@@ -49,3 +49,16 @@ class Settings:
         tol = _tol_for(tol, nan_policy, d if prefilter else 0)
         return cls(d, mode, cval, prefilter, tol, nan_policy, _threads(threads), bool(exact_edges),
                    _dt.compute_name(compute))
+
+    @classmethod
+    def interpolant(cls, order, mode, cval, tol, nan_policy, threads):
+        """The settings of :class:`splinelab.Interpolant`, checked in its
+        order (degree, mode, cval, nan_policy, tol, threads): always
+        prefiltered, ``cval`` a float, ``tol`` as given (None: the local
+        route's default, certified below the global route's rounding)."""
+        d = _degree(order)
+        mode = interp_mode(mode)
+        cval = _opt_float(cval, "cval")
+        nan_policy = _nan_policy(nan_policy)
+        tol = _opt_float(tol, "tol")
+        return cls(d, mode, cval, True, tol, nan_policy, _threads(threads), False, "float64")

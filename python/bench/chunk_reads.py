@@ -1,0 +1,156 @@
+"""Each stored chunk read at most once a call (issue 51), measured.
+
+    .venv/bin/python python/bench/chunk_reads.py [--side 12000] [--chunk 1000] [--points 1000 100]
+        [--dir /tmp/chunk_reads] [--no-scipy] [--repeats 1]
+
+Writes (once; reused when ``--dir`` already holds it) a ``side x side``
+float64 zarr 3 array in ``chunk x chunk`` chunks, zarr's default compressor,
+random standard-normal samples (seed 0), and times for each point count
+(random cubic points, seed 1, the default mode):
+
+(a) ``splinelab.map_coordinates`` reading the zarr array directly;
+(b) the same through ``dask.array.from_zarr``;
+(c) reading once, one ``arr[chunk slices]`` after another, the chunks the
+    points' windows touch (the boxes the local route asks for, mapped to
+    chunks by floor division here);
+(d) scipy on the array read whole (the read and the interpolation apart;
+    ``--no-scipy`` skips it: seconds).
+
+The store counts its chunk reads (keys ``c/i/j``) in (a) and (b); both are
+checked to read each touched chunk once and to give the bits of
+``splinelab.map_coordinates(np.asarray(arr), ...)``. Times: the fastest of
+``--repeats`` runs.
+"""
+
+import argparse
+import collections
+import pathlib
+import tempfile
+import time
+
+import numpy as np
+
+
+def count_store_reads(zarr):
+    """zarr's local store reads counted per key, on the class (dask reads
+    through a copy of the array and its store)."""
+    reads = collections.Counter()
+    real = zarr.storage.LocalStore.get
+
+    async def get(self, key, prototype=None, byte_range=None):
+        reads[key] += 1
+        return await real(self, key, prototype, byte_range)
+
+    zarr.storage.LocalStore.get = get
+    return reads
+
+
+def open_array(zarr, path, side, chunk):
+    """The benchmark's array at ``path`` (written there first if missing),
+    and the counter of its store's reads."""
+    reads = count_store_reads(zarr)
+    if not (pathlib.Path(path) / "zarr.json").exists():
+        z = zarr.create_array(store=str(path), shape=(side, side), chunks=(chunk, chunk), dtype="float64")
+        rng = np.random.default_rng(0)
+        start = time.perf_counter()
+        for i in range(0, side, chunk):  # a row of chunks at a time: bounded memory
+            z[i:i + chunk] = rng.standard_normal((min(chunk, side - i), side))
+        print(f"wrote {side}x{side} float64 in {chunk}^2 chunks to {path}: {time.perf_counter() - start:.1f} s")
+    return zarr.open_array(store=str(path), mode="r"), reads
+
+
+def touched_chunks(shape, chunk, at):
+    """The chunks ``(i, j)`` the windows of the points ``at`` touch: the
+    boxes the local route reads (its engine's plan), by floor division."""
+    from splinelab import _local
+    from splinelab._settings import Settings
+    from splinelab._validate import DEFAULT_TOL
+
+    s = Settings.of(3, "constant", 0.0, True, DEFAULT_TOL, None, False)
+    spline, rule = _local.engine(shape, s, 0.0, np.float64)
+    out = set()
+    for lo, hi in spline.boxes_for_eval(np.ascontiguousarray(at), rule):
+        spans = [range(l // chunk, (h - 1) // chunk + 1) for l, h in zip(lo, hi)]
+        out.update((i, j) for i in spans[0] for j in spans[1])
+    return sorted(out)
+
+
+def best(f, repeats):
+    """``(result, seconds)``: the fastest of ``repeats`` runs."""
+    times, out = [], None
+    for _ in range(repeats):
+        start = time.perf_counter()
+        out = f()
+        times.append(time.perf_counter() - start)
+    return out, min(times)
+
+
+def chunk_reads(reads):
+    """The counted reads of chunk keys, by key."""
+    return {k: n for k, n in reads.items() if k.startswith("c/")}
+
+
+def run(z, reads, at, chunk, repeats, whole):
+    """Prints (a)-(d) for the points ``at``; asserts the bits and the reads."""
+    import dask.array as da
+    import scipy.ndimage as ndi
+
+    import splinelab
+
+    k = at.shape[1]
+    chunks = touched_chunks(z.shape, chunk, at)
+    want = {f"c/{i}/{j}" for i, j in chunks}
+
+    def read_touched():
+        return [z[i * chunk:(i + 1) * chunk, j * chunk:(j + 1) * chunk] for i, j in chunks]
+
+    _, t_c = best(read_touched, repeats)
+    print(f"{k} points: (c) reading the {len(chunks)} touched chunks once: {t_c:.2f} s")
+    results = {}
+    for name, src in (("(a) zarr directly", z), ("(b) dask.array.from_zarr", da.from_zarr(z))):
+        reads.clear()
+        results[name], t = best(lambda: splinelab.map_coordinates(src, at, order=3), repeats)
+        got = chunk_reads(reads)
+        assert set(got) == want and set(got.values()) == {repeats}, (name, len(got), len(want))
+        print(f"{k} points: {name}: {t:.2f} s, {len(got)} chunk reads (each once a call); {t / t_c:.2f}x (c)")
+    ref = splinelab.map_coordinates(whole, at, order=3)
+    for name, v in results.items():
+        assert np.array_equal(v, ref), name
+    print(f"{k} points: (a), (b) and the in-memory call: the same bits")
+    return ref
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("--side", type=int, default=12000)
+    p.add_argument("--chunk", type=int, default=1000)
+    p.add_argument("--points", type=int, nargs="+", default=[1000, 100])
+    p.add_argument("--dir", default=None, help="where the zarr array is kept (default: a temporary directory)")
+    p.add_argument("--no-scipy", action="store_true", help="skip (d): scipy on the array read whole")
+    p.add_argument("--repeats", type=int, default=1)
+    args = p.parse_args()
+    import zarr
+
+    with tempfile.TemporaryDirectory() as tmp:
+        path = pathlib.Path(args.dir or tmp) / f"a{args.side}_{args.chunk}.zarr"
+        z, reads = open_array(zarr, path, args.side, args.chunk)
+        start = time.perf_counter()
+        whole = np.asarray(z[...])
+        t_read = time.perf_counter() - start
+        print(f"read whole: {t_read:.2f} s ({whole.nbytes / 2**30:.2f} GiB)")
+        at_all = np.random.default_rng(1).uniform(0, args.side - 1, (2, max(args.points)))
+        for k in args.points:
+            at = np.ascontiguousarray(at_all[:, :k])
+            ref = run(z, reads, at, args.chunk, args.repeats, whole)
+            if not args.no_scipy:
+                import scipy.ndimage as ndi
+
+                start = time.perf_counter()
+                v = ndi.map_coordinates(whole, at, order=3)
+                t = time.perf_counter() - start
+                print(f"{k} points: (d) scipy: {t_read + t:.2f} s ({t_read:.2f} s read whole + {t:.2f} s), "
+                      f"max |splinelab - scipy| {np.abs(ref - v).max():.1e}")
+
+
+if __name__ == "__main__":
+    main()
