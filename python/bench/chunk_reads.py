@@ -10,16 +10,18 @@ random standard-normal samples (seed 0), and times for each point count
 
 (a) ``splinelab.map_coordinates`` reading the zarr array directly;
 (b) the same through ``dask.array.from_zarr``;
-(c) reading once, one ``arr[chunk slices]`` after another, the chunks the
-    points' windows touch (the boxes the local route asks for, mapped to
-    chunks by floor division here);
+(c) reading once, one ``arr[chunk slices]`` after another (each released
+    before the next), the chunks the points' windows touch (the boxes the
+    local route asks for, mapped to chunks by floor division here);
 (d) scipy on the array read whole (the read and the interpolation apart;
     ``--no-scipy`` skips it: seconds).
 
 The store counts its chunk reads (keys ``c/i/j``) in (a) and (b); both are
 checked to read each touched chunk once and to give the bits of
 ``splinelab.map_coordinates(np.asarray(arr), ...)``. Times: the fastest of
-``--repeats`` runs.
+``--repeats`` runs; memory: the peak resident size above the call's start
+(``_peak``). (a) reads its chunks on one thread per core (the default) and
+on one thread (``threads=1``); (c) on one.
 """
 
 import argparse
@@ -29,6 +31,7 @@ import tempfile
 import time
 
 import numpy as np
+from _peak import reset_peak, rss_kib
 
 
 def count_store_reads(zarr):
@@ -102,17 +105,23 @@ def run(z, reads, at, chunk, repeats, whole):
     want = {f"c/{i}/{j}" for i, j in chunks}
 
     def read_touched():
-        return [z[i * chunk:(i + 1) * chunk, j * chunk:(j + 1) * chunk] for i, j in chunks]
+        for i, j in chunks:  # each released before the next is read, as (a) releases its groups
+            z[i * chunk:(i + 1) * chunk, j * chunk:(j + 1) * chunk]
 
     _, t_c = best(read_touched, repeats)
     print(f"{k} points: (c) reading the {len(chunks)} touched chunks once: {t_c:.2f} s")
     results = {}
-    for name, src in (("(a) zarr directly", z), ("(b) dask.array.from_zarr", da.from_zarr(z))):
+    cases = (("(a) zarr directly", z, None), ("(a) zarr directly, threads=1", z, 1),
+             ("(b) dask.array.from_zarr", da.from_zarr(z), None))
+    for name, src, threads in cases:
         reads.clear()
-        results[name], t = best(lambda: splinelab.map_coordinates(src, at, order=3), repeats)
+        base = reset_peak()
+        results[name], t = best(lambda: splinelab.map_coordinates(src, at, order=3, threads=threads), repeats)
+        peak = (rss_kib("VmHWM") - base) / 1024
         got = chunk_reads(reads)
         assert set(got) == want and set(got.values()) == {repeats}, (name, len(got), len(want))
-        print(f"{k} points: {name}: {t:.2f} s, {len(got)} chunk reads (each once a call); {t / t_c:.2f}x (c)")
+        print(f"{k} points: {name}: {t:.2f} s, {len(got)} chunk reads (each once a call), peak +{peak:.0f} MB; "
+              f"{t / t_c:.2f}x (c)")
     ref = splinelab.map_coordinates(whole, at, order=3)
     for name, v in results.items():
         assert np.array_equal(v, ref), name
