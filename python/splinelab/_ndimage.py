@@ -253,10 +253,11 @@ def map_coordinates(
         strides. Every input is computed in float64, as scipy computes it
         (complex: complex128, part by part). An array-like that is not in
         memory (anything with ``shape``, ``dtype``, ``ndim`` and basic-slice
-        ``__getitem__``: zarr, h5py, dask) is read one box at a time, only
-        where the points' windows need it (the local route:
-        :doc:`/large_arrays`), or whole, once, where the points cover it
-        (reading it costs less than their boxes one by one).
+        ``__getitem__``: zarr, h5py, dask) is read only where the points'
+        windows need it (the local route: :doc:`/large_arrays`): each
+        stored chunk they touch once where it exposes its chunk grid
+        (``chunks``), else one box at a time; or whole, once, where the
+        points cover it (reading it costs less than their boxes one by one).
     coordinates : array_like
         Shape ``(input.ndim, ...)``: one row per axis, as in scipy.
     %(interp_output)s
