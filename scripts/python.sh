@@ -27,10 +27,11 @@ reqs=(maturin numpy "scipy==1.17.1" "dask[array]" distributed dask-image pytest 
 # Test extras (issue 45: the local route reads zarr arrays and HDF5 datasets
 # a box at a time), pinned; zarr 3.1.6 is the last release for Python 3.11.
 # xarray (issue 51: the splinelab accessor, python/tests/test_xarray.py),
-# the newest release pip finds for Python 3.11.
+# the newest release pip finds for Python 3.11; cftime (its accessor on
+# non-standard calendars, python/tests/test_xarray_cftime.py) likewise.
 # Installed apart: where they cannot be, the tests that need them fail
 # saying so (python/tests/test_local_route.py), the rest still run.
-extras=("zarr==3.1.6" "h5py==3.16.0" "xarray==2026.9.0")
+extras=("zarr==3.1.6" "h5py==3.16.0" "xarray==2026.9.0" "cftime==1.6.6.1")
 stamp=.venv/.splinelab-requirements
 if [ "$(cat "$stamp" 2>/dev/null)" != "${reqs[*]} ${extras[*]}" ]; then
   echo "splinelab python: installing ${reqs[*]}" >&2

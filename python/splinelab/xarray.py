@@ -6,7 +6,8 @@ splinelab's interpolators underneath: the same indexing forms (orthogonal
 1-D coordinates, scalars, pointwise DataArray indexers sharing a dimension,
 a subset of the dimensions), the same coordinates, dimensions and attributes
 in the result, the same ``kwargs`` (``fill_value``, ``bounds_error``) and
-out-of-range points, datetime coordinates converted as xarray converts them.
+out-of-range points, datetime coordinates (numpy datetime64, and cftime dates
+in any calendar) converted as xarray converts them.
 The numbers are :class:`splinelab.RegularGridInterpolator`'s: scipy's for
 "linear", "nearest", "slinear" and "pchip", the exact not-a-knot spline for
 "cubic" and "quintic" (scipy's own on one dimension, where xarray calls
@@ -74,8 +75,35 @@ def _axis_variable(obj, dim):
     return xr.Variable((dim,), np.arange(obj.sizes[dim]))
 
 
+def _is_cftime(values):
+    """Whether ``values`` hold cftime dates (xarray's test: an object array
+    whose first element is a ``cftime.datetime``; never without cftime)."""
+    a = np.asarray(values)
+    if a.dtype.kind != "O" or a.size == 0:
+        return False
+    try:
+        import cftime
+    except ImportError:
+        return False
+    return isinstance(a.flat[0], cftime.datetime)
+
+
 def _is_datetime_like(values):
-    return np.asarray(values).dtype.kind in "Mm"
+    """numpy datetimes and timedeltas, or cftime dates (xarray's ``_contains_datetime_like_objects``)."""
+    return np.asarray(values).dtype.kind in "Mm" or _is_cftime(values)
+
+
+def _parsed_dates(obj, k, a):
+    """Date strings as the axis' dates, as xarray's ``_validate_indexers``:
+    datetime64[ns] on a datetime64 axis, the index's cftime type (partial
+    dates such as "2001-03" allowed) on a cftime axis; others unchanged."""
+    x = _axis_variable(obj, k).values
+    if x.dtype.kind in "Mm":
+        return a.astype("datetime64[ns]")
+    if _is_cftime(x):
+        from xarray.coding.cftimeindex import _parse_array_of_cftime_strings
+        return _parse_array_of_cftime_strings(a, obj.indexes[k].date_type)
+    return a
 
 
 def _validated(obj, coords):
@@ -98,8 +126,8 @@ def _validated(obj, coords):
             v = xr.Variable((k,), np.empty((0,), dtype="int64"), attrs=attrs)
         else:
             a = np.asarray(v)
-            if a.dtype.kind in "US" and _is_datetime_like(_axis_variable(obj, k).values):
-                a = a.astype("datetime64[ns]")
+            if a.dtype.kind in "US":
+                a = _parsed_dates(obj, k, a)
             if a.ndim > 1:
                 raise IndexError(f"Unlabeled multi-dimensional array cannot be used for indexing: {k}")
             v = xr.Variable((k,) if a.ndim else (), a, attrs=attrs)
@@ -186,12 +214,17 @@ class _Options:
 
 def _float_axes(xs, news):
     """The grid's axes and the new coordinates as float64, datetimes as
-    xarray converts them (offset by the axis' minimum, in the axis' unit)."""
+    xarray converts them (offset by the axis' minimum, in the axis' unit;
+    cftime dates in nanoseconds)."""
     out_x, out_new = [], []
     for x, new in zip(xs, news):
         x = np.asarray(x)
         new = np.asarray(new)
-        if x.dtype.kind in "Mm":
+        if _is_cftime(x):
+            x0 = x.min()
+            out_x.append(_cftime_ns(x, x0))
+            out_new.append(_cftime_ns(new, x0))
+        elif x.dtype.kind in "Mm":
             unit = np.timedelta64(1, np.datetime_data(x.dtype)[0])
             x0 = x.min()
             out_x.append((x - x0) / unit)
@@ -200,6 +233,16 @@ def _float_axes(xs, news):
             out_x.append(np.asarray(x, dtype=np.float64))
             out_new.append(np.asarray(new, dtype=np.float64))
     return out_x, out_new
+
+
+def _cftime_ns(dates, x0):
+    """cftime dates as float nanoseconds after ``x0``, xarray's arithmetic
+    step by step (``py_timedelta_to_float``: the differences' float
+    seconds, times 1e6, times 1000), so the axes are xarray's to the bit.
+    Dates of another calendar or type raise what their subtraction raises."""
+    delta = np.asarray(dates - x0)
+    us = np.reshape([d.total_seconds() for d in delta.ravel()], delta.shape) * 1e6
+    return us * (np.timedelta64(1, "us") / np.timedelta64(1, "ns"))
 
 
 def _check_axis(dim, x, method, mode):
@@ -417,6 +460,8 @@ def _increasing(x):
     x = np.asarray(x)
     if x.dtype.kind in "Mm":
         x = x.view(np.int64)
+    elif _is_cftime(x):   # compared date by date (one calendar: a sorted index)
+        return bool(np.all(x[1:] > x[:-1]))
     return x.dtype.kind in "uif" and bool(np.all(x[1:] > x[:-1]))
 
 
@@ -456,6 +501,8 @@ coords : dict, optional
     Dimension names to new coordinates: a scalar, a 1-D array (the
     dimension's new coordinate) or a DataArray (its dims broadcast: DataArrays
     sharing a dimension interpolate pointwise), as xarray's ``DataArray.interp``.
+    On a datetime64 or cftime axis: dates, or date strings (parsed as xarray
+    parses them: into the cftime index's calendar on a cftime axis).
 method : str, optional
     "cubic" (default; xarray's default is "linear"), "quintic", "linear",
     "nearest", "slinear" or "pchip". "cubic" and "quintic" are the exact
@@ -499,9 +546,11 @@ ValueError
     dimensions disagree in length, too few points on an axis for the method,
     repeated or (``assume_sorted=True``) unsorted coordinates, a point out
     of range with ``bounds_error=True``; each naming the dimension.
+    A date string that does not parse, or a day its calendar lacks.
 TypeError, IndexError
-    As xarray: a non-datetime new coordinate of a datetime axis; a
-    multi-dimensional array that is not a DataArray.
+    As xarray: a non-datetime new coordinate of a datetime or cftime axis,
+    dates of another calendar; a multi-dimensional array that is not a
+    DataArray.
 """
 
 
