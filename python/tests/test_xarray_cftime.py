@@ -157,6 +157,23 @@ def test_date_strings_parse_into_the_calendar(cftime, calendar):
         assert rel(feb30, da.interp(time=["2000-02-30"])) <= 1e-12
 
 
+@pytest.mark.parametrize("method", ["linear", "cubic"])
+def test_vectorised_times_and_cftime_coordinates_as_xarray(cftime, method):
+    """A time per latitude (xarray's vectorised form); cftime-valued
+    coordinates along time (a date and its bounds) reindexed as xarray."""
+    da, secs = series(cftime, "noleap")
+    q = dates(cftime, np.round(np.random.default_rng(3).uniform(secs[0], secs[-1], 7)), "noleap")
+    per_lat = xr.DataArray(q, dims="lat", coords={"lat": da.lat.values})
+    ours, theirs = da.splinelab.interp(time=per_lat, method=method), da.interp(time=per_lat, method=method)
+    same_labels(ours, theirs)
+    assert rel(ours, theirs) <= 1e-12
+    when = da.time.values
+    ds = da.to_dataset().assign_coords(aux=("time", when), bnds=(("time", "nv"), np.stack([when, when], -1)))
+    ours, theirs = ds.splinelab.interp(time=q, method=method), ds.interp(time=q, method=method)
+    for name in ("time", "aux", "bnds"):
+        xr.testing.assert_identical(ours[name].variable, theirs[name].variable)
+
+
 def test_unsorted_axis_is_sorted_first_as_xarray(cftime):
     """A descending cftime axis is sorted first (xarray's ``sortby``)."""
     da, secs = series(cftime, "julian")
