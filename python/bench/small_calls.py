@@ -244,9 +244,10 @@ def main(argv=None):
     if records:
         summary(records)
     if args.json:
+        argv = sys.argv[1:] if argv is None else list(argv)
+        prov = provenance(argv, load_before)  # before the file is opened: a tracked one would read as a change
         with open(args.json, "w") as fh:
-            argv = sys.argv[1:] if argv is None else list(argv)
-            json.dump(dict(argv=argv, provenance=provenance(argv, load_before), scipy=scipy.__version__,
+            json.dump(dict(argv=argv, provenance=prov, scipy=scipy.__version__,
                            splinelab=splinelab.__version__, rounds=args.rounds, fixed_cost=fixed, issue_table=issue,
                            cases=records), fh, indent=1)
 
