@@ -13,7 +13,7 @@ from ._doc import fill
 from ._engine import _direct, _interpolate, _map_real, _Points, _refuse_non_finite
 from ._engine import _wrap_coordinates  # noqa: F401 (python/tests/test_scipy.py reads it here)
 from ._modes import EXACT_EDGES as _EXACT_EDGES, SCIPY_FILTER_RULE as _FILTER_RULE
-from ._settings import Settings
+from ._settings import Settings, _plain_threads
 from .errors import CoordinateShapeError
 from ._validate import DEFAULT_TOL, MAX_DEGREE, _cval, _flag, _int, _real_array
 
@@ -195,11 +195,12 @@ def _common(input, order, axis, output, mode, tol, threads, exact_edges, nan_pol
     """The common filter call, or None where it is not one: a float64 or
     float32 array in native byte order, a degree in range, an axis it has
     (:data:`_EVERY`: every axis), ``output`` None or a float64 / float32 dtype, a
-    known mode and every engine keyword at its default. Every check of
+    known mode and every engine keyword at its default but ``threads`` (None
+    or an int in range). Every check of
     :func:`_filter` passes there and changes nothing, so its result is
     :func:`_common_filter`'s, a microsecond or two sooner."""
     if not (type(input) is np.ndarray and input.dtype in _FLOATS and type(order) is int and 0 <= order <= MAX_DEGREE
-            and type(mode) is str and mode in _FILTER_RULE and tol is DEFAULT_TOL and threads is None
+            and type(mode) is str and mode in _FILTER_RULE and tol is DEFAULT_TOL and _plain_threads(threads)
             and (exact_edges is False or exact_edges is True) and type(nan_policy) is str
             and nan_policy == "propagate" and type(compute) is str and compute == "float64"):
         return None
@@ -218,17 +219,17 @@ def _common(input, order, axis, output, mode, tol, threads, exact_edges, nan_pol
     else:
         return None
     rule = mode if exact_edges and mode in _EXACT_EDGES else _FILTER_RULE[mode]
-    return input, axes, dtype, rule
+    return input, axes, dtype, rule, threads
 
 
-def _common_filter(order, a, axes, dtype, rule):
+def _common_filter(order, a, axes, dtype, rule, threads):
     """:func:`_filter_with` of the common call (:func:`_common`): degrees 0
     and 1 scipy's copy (converted), above them the engine's filter into a
     new array, straight."""
     if order < 2 or a.size == 0:
-        return _copied(a, dtype, None)
+        return a.copy() if a.dtype is dtype else _copied(a, dtype, None)
     out = np.empty(a.shape, dtype)
-    _ext.filter(a, out, axes, order, rule, 0.0, None, None, False, "propagate", f32=False)
+    _ext.filter(a, out, axes, order, rule, 0.0, None, threads, False, "propagate", f32=False)
     return out
 
 

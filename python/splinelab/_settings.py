@@ -14,7 +14,7 @@ from typing import NamedTuple
 
 from . import _dtypes as _dt
 from ._modes import EXACT_EDGES, SCIPY_FILTER_RULE, interp_mode
-from ._validate import DEFAULT_TOL, MAX_DEGREE, _degree, _flag, _nan_policy, _threads, _tol_for
+from ._validate import DEFAULT_TOL, MAX_DEGREE, MAX_THREADS, _degree, _flag, _nan_policy, _threads, _tol_for
 
 
 class Settings(NamedTuple):
@@ -45,7 +45,7 @@ class Settings(NamedTuple):
         compute: the same exception at the same point of the call)."""
         if _defaults(order, mode, prefilter, tol, threads, nan_policy, compute):
             # The common call: nothing the checks below would change.
-            return cls(order, mode, cval, prefilter, None, "propagate", None, bool(exact_edges), "float64")
+            return cls(order, mode, cval, prefilter, None, "propagate", threads, bool(exact_edges), "float64")
         d = _degree(order)
         mode = interp_mode(mode)
         prefilter = _flag(prefilter, "prefilter")
@@ -61,7 +61,7 @@ class Settings(NamedTuple):
         threads; ``compute`` before the input, by the caller); the
         prefilter on, ``cval`` 0."""
         if _defaults(order, mode, True, tol, threads, nan_policy, compute):
-            return cls(order, mode, 0.0, True, None, "propagate", None, bool(exact_edges), "float64")
+            return cls(order, mode, 0.0, True, None, "propagate", threads, bool(exact_edges), "float64")
         d = _degree(order)
         mode = interp_mode(mode)
         nan_policy = _nan_policy(nan_policy)
@@ -81,10 +81,17 @@ class Settings(NamedTuple):
 def _defaults(order, mode, prefilter, tol, threads, nan_policy, compute):
     """Whether the arguments are the common call's, which need no check: an
     int degree in range, a known mode, a bool prefilter and every engine
-    keyword at its default (what the checks would return unchanged; tol's
-    default resolves to None under 'propagate'). Anything else takes the
-    checks, so bad input is refused where it always was."""
+    keyword at its default but ``threads`` (None or an int in range): what
+    the checks would return unchanged (tol's default resolves to None
+    under 'propagate'). Anything else takes the checks, so bad input is
+    refused where it always was."""
     return (type(order) is int and 0 <= order <= MAX_DEGREE and type(mode) is str and mode in SCIPY_FILTER_RULE
-            and (prefilter is True or prefilter is False) and tol is DEFAULT_TOL and threads is None
+            and (prefilter is True or prefilter is False) and tol is DEFAULT_TOL and _plain_threads(threads)
             and type(nan_policy) is str and nan_policy == "propagate" and type(compute) is str
             and compute == "float64")
+
+
+def _plain_threads(threads):
+    """Whether ``threads`` is one :func:`splinelab._validate._threads`
+    returns as it is: None or an int in ``1..MAX_THREADS``."""
+    return threads is None or (type(threads) is int and 1 <= threads <= MAX_THREADS)
