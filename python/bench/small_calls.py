@@ -30,10 +30,13 @@ after them. ``--quick``: 8², 16², 32² and 16³, orders 1 and 3, float64 only
 from __future__ import annotations
 
 import argparse
+import datetime
 import json
 import math
+import os
 import platform
 import re
+import subprocess
 import sys
 import time
 
@@ -202,6 +205,24 @@ def fixed_cost(rounds):
     return out
 
 
+def provenance(argv, load_before):
+    """What the report states beside the figures (it does not run Python):
+    the command, the date (UTC), the commit (``+dirty`` with uncommitted
+    changes), the machine and its load average before and after the run."""
+    def git(*args):
+        try:
+            return subprocess.run(["git", *args], capture_output=True, text=True, check=True).stdout.strip()
+        except (OSError, subprocess.CalledProcessError):
+            return ""
+    commit = git("rev-parse", "--short", "HEAD") or "unknown"
+    if git("status", "--porcelain", "--untracked-files=no"):
+        commit += "+dirty"
+    return dict(command=" ".join([".venv/bin/python", "python/bench/small_calls.py", *argv]),
+                date=datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%dT%H:%MZ"), commit=commit,
+                machine=f"{platform.machine()}, {os.cpu_count()} cores, {platform.system()}",
+                load_before=[round(x, 2) for x in load_before], load_after=[round(x, 2) for x in os.getloadavg()])
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--quick", action="store_true", help="8², 16², 32², 16³; orders 1, 3; float64")
@@ -210,6 +231,7 @@ def main(argv=None):
     ap.add_argument("--only", help="a regular expression the case's label must match ('map_coordinates 8x8')")
     ap.add_argument("--json", help="write every case to this file")
     args = ap.parse_args(argv)
+    load_before = os.getloadavg()
     threads = {"both": [None, 1], "default": [None], "1": [1]}[args.threads]
     sizes, orders, dtypes = (QUICK_SIZES, QUICK_ORDERS, [np.float64]) if args.quick else (SIZES, ORDERS, DTYPES)
     print(f"splinelab {splinelab.__version__}, scipy {scipy.__version__}, numpy {np.__version__}, "
@@ -222,9 +244,12 @@ def main(argv=None):
     if records:
         summary(records)
     if args.json:
+        argv = sys.argv[1:] if argv is None else list(argv)
+        prov = provenance(argv, load_before)  # before the file is opened: a tracked one would read as a change
         with open(args.json, "w") as fh:
-            json.dump(dict(argv=sys.argv[1:], scipy=scipy.__version__, splinelab=splinelab.__version__,
-                           rounds=args.rounds, fixed_cost=fixed, issue_table=issue, cases=records), fh, indent=1)
+            json.dump(dict(argv=argv, provenance=prov, scipy=scipy.__version__,
+                           splinelab=splinelab.__version__, rounds=args.rounds, fixed_cost=fixed, issue_table=issue,
+                           cases=records), fh, indent=1)
 
 
 if __name__ == "__main__":

@@ -33,7 +33,7 @@ import numpy as np
 
 from .errors import DtypeError, OutputShapeError
 
-_NATIVE = (np.dtype(np.float64), np.dtype(np.float32))
+_NATIVE = frozenset((np.dtype(np.float64), np.dtype(np.float32)))  # hashed: a small call's lookup
 COMPUTE = ("float64", "float32")
 
 
@@ -78,6 +78,20 @@ class Work:
         return engine_samples(a, self.f32)
 
 
+_WORK = {}
+
+
+def work_for(compute, result_part):
+    """The :class:`Work` of ``compute`` and a result part's dtype, made once
+    per pair (read only; a small call would otherwise spend a microsecond
+    on it)."""
+    key = (compute, result_part)
+    work = _WORK.get(key)
+    if work is None:
+        work = _WORK[key] = Work(compute, result_part)
+    return work
+
+
 def input_array(input, what="input"):
     """``input`` as an array of a numeric dtype scipy takes: bool, integer,
     float or complex."""
@@ -89,7 +103,8 @@ def input_array(input, what="input"):
 
 def output_dtype(output, input_dtype, default, complex_input):
     """The result dtype and the array to write into (scipy's ``output``:
-    None for ``default``, a dtype, a dtype name, or an array).
+    None for ``default``, a dtype, a dtype name, or an array). ``default``
+    None: scipy's (:func:`default_output`), formed only where it is read.
 
     Complex input with a real dtype given as a type or dtype is promoted to
     complex with a warning, as scipy does; a real dtype name or a real array
@@ -102,7 +117,10 @@ def output_dtype(output, input_dtype, default, complex_input):
             raise DtypeError(f"output must have a complex dtype for complex input, got {dtype}")
     else:
         try:
-            dtype = np.dtype(default if output is None else output)
+            if output is None:
+                dtype = np.dtype(default_output(input_dtype, complex_input) if default is None else default)
+            else:
+                dtype = np.dtype(output)
         except TypeError as e:
             raise DtypeError(f"output must be a dtype, a dtype name or an array: {e}") from None
         if complex_input and dtype.kind != "c":

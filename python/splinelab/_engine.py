@@ -52,10 +52,10 @@ def _interpolate(input, output, shape, cval, evaluate, *others, compute="float64
     reads samples it has already overwritten)."""
     a = _dt.input_array(input)
     cplx = a.dtype.kind == "c"
-    dtype, target = _dt.output_dtype(output, a.dtype, _dt.default_output(a.dtype, cplx), cplx)
+    dtype, target = _dt.output_dtype(output, a.dtype, None, cplx)
     _dt.check_output_shape(target, shape)
     cv = _cval(cval, cplx)
-    work = _dt.Work(compute, _dt.real_dtype(dtype))
+    work = _dt.work_for(compute, dtype if dtype.kind != "c" else _dt.real_dtype(dtype))
     if cplx:
         result = np.empty(shape, dtype)
         result.real = evaluate(work.samples(a.real), cv.real, work).reshape(shape)
@@ -120,7 +120,8 @@ class _Points:
 
     def count(self):
         """The number of points."""
-        return np.shape(self.flat)[1]
+        flat = self.flat
+        return flat.shape[1] if type(flat) is np.ndarray else np.shape(flat)[1]
 
     def outside(self, shape):
         """Whether each point lies outside ``[0, n - 1]`` on some axis."""
@@ -176,16 +177,8 @@ class _Grid(_Points):
             fill = 0.0 if deriv and any(deriv) else cv
             grid = values.reshape([len(x) for x in self.flat])
             for axis, (x, n) in enumerate(zip(self.flat, a.shape)):
-                x = np.asarray(x)
-                # An axis' coordinates are monotone in the index (zoom's and
-                # shift's arithmetic, k * z + s and its variants: each
-                # rounding is monotone), so its ends bound it: no mask of
-                # an axis that lies inside (a NaN end fails the test).
-                if x.size and 0 <= x[0] <= n - 1 and 0 <= x[-1] <= n - 1:
-                    continue
-                outside = np.flatnonzero((x < 0) | (x > n - 1))
-                if outside.size:
-                    grid[(slice(None),) * axis + (outside,)] = fill
+                for where in _outside(np.asarray(x), n):
+                    grid[(slice(None),) * axis + (where,)] = fill
         return values
 
     def count(self):
@@ -205,6 +198,30 @@ class _Grid(_Points):
             shape[axis] = -1
             flags = flags | np.asarray(f).reshape(shape)
         return flags.reshape(-1)
+
+
+def _outside(x, n):
+    """The indices of ``x`` (one axis' coordinates) outside ``[0, n - 1]``,
+    as index sets for an assignment. An axis' coordinates are monotone in
+    the index (zoom's and shift's arithmetic, k * z + s and its variants:
+    each rounding is monotone), so its ends bound it (no mask of an axis
+    that lies inside) and, ascending, the points outside are a prefix and a
+    suffix (two slices, found by bisection); a NaN end or a descending axis
+    takes the mask."""
+    if not x.size:
+        return ()
+    first, last, top = x.item(0), x.item(-1), float(n - 1)
+    if 0 <= first <= top and 0 <= last <= top:
+        return ()
+    if first <= last:
+        slabs = []
+        if first < 0:
+            slabs.append(slice(0, int(x.searchsorted(0.0, "left"))))
+        if last > top:
+            slabs.append(slice(int(x.searchsorted(top, "right")), None))
+        return slabs
+    outside = np.flatnonzero((x < 0) | (x > top))
+    return (outside,) if outside.size else ()
 
 
 def _affine_points(m, offsets, out_shape):
@@ -248,6 +265,41 @@ class _Affine(_Points):
         rule = "wrap" if self.wrap else "cval-outside" if cval_outside else "fold"
         return _engine(_ext.affine, a, self.matrix, self.offset, list(self.out_shape), d, mode, cv, tol, prefilter,
                        self.shift, rule, threads, nan_policy, work=work, filter_rule=filter_rule).reshape(-1)
+
+
+_F32_OUT = _dt.work_for("float64", np.dtype(np.float32))
+_NATIVE = {np.dtype(np.float64): _F64, np.dtype(np.float32): _F32_OUT}
+
+
+def _direct(a, points, s, output):
+    """The values (flat) of the common call in one step, or None where it is
+    not one: a float64 or float32 array in memory (not empty), no
+    ``output``, a real ``cval``, float64 arithmetic, a mode the engine
+    evaluates without padding or moving the points, and (points or an
+    affine map) too many points for the local route. There every rule of
+    :func:`_interpolate`, :func:`_map_real` and :func:`_map_points` is the
+    identity (the input read where it lies, the result in its dtype), so
+    this is their call into the engine, without their checks. A
+    non-finite coordinate gives None: the general path refuses it or
+    gives scipy's values there."""
+    if type(a) is not np.ndarray or output is not None or s.compute != "float64" or not a.size:
+        return None
+    work = _NATIVE.get(a.dtype)
+    cv = s.cval
+    if work is None or not (type(cv) is float or type(cv) is int):
+        return None
+    d, prefilter, tol = s.degree, s.prefilter, s.tol
+    if type(points) is not _Grid and (
+            _local.ROUTE == "local" or _local.may_be_local(a.shape, points.count(), d, prefilter, tol)):
+        return None
+    mode, rule, pad = engine_args(s.mode, d, prefilter, s.exact_edges)
+    if pad or rule == "wrap":
+        return None
+    try:
+        return points.run(a, d, mode, float(cv), tol, prefilter, s.threads, None,
+                          cval_outside=rule == "cval-outside", nan_policy=s.nan_policy, work=work)
+    except _ext.NonFiniteCoordinateError:
+        return None
 
 
 def _map_real(a, flat, s, cv, deriv=None, work=_F64):

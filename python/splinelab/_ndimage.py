@@ -10,12 +10,12 @@ from . import _splinelab as _ext
 from . import _dtypes as _dt
 from . import _local
 from ._doc import fill
-from ._engine import _interpolate, _map_real, _refuse_non_finite
+from ._engine import _direct, _interpolate, _map_real, _Points, _refuse_non_finite
 from ._engine import _wrap_coordinates  # noqa: F401 (python/tests/test_scipy.py reads it here)
-from ._modes import filter_mode as _filter_mode
-from ._settings import Settings
+from ._modes import EXACT_EDGES as _EXACT_EDGES, SCIPY_FILTER_RULE as _FILTER_RULE
+from ._settings import Settings, _plain_threads
 from .errors import CoordinateShapeError
-from ._validate import DEFAULT_TOL, _cval, _degree, _flag, _int, _nan_policy, _real_array, _threads, _tol_for
+from ._validate import DEFAULT_TOL, MAX_DEGREE, _cval, _flag, _int, _real_array
 
 def _same_layout(a, b):
     """Whether `a` and `b` are the same elements in the same places."""
@@ -23,44 +23,45 @@ def _same_layout(a, b):
     return ia["data"][0] == ib["data"][0] and a.strides == b.strides and a.shape == b.shape
 
 
-_FLOATS = (np.dtype(np.float64), np.dtype(np.float32))
+_FLOATS = frozenset((np.dtype(np.float64), np.dtype(np.float32)))  # hashed: a small call's lookup
 
 
 def _filter(input, axes, order, output, mode, tol, threads, exact_edges=False, convolution=False,
             nan_policy="propagate", compute="float64"):
-    """scipy's spline_filter(1d) for every dtype it takes, computed in
-    float64 (``compute="float32"``: in float32): float64/float32 results
-    straight from the engine (float32 rounded after every axis, as scipy
-    writes each axis into a float32 ``output``); integer and boolean
-    results converted as scipy's filter converts them (truncated), after
-    each axis as scipy does (it filters axis by axis into ``output``);
-    float16 results rounded once after every axis is filtered in float64;
-    complex input filtered part by part (same filter). ``output=None``: the
-    input's dtype. ``convolution``: with ``tol``, the local truncated
-    convolution (what chunked filtering needs) instead of the fast route.
-    ``nan_policy``: what non-finite samples do (:data:`NAN_POLICY_DOC`)."""
+    """scipy's spline_filter(1d) for every dtype it takes: the arguments
+    checked in the order the filters have always checked them (compute, the
+    input, ``output``, then the settings, :meth:`Settings.for_filter`), then
+    :func:`_filter_with`. ``output=None``: the input's dtype.
+    ``convolution``: with ``tol``, the local truncated convolution (what
+    chunked filtering needs, splinelab.dask) instead of the fast route."""
     compute = _dt.compute_name(compute)
     a = _dt.input_array(input)
     cplx = a.dtype.kind == "c"
-    dtype, target = _dt.output_dtype(output, a.dtype, _dt.default_output(a.dtype, cplx), cplx)
+    dtype, target = _dt.output_dtype(output, a.dtype, None, cplx)
     _dt.check_output_shape(target, a.shape)
-    d = _degree(order)
-    rule = _filter_mode(mode, bool(exact_edges))
-    nan_policy = _nan_policy(nan_policy)
-    tol, threads = _tol_for(tol, nan_policy, d), _threads(threads)
-    spec = (d, rule, 0.0, tol, threads, bool(convolution), nan_policy)
-    if d < 2 or a.size == 0:
+    s = Settings.for_filter(order, mode, tol, threads, exact_edges, nan_policy, compute)
+    return _filter_with(a, axes, s, dtype, target, convolution)
+
+
+def _filter_with(a, axes, s, dtype, target, convolution=False):
+    """The filter of ``a`` (checked: :func:`_filter`) along ``axes`` under
+    the settings ``s`` into ``dtype`` (``target``: the array to write, or
+    None), computed in float64 (``s.compute == "float32"``: in float32):
+    float64/float32 results straight from the engine (float32 rounded
+    after every axis, as scipy writes each axis into a float32 ``output``);
+    integer and boolean results converted as scipy's filter converts them
+    (truncated), after each axis as scipy does (it filters axis by axis
+    into ``output``); float16 results rounded once after every axis is
+    filtered in float64; complex input filtered part by part (same filter).
+    ``s.nan_policy``: what non-finite samples do (:data:`NAN_POLICY_DOC`)."""
+    if s.degree < 2 or a.size == 0:
         # Degrees 0 and 1, and no samples (scipy returns the empty array):
-        if nan_policy == "raise":
+        if s.nan_policy == "raise":
             _refuse_non_finite(a)
-        # scipy: output[...] = input (numpy's conversion), no filter.
-        if target is None and a.dtype == dtype:
-            return a.copy()  # no conversion, so no warning to silence
-        out = target if target is not None else np.empty(a.shape, dtype)
-        with np.errstate(invalid="ignore", over="ignore"):
-            np.copyto(out, a, casting="unsafe")
-        return out
-    if cplx:
+        return _copied(a, dtype, target)
+    compute = s.compute
+    spec = (s.degree, s.filter_rule(), 0.0, s.tol, s.threads, bool(convolution), s.nan_policy)
+    if a.dtype.kind == "c":
         part = _dt.real_dtype(dtype)
         out = np.empty(a.shape, dtype)
         out.real = _filter_float(a.real, part, None, (axes, *spec), compute)
@@ -78,6 +79,17 @@ def _filter(input, axes, order, output, mode, tol, threads, exact_edges=False, c
     for axis in axes:
         a = _dt.store_truncated(_dt.settled(_filter_float(a, work, None, ([axis], *spec), compute)), carried)
     return _dt.deliver(a.astype(dtype, copy=False), target, a.shape)
+
+
+def _copied(a, dtype, target):
+    """scipy's filter of degree 0 or 1: ``output[...] = input`` (numpy's
+    conversion), no filter, no call into the engine."""
+    if target is None and a.dtype == dtype:
+        return a.copy()  # no conversion, so no warning to silence
+    out = target if target is not None else np.empty(a.shape, dtype)
+    with np.errstate(invalid="ignore", over="ignore"):
+        np.copyto(out, a, casting="unsafe")
+    return out
 
 
 def _filter_float(a, dtype, target, args, compute="float64"):
@@ -98,7 +110,7 @@ def _filter_float(a, dtype, target, args, compute="float64"):
               and target.dtype == dtype)
     out = target if direct else np.empty(a.shape, dtype)
     src = _dt.engine_samples(a, compute == "float32")
-    if np.may_share_memory(a, out):
+    if direct and np.may_share_memory(a, out):  # a new array shares nothing
         if not _same_layout(a, out):
             np.copyto(out, a, casting="unsafe")
         src = None
@@ -167,9 +179,58 @@ def spline_filter1d(
     >>> bool(np.allclose((4 * c[0] + 2 * c[1]) / 6, [1, 0, 0]))
     True
     """
+    common = _common(input, order, axis, output, mode, tol, threads, exact_edges, nan_policy, compute)
+    if common is not None:
+        return _common_filter(order, *common)
     a = np.asarray(input)
     return _filter(a, [_axis(axis, a.ndim)], order, output, mode, tol, threads, exact_edges, nan_policy=nan_policy,
                    compute=compute)
+
+
+_SCALARS = frozenset((np.float64, np.float32, float))
+_EVERY = object()  # spline_filter's axes (None is an axis spline_filter1d refuses)
+
+
+def _common(input, order, axis, output, mode, tol, threads, exact_edges, nan_policy, compute):
+    """The common filter call, or None where it is not one: a float64 or
+    float32 array in native byte order, a degree in range, an axis it has
+    (:data:`_EVERY`: every axis), ``output`` None or a float64 / float32 dtype, a
+    known mode and every engine keyword at its default but ``threads`` (None
+    or an int in range). Every check of
+    :func:`_filter` passes there and changes nothing, so its result is
+    :func:`_common_filter`'s, a microsecond or two sooner."""
+    if not (type(input) is np.ndarray and input.dtype in _FLOATS and type(order) is int and 0 <= order <= MAX_DEGREE
+            and type(mode) is str and mode in _FILTER_RULE and tol is DEFAULT_TOL and _plain_threads(threads)
+            and (exact_edges is False or exact_edges is True) and type(nan_policy) is str
+            and nan_policy == "propagate" and type(compute) is str and compute == "float64"):
+        return None
+    if axis is _EVERY:
+        axes = list(range(input.ndim))
+    elif type(axis) is int and -input.ndim <= axis < input.ndim:
+        axes = [axis % input.ndim]
+    else:
+        return None
+    if output is None:
+        dtype = input.dtype
+    elif isinstance(output, np.dtype) or (type(output) is type and output in _SCALARS):
+        dtype = np.dtype(output)
+        if dtype not in _FLOATS:
+            return None
+    else:
+        return None
+    rule = mode if exact_edges and mode in _EXACT_EDGES else _FILTER_RULE[mode]
+    return input, axes, dtype, rule, threads
+
+
+def _common_filter(order, a, axes, dtype, rule, threads):
+    """:func:`_filter_with` of the common call (:func:`_common`): degrees 0
+    and 1 scipy's copy (converted), above them the engine's filter into a
+    new array, straight."""
+    if order < 2 or a.size == 0:
+        return a.copy() if a.dtype is dtype else _copied(a, dtype, None)
+    out = np.empty(a.shape, dtype)
+    _ext.filter(a, out, axes, order, rule, 0.0, None, threads, False, "propagate", f32=False)
+    return out
 
 
 @fill
@@ -218,6 +279,9 @@ def spline_filter(input, order=3, output=np.float64, mode="mirror", *, tol=DEFAU
     >>> bool(np.allclose(splinelab.spline_filter(x, order=5), x))
     True
     """
+    common = _common(input, order, _EVERY, output, mode, tol, threads, exact_edges, nan_policy, compute)
+    if common is not None:
+        return _common_filter(order, *common)
     a = np.asarray(input)
     return _filter(a, list(range(a.ndim)), order, output, mode, tol, threads, exact_edges, nan_policy=nan_policy,
                    compute=compute)
@@ -362,6 +426,10 @@ def map_coordinates(
     s = Settings.of(order, mode, cval, prefilter, tol, threads, exact_edges, nan_policy, compute)
     deriv = _derivative(derivative, at.shape[0])
     sign = _reflection_sign(flat, np.shape(input), s.mode, deriv) if deriv else None
+    if deriv is None and type(input) is np.ndarray:
+        values = _direct(input, _Points(flat), s, output)  # the common call, in one step
+        if values is not None:
+            return values.reshape(shape)
     if _local.is_array_like(input) and math.prod(input.shape) == 0:
         # Nothing to read: the in-memory rules, as scipy reads it (cval
         # under the constant modes; reproject passes empty dask blocks).

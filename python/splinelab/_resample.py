@@ -24,7 +24,7 @@ import numpy as np
 from . import _dtypes as _dt
 from ._doc import fill
 from .errors import ArgumentTypeError, MappingError, MatrixShapeError, RankError, SequenceLengthError
-from ._engine import _Affine, _affine_points, _Grid, _interpolate, _map_real
+from ._engine import _Affine, _affine_points, _direct, _Grid, _interpolate, _map_real, _Points
 from ._settings import Settings
 from ._validate import DEFAULT_TOL, _flag, _int
 
@@ -33,6 +33,12 @@ def _per_axis(value, ndim, what):
     """scipy's ``_normalize_sequence``: a number for every axis, or one each."""
     if type(value) is float or type(value) is int:  # the common case, without the ABC checks
         return [float(value)] * ndim
+    if type(value) is np.ndarray and value.ndim == 1 and value.dtype.kind in "fiu":
+        # A vector of real numbers (affine_transform's offsets): numpy's
+        # float conversion, the element checks below could not fail.
+        if len(value) != ndim:
+            raise SequenceLengthError(f"{what} must have one value per axis ({ndim}), got {len(value)}")
+        return [float(v) for v in value.tolist()]
     if not isinstance(value, str) and np.iterable(value):
         values = list(value)
         if len(values) != ndim:
@@ -50,9 +56,14 @@ def _per_axis(value, ndim, what):
 def _at_points(s, input, output, shape, flat_of):
     """The values under the settings ``s`` at the points ``flat_of(a)``
     (``(ndim, prod(shape))``)."""
+    points = flat_of(input)
+    points = points if isinstance(points, _Points) else _Points(points)
+    values = _direct(input, points, s, output)
+    if values is not None:
+        return values.reshape(shape)
 
     def evaluate(a, cv, work):
-        return _map_real(a, flat_of(a), s, cv, work=work)
+        return _map_real(a, points, s, cv, work=work)
 
     return _interpolate(input, output, shape, s.cval, evaluate, compute=s.compute)
 
@@ -61,6 +72,9 @@ def _on_grid(s, input, output, shape, axis_coordinates):
     """The values under the settings ``s`` on the tensor grid of per-axis
     coordinate vectors."""
     grid = _Grid(axis_coordinates)
+    values = _direct(input, grid, s, output)
+    if values is not None:
+        return values.reshape(shape)
 
     def evaluate(a, cv, work):
         return _map_real(a, grid, s, cv, work=work)
@@ -248,6 +262,12 @@ def _affine_parts(matrix, offset, ndim, out_ndim):
     return np.ascontiguousarray(m), offsets
 
 
+def _finite(*arrays):
+    """Whether every element of the (small) arrays is finite: Python's test
+    on their elements, a quarter of numpy's isfinite-and-all on a matrix."""
+    return all(math.isfinite(v) for a in arrays for v in a.ravel().tolist())
+
+
 def _reserve_output(a, output, shape):
     """Allocates the result and lets it go, as scipy allocates its output
     before any work: a result numpy cannot allocate, or a shape it cannot
@@ -257,10 +277,14 @@ def _reserve_output(a, output, shape):
     if isinstance(output, np.ndarray):
         return
     a = _dt.input_array(a)
-    cplx = a.dtype.kind == "c"
-    with warnings.catch_warnings():  # the promotion warning comes with the result
-        warnings.simplefilter("ignore")
-        dtype, _ = _dt.output_dtype(output, a.dtype, _dt.default_output(a.dtype, cplx), cplx)
+    if a.dtype.kind != "c":
+        # Real input: no promotion, so no warning to silence (the context
+        # manager costs more than the rest of a small call's checks).
+        dtype, _ = _dt.output_dtype(output, a.dtype, None, False)
+    else:
+        with warnings.catch_warnings():  # the promotion warning comes with the result
+            warnings.simplefilter("ignore")
+            dtype, _ = _dt.output_dtype(output, a.dtype, _dt.default_output(a.dtype, True), True)
     np.empty(shape, dtype)
 
 
@@ -338,6 +362,12 @@ def affine_transform(input, matrix, offset=0.0, output_shape=None, output=None, 
         raise RankError("output must have at least one dimension")
     m, offsets = _affine_parts(matrix, offset, a.ndim, len(out_shape))
     s = Settings.of(order, mode, cval, prefilter, tol, threads, exact_edges, nan_policy, compute)
+    return _affine(s, a, m, offsets, out_shape, output)
+
+
+def _affine(s, a, m, offsets, out_shape, output):
+    """affine_transform under the settings ``s`` of a checked matrix ``m``
+    (a diagonal or ``(ndim, out_ndim)``) and offset (one per axis)."""
     _reserve_output(a, output, out_shape)
     if m.ndim == 1:
         if len(out_shape) != a.ndim:
@@ -346,7 +376,7 @@ def affine_transform(input, matrix, offset=0.0, output_shape=None, output=None, 
             shifts = offsets / m
         coords = _zoom_shift_coordinates(out_shape, zooms=m, shifts=shifts)
         return _on_grid(s, a, output, out_shape, coords)
-    if not (np.isfinite(m).all() and np.isfinite(offsets).all()):
+    if not _finite(m, offsets):
         return _at_points(s, a, output, out_shape, lambda _: _affine_points(m, offsets, out_shape))
     return _at_points(s, a, output, out_shape, lambda _: _Affine(m, offsets, out_shape))
 
@@ -384,18 +414,19 @@ def _rotation(angle, axes, shape, reshape):
         raise ValueError(f"angle must be finite, got {angle}")
     c, s = _sincos_degrees(angle)
     rot = np.array([[c, s], [-s, c]])
-    img_shape = np.asarray(shape)
-    in_plane = img_shape[axes]
+    # scipy's numpy arithmetic (its matrix products: the same bits), on
+    # the plane's two sizes picked out in Python.
+    iy, ix = shape[axes[0]], shape[axes[1]]
+    in_plane = np.array([iy, ix])
     if reshape:
-        iy, ix = in_plane
         bounds = rot @ [[0, 0, iy, iy], [0, ix, 0, ix]]
-        out_plane = (np.ptp(bounds, axis=1) + 0.5).astype(int)
+        out_plane = (bounds.max(axis=1) - bounds.min(axis=1) + 0.5).astype(int)  # np.ptp's max - min
     else:
-        out_plane = img_shape[axes]
+        out_plane = in_plane.copy()
     offset = (in_plane - 1) / 2 - rot @ ((out_plane - 1) / 2)
-    out_shape = img_shape.copy()
-    out_shape[axes] = out_plane
-    return axes, rot, offset, out_plane, tuple(int(n) for n in out_shape)
+    out_shape = [int(n) for n in shape]
+    out_shape[axes[0]], out_shape[axes[1]] = out_plane.tolist()
+    return axes, rot, offset, out_plane, tuple(out_shape)
 
 
 @fill
@@ -451,10 +482,13 @@ def rotate(input, angle, axes=(1, 0), reshape=True, output=None, order=3, mode="
     a = np.asarray(input)
     ndim = a.ndim
     axes, rot, offset, out_plane, out_shape = _rotation(angle, axes, a.shape, reshape)
+    if ndim == 2:
+        # affine_transform's checks of the matrix, offset and shape cannot
+        # fail on the rotation's own: the settings are the first that can.
+        s = Settings.of(order, mode, cval, prefilter, tol, threads, exact_edges, nan_policy, compute)
+        return _affine(s, a, rot, offset, out_shape, output)
     kwargs = dict(order=order, mode=mode, cval=cval, prefilter=prefilter, tol=tol, threads=threads,
                   exact_edges=exact_edges, nan_policy=nan_policy, compute=compute)
-    if ndim == 2:
-        return affine_transform(a, rot, offset, out_shape, output, **kwargs)
     # Plane by plane, as scipy (each plane prefiltered on its own), each
     # written into its slice of the result.
     if isinstance(output, np.ndarray):

@@ -10,16 +10,18 @@ which the dtype rules check (:func:`splinelab._engine._interpolate`)."""
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from typing import NamedTuple
 
 from . import _dtypes as _dt
-from ._modes import interp_mode
-from ._validate import _degree, _flag, _nan_policy, _opt_float, _threads, _tol_for
+from ._modes import EXACT_EDGES, SCIPY_FILTER_RULE, interp_mode
+from ._validate import (DEFAULT_TOL, MAX_DEGREE, MAX_THREADS, _degree, _flag, _nan_policy, _opt_float, _threads,
+                        _tol_for)
 
 
-@dataclass(frozen=True, slots=True)
-class Settings:
-    """The settings of one interpolation call.
+class Settings(NamedTuple):
+    """The settings of one interpolation call (a named tuple: immutable,
+    and made in a quarter of a frozen dataclass's time, which a small call
+    notices).
 
     ``degree`` (scipy's ``order``), ``mode`` (scipy's name), ``cval`` (as
     given), ``prefilter``, ``tol`` (resolved: None is the exact filter),
@@ -42,6 +44,9 @@ class Settings:
         """The arguments checked in the order the functions have always
         checked them (degree, mode, prefilter, nan_policy, tol, threads,
         compute: the same exception at the same point of the call)."""
+        if _defaults(order, mode, prefilter, tol, threads, nan_policy, compute):
+            # The common call: nothing the checks below would change.
+            return cls(order, mode, cval, prefilter, None, "propagate", threads, bool(exact_edges), "float64")
         d = _degree(order)
         mode = interp_mode(mode)
         prefilter = _flag(prefilter, "prefilter")
@@ -62,3 +67,45 @@ class Settings:
         nan_policy = _nan_policy(nan_policy)
         tol = _opt_float(tol, "tol")
         return cls(d, mode, cval, True, tol, nan_policy, _threads(threads), False, "float64")
+
+    @classmethod
+    def for_filter(cls, order, mode, tol, threads, exact_edges, nan_policy="propagate", compute="float64"):
+        """The settings of spline_filter(1d): checked in the order the
+        filters have always checked them (degree, mode, nan_policy, tol,
+        threads; ``compute`` before the input, by the caller); the
+        prefilter on, ``cval`` 0."""
+        if _defaults(order, mode, True, tol, threads, nan_policy, compute):
+            return cls(order, mode, 0.0, True, None, "propagate", threads, bool(exact_edges), "float64")
+        d = _degree(order)
+        mode = interp_mode(mode)
+        nan_policy = _nan_policy(nan_policy)
+        tol = _tol_for(tol, nan_policy, d)
+        return cls(d, mode, 0.0, True, tol, nan_policy, _threads(threads), bool(exact_edges),
+                   _dt.compute_name(compute))
+
+    def filter_rule(self):
+        """The engine's filter for this mode: scipy's rule
+        (:data:`splinelab._modes.SCIPY_FILTER_RULE`), or with
+        ``exact_edges`` the exact extension of nearest / grid-constant."""
+        if self.exact_edges and self.mode in EXACT_EDGES:
+            return self.mode
+        return SCIPY_FILTER_RULE[self.mode]
+
+
+def _defaults(order, mode, prefilter, tol, threads, nan_policy, compute):
+    """Whether the arguments are the common call's, which need no check: an
+    int degree in range, a known mode, a bool prefilter and every engine
+    keyword at its default but ``threads`` (None or an int in range): what
+    the checks would return unchanged (tol's default resolves to None
+    under 'propagate'). Anything else takes the checks, so bad input is
+    refused where it always was."""
+    return (type(order) is int and 0 <= order <= MAX_DEGREE and type(mode) is str and mode in SCIPY_FILTER_RULE
+            and (prefilter is True or prefilter is False) and tol is DEFAULT_TOL and _plain_threads(threads)
+            and type(nan_policy) is str and nan_policy == "propagate" and type(compute) is str
+            and compute == "float64")
+
+
+def _plain_threads(threads):
+    """Whether ``threads`` is one :func:`splinelab._validate._threads`
+    returns as it is: None or an int in ``1..MAX_THREADS``."""
+    return threads is None or (type(threads) is int and 1 <= threads <= MAX_THREADS)

@@ -7,6 +7,7 @@ not here."""
 
 import numpy as np
 import pytest
+import scipy.ndimage as ndi
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
@@ -115,3 +116,52 @@ def _small_calls():
 def test_a_small_call_makes_one_engine_call_the_evaluation(engine_calls, name, call, engine, order):
     call(order)
     assert engine_calls == [engine]
+
+
+@pytest.mark.parametrize("order", [0, 1])
+@pytest.mark.parametrize("dtype", [np.float64, np.float32])
+def test_a_filter_of_degree_0_or_1_is_a_copy_without_the_engine(engine_calls, order, dtype):
+    """scipy's spline_filter1d of degree 0 or 1 is ``output[...] = input``:
+    the same values, a new array, and no call into the engine."""
+    x = np.random.default_rng(4).normal(size=(8, 8)).astype(dtype)
+    theirs = ndi.spline_filter1d(x, order, axis=-1, output=x.dtype)
+    ours = splinelab.spline_filter1d(x, order, axis=-1, output=x.dtype)
+    assert engine_calls == []
+    assert ours.dtype == theirs.dtype and not np.shares_memory(ours, x)
+    np.testing.assert_array_equal(ours, theirs)
+
+
+def _common_calls():
+    """The calls the one-step path takes (an array, no ``output``, every
+    keyword at its default), each with its scipy twin."""
+    rng = np.random.default_rng(6)
+    for dtype in (np.float64, np.float32):
+        x = rng.normal(size=(16, 16)).astype(dtype)
+        pts = rng.uniform(-1, 16, (2, 25))
+        rot = np.array([[0.9, 0.3], [-0.3, 0.9]])
+        for order in (0, 1, 3, 5):
+            for mode in ("constant", "mirror", "grid-wrap"):
+                kw = dict(order=order, mode=mode, cval=0.5)
+                yield "shift", (x, 0.3), kw
+                yield "zoom", (x, 1.5), kw
+                yield "rotate", (x, 30), kw
+                yield "affine_transform", (x, rot, np.array([0.7, -0.2])), kw
+                yield "map_coordinates", (x, pts), kw
+            if order >= 2:
+                yield "spline_filter1d", (x, order), dict(axis=0, output=dtype)
+                yield "spline_filter", (x, order), dict(output=dtype)
+
+
+@pytest.mark.parametrize("name, args, kw", list(_common_calls()))
+def test_the_common_call_is_scipys_and_the_general_paths_to_the_bit(name, args, kw):
+    """The one-step path (no ``output``, defaults) gives scipy's values
+    (to rounding) and the general path's bits (``output`` given by the
+    name of the dtype it has: every check and dtype rule runs)."""
+    x = args[0]
+    theirs = getattr(ndi, name)(*args, **kw)
+    ours = getattr(splinelab, name)(*args, **kw)
+    general = getattr(splinelab, name)(*args, **{**kw, "output": np.dtype(theirs.dtype).name})
+    assert ours.dtype == theirs.dtype == general.dtype
+    np.testing.assert_array_equal(ours, general)
+    tol = 1e-4 if x.dtype == np.float32 else 1e-9
+    np.testing.assert_allclose(ours, theirs, rtol=0, atol=tol * max(1.0, np.abs(theirs).max()))

@@ -18,6 +18,7 @@ pub mod projection;
 pub mod provenance;
 pub mod qi;
 pub mod sections;
+pub mod small_calls;
 pub mod sspline;
 pub mod update_cost;
 pub mod update_cost_engine;

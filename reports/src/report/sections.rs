@@ -64,4 +64,5 @@ pub const SECTIONS: &[Entry] = &[
     fixed(super::check::section),
     timed(by_profile(super::engine::section)),
     timed(by_profile(super::gridded::section)),
+    fixed(super::small_calls::section),
 ];
