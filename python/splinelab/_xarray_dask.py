@@ -299,28 +299,85 @@ def _weight_norms(x, k, q, batch=256):
 
 def _windows_of(x, k, q, tol, batch=256):
     """Per point, the smallest window ``[lo, hi)`` of samples whose
-    cardinal weights outside sum to at most ``tol`` (in absolute value), the
-    weights inside, the tail outside and the whole sum (the Lebesgue
-    function at the point)."""
+    cardinal weights outside sum to at most ``tol / 2`` on each side (in
+    absolute value), the weights inside, the tails left outside on the left
+    and on the right, and the whole sum (the Lebesgue function at the
+    point)."""
     P = len(q)
     lo = np.empty(P, dtype=np.intp)
     hi = np.empty(P, dtype=np.intp)
-    tail = np.empty(P)
-    norm = np.empty(P)
+    ltail, rtail, norm = np.empty(P), np.empty(P), np.empty(P)
     weights = []
     for s in range(0, P, batch):
         w = cardinal_weights(x, k, q[s:s + batch])
         left, right = _tails(w)
-        total = left[:, -1]
         for r in range(len(w)):
-            a = int(np.searchsorted(left[r], tol / 2, side="right")) - 1       # left[r][a] <= tol/2
-            b = int(np.searchsorted(-right[r], -tol / 2, side="left"))         # right[r][b] <= tol/2
-            a, b = max(a, 0), min(max(b, a + 1), len(x))
+            a, b = _cut(left[r], right[r], tol)
             lo[s + r], hi[s + r] = a, b
-            tail[s + r] = left[r][a] + right[r][b]
-            norm[s + r] = total[r]
+            ltail[s + r], rtail[s + r], norm[s + r] = left[r][a], right[r][b], left[r][-1]
             weights.append(w[r, a:b].copy())
-    return lo, hi, weights, tail, norm
+    return lo, hi, weights, ltail, rtail, norm
+
+
+def _cut(left, right, tol):
+    """The window ``[a, b)`` from one row's tails (:func:`_tails`): ``a``
+    the last index with ``left[a] <= tol/2``, ``b`` the first with
+    ``right[b] <= tol/2``."""
+    a = max(int(np.searchsorted(left, tol / 2, side="right")) - 1, 0)
+    b = int(np.searchsorted(-right, -tol / 2, side="left"))
+    return a, min(max(b, a + 1), len(left) - 1)
+
+
+def _narrowed(lo, weights, ltail, rtail, tol):
+    """The windows of a larger ``tol`` from those of a smaller one, without
+    a second solve: inside a window the tails continue the same running
+    sums (the same additions in the same order as :func:`_tails`, so the
+    same windows as solving again)."""
+    lo2, hi2, kept = np.empty_like(lo), np.empty_like(lo), []
+    for j, w in enumerate(weights):
+        a = np.abs(w)
+        left = np.cumsum(np.r_[ltail[j], a])
+        right = np.cumsum(np.r_[rtail[j], a[::-1]])[::-1]
+        s, e = _cut(left, right, tol)
+        lo2[j], hi2[j] = lo[j] + s, lo[j] + e
+        kept.append(w[s:e])
+    return lo2, hi2, kept
+
+
+#: The 1-norm of a chunked axis' cardinal weights assumed when its windows
+#: are first cut (not-a-knot cubic and quintic stay well below it on the
+#: grids seen in practice); a larger one cuts them again from a new solve.
+_NORM_GUESS = 8.0
+
+
+def _chunked_windows(grid, k, distinct, chunked, unchunked, tol, P):
+    """Per chunked axis, each point's window and weights for ``tol_a = tol
+    / (len(chunked) * max prod N)`` (:func:`_spline_windows`). One solve per
+    chunked axis gives both its norms and its windows: they are cut for the
+    smallest ``tol_a`` the norms allow (:data:`_NORM_GUESS`), then narrowed
+    to ``tol_a`` once the norms are known."""
+    norms = np.ones(P)
+    for a in unchunked:
+        uq, inv = distinct[a]
+        norms *= _weight_norms(grid[a], k, uq)[inv.ravel()]
+    floor = float(tol / (len(chunked) * norms.max() * _NORM_GUESS ** len(chunked)))
+    cut = {}
+    for a in chunked:
+        uq, inv = distinct[a]
+        cut[a] = _windows_of(grid[a], k, uq, floor)
+        norms *= cut[a][5][inv.ravel()]
+    tol_a = float(tol / (len(chunked) * norms.max()))
+    wins = {}
+    for a in chunked:
+        uq, inv = distinct[a]
+        lo, _, w, ltail, rtail, _ = cut[a]
+        if tol_a >= floor:
+            lo, hi, w = _narrowed(lo, w, ltail, rtail, tol_a)
+        else:  # norms beyond the guess: cut again, at tol_a
+            lo, hi, w, _, _, _ = _windows_of(grid[a], k, uq, tol_a)
+        inv = inv.ravel()
+        wins[a] = (lo[inv], hi[inv], [w[i] for i in inv])
+    return wins
 
 
 def _spline_windows(data, grid, xi, opts, dims, chunked, unchunked):
@@ -350,17 +407,7 @@ def _spline_windows(data, grid, xi, opts, dims, chunked, unchunked):
     safe = np.where(np.isnan(xi), np.array([g[0] for g in grid]), xi)
     # per axis, the distinct coordinates only (an outer grid has few)
     distinct = {a: np.unique(safe[:, a], return_inverse=True) for a in range(ng)}
-    norms = np.ones(P)
-    for a in range(ng):
-        uq, inv = distinct[a]
-        norms *= _weight_norms(grid[a], k, uq)[inv.ravel()]
-    tol_a = float(tol / (len(chunked) * norms.max()))
-    wins = {}
-    for a in chunked:
-        uq, inv = distinct[a]
-        inv = inv.ravel()
-        lo, hi, w, _, _ = _windows_of(grid[a], k, uq, tol_a)
-        wins[a] = (lo[inv], hi[inv], [w[i] for i in inv])
+    wins = _chunked_windows(grid, k, distinct, chunked, unchunked, tol, P)
     order, starts, ends = _chunk_groups(data, [(a, wins[a][0], wins[a][1]) for a in chunked])
     nb = data.ndim - ng
     gi, bi = _letters(ng), _letters(nb, ng)

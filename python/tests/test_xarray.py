@@ -501,6 +501,24 @@ def test_window_truncation_is_within_its_bound(seed, method, tol, chunk):
     assert (np.abs(lazy.values - whole.values) <= tol * scale + rounding).all()
 
 
+@pytest.mark.parametrize("k", [3, 5])
+def test_narrowed_windows_are_those_of_a_second_solve(k):
+    """The windows cut once at a small tolerance and narrowed to a larger
+    one (one solve per chunked axis) are exactly those the larger one cuts
+    from its own solve: the same bounds, the same weights."""
+    from splinelab._xarray_dask import _narrowed, _windows_of
+    rng = np.random.default_rng(6 + k)
+    x = jittered(0.0, 300.0, 301, rng)
+    q = np.r_[-2.0, rng.uniform(0, 300, 40), 0.0, 300.0, 301.5]
+    lo, hi, w, ltail, rtail, _ = _windows_of(x, k, q, 1e-17)
+    for tol in (1e-16, 1e-13, 1e-9, 1e-3):
+        lo2, hi2, w2 = _narrowed(lo, w, ltail, rtail, tol)
+        lo3, hi3, w3, _, _, _ = _windows_of(x, k, q, tol)
+        assert np.array_equal(lo2, lo3) and np.array_equal(hi2, hi3)
+        assert all(np.array_equal(a, b) for a, b in zip(w2, w3))
+    assert (hi3 - lo3).sum() < (hi - lo).sum() / 2  # narrowed, not kept
+
+
 def test_cardinal_weights_are_the_spline():
     """W @ y is the not-a-knot spline at the points (scipy's make_interp_spline), for any y."""
     from scipy.interpolate import make_interp_spline
