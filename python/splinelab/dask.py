@@ -620,9 +620,9 @@ class _Fused:
         bound on the region inside it (those at least the half-width from
         an edge that is not the array's), which is all the windows read:
         not cropped (no copy), the region's windows never reach the rest."""
-        x = np.asarray(samples)
+        x = np.asarray(samples)  # the filtered axes first (``reach``'s), any others carried
         whole = [ax for ax, ((a, b), n) in enumerate(zip(reach, self.extent)) if a == 0 and b == n]
-        seamed = [ax for ax in range(x.ndim) if ax not in whole]
+        seamed = [ax for ax in range(len(reach)) if ax not in whole]
         rule = _filter_mode(self.mode, False)
         ends = [(a == 0, b == n) for (a, b), n in zip(reach, self.extent)]
         x, crop = _pad_ends(x, seamed, rule, self.depth, ends)
