@@ -655,19 +655,36 @@ def _evaluate_region(region_coeffs, lo, x, mask, rules, dtype):
     return values.astype(dtype, copy=False)
 
 
-def _task(read, bounds, rules, points, dtype, shape, fused=None, reach=None, missing=False, box=None):
+def _task(read, bounds, rules, points, dtype, shape, fused=None, reach=None, box=None):
     """One output block, computed in a worker: its points made here (not
     sent), the coefficients of its region (read, or prefiltered here)."""
     x, mask = rules.prepared(points(), box)
     if reach is not None:  # fused: `read` holds the samples of `reach` (the region and its overlap)
-        read, bounds = fused.coefficients(read, reach, missing), reach
+        read, bounds = fused.coefficients(read, reach, False), reach
     return _evaluate_region(read, [a for a, _ in bounds], x, mask, rules, dtype).reshape(shape)
+
+
+def _with_missing(values, missing, rules, points, box):
+    """The block after the flag of a non-finite sample anywhere: scipy's
+    pattern (every coefficient NaN: every value NaN but 'constant''s cval
+    outside the grid, what the evaluation of NaN coefficients gives), else
+    the values as they are. A task of its own, after the block's, so that
+    the blocks do not wait for the flag (every chunk read) to start."""
+    if not missing:
+        return values
+    _, mask = rules.prepared(points(), box)
+    out = np.full(values.shape, np.nan, dtype=values.dtype)
+    if mask is not None:
+        out.reshape(-1)[mask] = rules.cval
+    return out
 
 
 def _lazy_block(plan, bounds, points, dtype, shape, box=None):
     read, reach, missing = plan.read(bounds)
     value = dask.delayed(_task, pure=True)(_one(read), bounds, plan.rules, points, dtype, shape, plan.fused, reach,
-                                           missing, box)
+                                           box)
+    if missing is not False:
+        value = dask.delayed(_with_missing, pure=True)(value, missing, plan.rules, points, box)
     return da.from_delayed(value, shape=shape, dtype=dtype)
 
 
