@@ -3,8 +3,8 @@
 The data arrives with the interpolated (grid) axes first, any vectorised
 axes next and the carried axes last; the result is a lazy dask array of the
 points' shape followed by the carried axes. No interpolated axis is
-rechunked into one chunk unless no window is certified (``mode=``), and
-then only those axes, block by block of the carried axes:
+rechunked into one chunk unless no window is certified (some ``mode=``
+cases), and then only those axes, block by block of the carried axes:
 
 - every grid axis in one chunk: each block of the carried axes is
   interpolated on its own (``blockwise``; each output block reads its input
@@ -24,8 +24,11 @@ then only those axes, block by block of the carried axes:
   separable route testable: the unchunked axes first, block by block, each
   block read once, then each point's whole lines along the chunked axes;
   where every grid axis is chunked, whole lines per carried block.)
-- ``mode=`` with a chunked grid axis: whole lines along the grid axes per
-  block of the carried axes.
+- ``mode=`` with a chunked grid axis: certified windows (:func:`_mode_windows`:
+  each group of points reads its regions with the prefilter's certified
+  overlap, filtered as splinelab.dask's output tasks filter theirs); whole
+  lines along the grid axes per block of the carried axes for degree 0,
+  'grid-wrap', and scipy's padded 'nearest' and 'grid-constant'.
 """
 
 from __future__ import annotations
@@ -87,6 +90,8 @@ def _interp_points(data, grid, xi, opts, dims):
     if opts.mode is None and opts.method in ("linear", "nearest", "slinear", "pchip"):
         return _windows(data, grid, xi, opts, dims)
     unchunked = [a for a in range(ng) if a not in chunked]
+    if opts.mode is not None and _mode_windows_apply(grid, xi, opts):
+        return _mode_windows(data, grid, xi, opts, chunked)
     if opts.mode is None and _WINDOWS:
         return _spline_windows(data, grid, xi, opts, dims, chunked, unchunked)
     if opts.mode is None and unchunked:
@@ -299,28 +304,85 @@ def _weight_norms(x, k, q, batch=256):
 
 def _windows_of(x, k, q, tol, batch=256):
     """Per point, the smallest window ``[lo, hi)`` of samples whose
-    cardinal weights outside sum to at most ``tol`` (in absolute value), the
-    weights inside, the tail outside and the whole sum (the Lebesgue
-    function at the point)."""
+    cardinal weights outside sum to at most ``tol / 2`` on each side (in
+    absolute value), the weights inside, the tails left outside on the left
+    and on the right, and the whole sum (the Lebesgue function at the
+    point)."""
     P = len(q)
     lo = np.empty(P, dtype=np.intp)
     hi = np.empty(P, dtype=np.intp)
-    tail = np.empty(P)
-    norm = np.empty(P)
+    ltail, rtail, norm = np.empty(P), np.empty(P), np.empty(P)
     weights = []
     for s in range(0, P, batch):
         w = cardinal_weights(x, k, q[s:s + batch])
         left, right = _tails(w)
-        total = left[:, -1]
         for r in range(len(w)):
-            a = int(np.searchsorted(left[r], tol / 2, side="right")) - 1       # left[r][a] <= tol/2
-            b = int(np.searchsorted(-right[r], -tol / 2, side="left"))         # right[r][b] <= tol/2
-            a, b = max(a, 0), min(max(b, a + 1), len(x))
+            a, b = _cut(left[r], right[r], tol)
             lo[s + r], hi[s + r] = a, b
-            tail[s + r] = left[r][a] + right[r][b]
-            norm[s + r] = total[r]
+            ltail[s + r], rtail[s + r], norm[s + r] = left[r][a], right[r][b], left[r][-1]
             weights.append(w[r, a:b].copy())
-    return lo, hi, weights, tail, norm
+    return lo, hi, weights, ltail, rtail, norm
+
+
+def _cut(left, right, tol):
+    """The window ``[a, b)`` from one row's tails (:func:`_tails`): ``a``
+    the last index with ``left[a] <= tol/2``, ``b`` the first with
+    ``right[b] <= tol/2``."""
+    a = max(int(np.searchsorted(left, tol / 2, side="right")) - 1, 0)
+    b = int(np.searchsorted(-right, -tol / 2, side="left"))
+    return a, min(max(b, a + 1), len(left) - 1)
+
+
+def _narrowed(lo, weights, ltail, rtail, tol):
+    """The windows of a larger ``tol`` from those of a smaller one, without
+    a second solve: inside a window the tails continue the same running
+    sums (the same additions in the same order as :func:`_tails`, so the
+    same windows as solving again)."""
+    lo2, hi2, kept = np.empty_like(lo), np.empty_like(lo), []
+    for j, w in enumerate(weights):
+        a = np.abs(w)
+        left = np.cumsum(np.r_[ltail[j], a])
+        right = np.cumsum(np.r_[rtail[j], a[::-1]])[::-1]
+        s, e = _cut(left, right, tol)
+        lo2[j], hi2[j] = lo[j] + s, lo[j] + e
+        kept.append(w[s:e])
+    return lo2, hi2, kept
+
+
+#: The 1-norm of a chunked axis' cardinal weights assumed when its windows
+#: are first cut (not-a-knot cubic and quintic stay well below it on the
+#: grids seen in practice); a larger one cuts them again from a new solve.
+_NORM_GUESS = 8.0
+
+
+def _chunked_windows(grid, k, distinct, chunked, unchunked, tol, P):
+    """Per chunked axis, each point's window and weights for ``tol_a = tol
+    / (len(chunked) * max prod N)`` (:func:`_spline_windows`). One solve per
+    chunked axis gives both its norms and its windows: they are cut for the
+    smallest ``tol_a`` the norms allow (:data:`_NORM_GUESS`), then narrowed
+    to ``tol_a`` once the norms are known."""
+    norms = np.ones(P)
+    for a in unchunked:
+        uq, inv = distinct[a]
+        norms *= _weight_norms(grid[a], k, uq)[inv.ravel()]
+    floor = float(tol / (len(chunked) * norms.max() * _NORM_GUESS ** len(chunked)))
+    cut = {}
+    for a in chunked:
+        uq, inv = distinct[a]
+        cut[a] = _windows_of(grid[a], k, uq, floor)
+        norms *= cut[a][5][inv.ravel()]
+    tol_a = float(tol / (len(chunked) * norms.max()))
+    wins = {}
+    for a in chunked:
+        uq, inv = distinct[a]
+        lo, _, w, ltail, rtail, _ = cut[a]
+        if tol_a >= floor:
+            lo, hi, w = _narrowed(lo, w, ltail, rtail, tol_a)
+        else:  # norms beyond the guess: cut again, at tol_a
+            lo, hi, w, _, _, _ = _windows_of(grid[a], k, uq, tol_a)
+        inv = inv.ravel()
+        wins[a] = (lo[inv], hi[inv], [w[i] for i in inv])
+    return wins
 
 
 def _spline_windows(data, grid, xi, opts, dims, chunked, unchunked):
@@ -350,17 +412,7 @@ def _spline_windows(data, grid, xi, opts, dims, chunked, unchunked):
     safe = np.where(np.isnan(xi), np.array([g[0] for g in grid]), xi)
     # per axis, the distinct coordinates only (an outer grid has few)
     distinct = {a: np.unique(safe[:, a], return_inverse=True) for a in range(ng)}
-    norms = np.ones(P)
-    for a in range(ng):
-        uq, inv = distinct[a]
-        norms *= _weight_norms(grid[a], k, uq)[inv.ravel()]
-    tol_a = float(tol / (len(chunked) * norms.max()))
-    wins = {}
-    for a in chunked:
-        uq, inv = distinct[a]
-        inv = inv.ravel()
-        lo, hi, w, _, _ = _windows_of(grid[a], k, uq, tol_a)
-        wins[a] = (lo[inv], hi[inv], [w[i] for i in inv])
+    wins = _chunked_windows(grid, k, distinct, chunked, unchunked, tol, P)
     order, starts, ends = _chunk_groups(data, [(a, wins[a][0], wins[a][1]) for a in chunked])
     nb = data.ndim - ng
     gi, bi = _letters(ng), _letters(nb, ng)
@@ -411,3 +463,94 @@ def _spline_windows(data, grid, xi, opts, dims, chunked, unchunked):
     nan = np.isnan(xi).any(axis=1)
     return out.map_blocks(_fill_block, grid=grid, xi=np.where(nan[:, None], np.nan, xi), opts=opts, dims=dims,
                           nan=nan, dtype=dtype)
+
+
+# ---------------------------------------------------------------- mode= windows
+
+
+def _mode_rules(grid, opts):
+    """splinelab.dask's reading rules for ``mode=`` on the index grid (cval
+    NaN, as :func:`splinelab.xarray._evaluate_mode`)."""
+    from . import dask as sld
+    from .xarray import _MODE_ORDER
+    shape = [len(g) for g in grid]
+    return sld._Rules(_MODE_ORDER[opts.method], opts.mode, np.nan, "float64", shape, shape, True)
+
+
+def _mode_windows_apply(grid, xi, opts):
+    """Whether ``mode=`` reads windows on chunked axes: a spline of degree 1
+    or more, finite points, and a mode whose windows splinelab.dask reads
+    as given (not the periodic filter of 'grid-wrap', not scipy's padding of
+    'nearest' and 'grid-constant' at degrees 2 to 5); else whole lines."""
+    from . import dask as sld
+    rules = _mode_rules(grid, opts)
+    return (rules.d >= 1 and not rules.pad and np.isfinite(xi).all()
+            and sld._filter_mode(opts.mode, False) in sld._NUMPY_PAD)
+
+
+def _index_points(grid, xi):
+    """The points in index coordinates, ``(ngrid, P)`` (as _evaluate_mode)."""
+    idx = np.empty((len(grid), len(xi)))
+    for a, g in enumerate(grid):
+        step = (g[-1] - g[0]) / (len(g) - 1) if len(g) > 1 else 1.0
+        idx[a] = (xi[:, a] - g[0]) / step
+    return idx
+
+
+def _mode_windows(data, grid, xi, opts, chunked):
+    """``mode=`` with chunked grid axes, reading certified windows: each
+    group of points (by the input chunks their windows touch) reads the
+    samples of its points' regions with the certified overlap along the
+    chunked axes (the whole of the others) and prefilters them as
+    splinelab.dask's output tasks do (zeros beyond, the array's edges padded
+    by the mode's extension): within ``splinelab.dask.bound(degree, tol,
+    ngrid) * max|data|`` of the whole-line result (``tol`` default 1e-12).
+    A non-finite sample makes its whole column NaN, as on whole lines."""
+    import dask.array as da
+
+    from . import dask as sld
+    ng, nb = len(grid), data.ndim - len(grid)
+    rules = _mode_rules(grid, opts)
+    x, mask = rules.prepared(_index_points(grid, xi))
+    tol = sld.DEFAULT_TOL if opts.tol is None else float(opts.tol)
+    fused = sld._Fused(rules.d, opts.mode, sld.depth(rules.d, tol), 1, rules.extent) if rules.d > 1 else None
+    spans = []
+    half = (rules.d + 1) // 2 + 2 + (fused.depth if fused is not None else 0)
+    for a in chunked:  # each point's region (rules._span), with the overlap it is filtered with
+        lo = np.maximum(np.floor(x[a]).astype(np.intp) - half, 0)
+        hi = np.minimum(np.ceil(x[a]).astype(np.intp) + half + 1, rules.extent[a])
+        spans.append((a, lo, hi))
+    order, starts, ends = _chunk_groups(data, spans)
+    # scipy's pattern where a prefilter runs: a non-finite sample, its column NaN
+    flag = (~da.isfinite(data)).any(axis=tuple(range(ng))) if fused and data.dtype.kind in "fc" else None
+    gi, bi = _letters(ng), _letters(nb, ng)
+    dtype = np.dtype(np.float64)
+    parts = []
+    for s, e in zip(starts, ends):
+        members = order[s:e]
+        reach = [(0, n) for n in rules.extent]
+        for a, lo, hi in spans:
+            reach[a] = (int(lo[members].min()), int(hi[members].max()))
+        window = data[tuple(slice(a, b) for a, b in reach)]
+        pts = x[:, members]
+        pmask = None if mask is None else mask[members]
+
+        def block(values, missing=None, pts=pts, pmask=pmask, reach=reach):
+            v = np.asarray(values, dtype=np.float64) if fused is None else fused.coefficients(values, reach, False)
+            if missing is not None:
+                v = np.where(np.asarray(missing), np.nan, v)
+            cols = v.reshape(v.shape[:ng] + (-1,))
+            out = np.empty((pts.shape[1], cols.shape[-1]), dtype=dtype)
+            lo = [a for a, _ in reach]
+            for c in range(cols.shape[-1]):
+                out[:, c] = sld._evaluate_region(cols[..., c], lo, pts.copy(), pmask, rules, dtype)
+            return out.reshape((pts.shape[1],) + v.shape[ng:])
+
+        args = (window, gi + bi) + ((flag, bi) if flag is not None else ())
+        parts.append(da.blockwise(block, "Z" + bi, *args, new_axes={"Z": len(members)}, concatenate=True,
+                                  dtype=dtype, meta=np.empty((0,) * (1 + nb)),
+                                  name=_name("splinelab-mode-window", window, pts, opts, reach)))
+    out = da.concatenate(parts, axis=0)
+    inverse = np.empty(len(xi), dtype=np.intp)
+    inverse[order] = np.arange(len(xi))
+    return out if np.array_equal(order, np.arange(len(xi))) else out[inverse]

@@ -208,7 +208,8 @@ def _map(darr, axes, order, mode, tol, output, threads, route, nan_policy="propa
             return _filter(x, axes, order, dtype, mode, block_tol, threads, convolution=True, nan_policy=nan_policy,
                            compute=compute)
         info = block_info[0]
-        x, crop = _pad_array_edges(x, seamed, rule, d, info["chunk-location"], info["num-chunks"])
+        ends = [(i == 0, i == k - 1) for i, k in zip(info["chunk-location"], info["num-chunks"])]
+        x, crop = _pad_ends(x, seamed, rule, d, ends)
         y = _filter(x, seamed, order, dtype, "grid-constant", local_tol, threads, exact_edges=True,
                     nan_policy=nan_policy, compute=compute)[crop]
         whole = [ax for ax in axes if ax not in seamed]
@@ -224,15 +225,16 @@ def _map(darr, axes, order, mode, tol, output, threads, route, nan_policy="propa
     return da.where(spread, np.asarray(np.nan, dtype), out)
 
 
-def _pad_array_edges(x, seamed, rule, d, location, chunks):
+def _pad_ends(x, seamed, rule, d, ends):
     """``x`` padded by ``d`` samples of the mode's extension (``rule``) on
-    each side of a seamed axis where the block meets the array's edge (there
-    map_overlap adds no halo; ``grid-wrap`` has its periodic halo already),
-    and the slices that take the padding off again."""
+    each side of a seamed axis where the block meets the array's edge
+    (``ends[axis]``: at the start, at the end; there map_overlap adds no
+    halo; ``grid-wrap`` has its periodic halo already), and the slices that
+    take the padding off again."""
     pads = [(0, 0)] * x.ndim
     if rule in _NUMPY_PAD:
         for ax in seamed:
-            pads[ax] = (d if location[ax] == 0 else 0, d if location[ax] == chunks[ax] - 1 else 0)
+            pads[ax] = (d if ends[ax][0] else 0, d if ends[ax][1] else 0)
     if not any(lo or hi for lo, hi in pads):
         return x, ()
     crop = tuple(slice(lo, lo + n) for (lo, _), n in zip(pads, x.shape))
@@ -365,8 +367,7 @@ def spline_filter1d(
 
 
 # ---------------------------------------------------------------------------
-# Resampling on dask: the coefficients once, by the certified chunked
-# prefilter above; each output chunk then reads only the coefficient region
+# Resampling on dask: each output chunk reads only the coefficient region
 # its points need (their bounding box after the mode's folding, plus the
 # spline's support) and evaluates it as given coefficients. The windows of
 # every point lie inside its region, and a region reaches an array edge only
@@ -376,6 +377,16 @@ def spline_filter1d(
 # B-spline weights are non-negative and sum to 1, so the values are within
 # the same bound (plus rounding) of splinelab's unchunked result, whatever
 # the chunking.
+#
+# The coefficients come from the certified chunked prefilter above, or, on
+# output grids (zoom, shift, affine_transform, rotate) where the route
+# allows (_fusable), from each output task itself: it reads its region's
+# samples with the certified overlap and filters them as the chunked filter
+# filters a block (_Fused), the same bound. Output tasks make their points
+# and find their regions from the block's box (no coordinate array is built
+# on the client or pickled into the graph), and the input chunks and the
+# missing-sample flag are shared keys of one graph (_one). Issue 51's
+# 8000² rotation on two workers: python/bench/cluster.py.
 
 _FOLDING = ("mirror", "reflect", "grid-mirror", "grid-wrap")
 
@@ -402,55 +413,44 @@ def _fold(x, n, mode):
                              np.where((x > n - 0.5) & (x <= 2.0 * n - 0.5), x - n, np.mod(x + 0.5, n) - 0.5)))
 
 
-class _Plan:
-    """How a mode reads coefficients: the coefficient array (lazy), the
-    engine mode for given coefficients, and the points' transformation."""
+class _Rules:
+    """How a mode reads coefficients, and nothing lazy: what an output task
+    needs (it is pickled into each task, so it holds no dask array). The
+    engine mode for given coefficients, scipy's 12-sample pad, the points'
+    transformation, and the region of coefficients a set of points reads."""
 
-    def __init__(self, darr, order, mode, cval, tol, route, threads, nan_policy="propagate", compute="float64",
-                 prefilter=True):
-        self.d, self.mode, self.cval = order, _interp_mode(mode), float(cval)
-        self.compute = _dt.compute_name(compute)
-        if self.compute == "float32":
-            darr = darr.astype(np.float32)
-        self.shape = darr.shape
-        # The engine's mode and scipy's 12-sample pad ('nearest',
-        # 'grid-constant' at degrees 2 to 5), as the in-memory call maps them.
-        self.engine_mode, _, self.pad = engine_args(self.mode, order, bool(prefilter), False)
-        if order > 5 and self.mode in ("nearest", "grid-constant"):
-            raise ValueError(f"mode {self.mode!r} above degree 5 (the exact extension) is not offered on dask")
-        if self.pad:
-            kind = {"mode": "edge"} if self.mode == "nearest" else {"mode": "constant", "constant_values": self.cval}
-            darr = da.pad(darr, self.pad, **kind)
-        if order > 1 and prefilter:
-            smallest = min(darr.chunksize)
-            need = depth(order, tol, route)
-            if smallest < need:  # the overlap needs chunks of at least the depth
-                darr = darr.rechunk(tuple(min(max(c, need), n) for c, n in zip(darr.chunksize, darr.shape)))
-            # Coefficients in the arithmetic's dtype (float64: from float32
-            # blocks read as they lie, as the unchunked filter).
-            coeff_dtype = np.float32 if self.compute == "float32" else np.float64
-            darr = spline_filter(darr, order=order, mode=self.mode, tol=tol, output=coeff_dtype, threads=threads,
-                                 route=route, nan_policy=nan_policy, compute=self.compute)
-        elif _nan_policy(nan_policy) == "raise":
-            darr = darr.map_blocks(_refused_if_missing, dtype=darr.dtype)
-        self.coeffs = darr
+    def __init__(self, order, mode, cval, compute, shape, extent, prefilter):
+        self.d, self.mode, self.cval, self.compute = order, mode, float(cval), compute
+        self.shape, self.extent = tuple(shape), tuple(extent)  # the input's, the coefficients' (padded)
+        self.engine_mode, _, self.pad = engine_args(mode, order, bool(prefilter), False)
 
-    def prepared(self, flat):
+    def prepared(self, flat, box=None):
         """Global points (``(ndim, k)``) the way the engine reads them: the
         scipy rules applied, then folded into the grid (folding modes) or
         clamped where the spline is constant (padded ones); and the mask of
-        'constant' points that take ``cval``."""
+        'constant' points that take ``cval``. ``box``: bounds known to hold
+        the points (the output block's), or None: found here."""
+        if box is not None and self.within(*box):
+            return flat, None
+        low, high = flat.min(axis=1, initial=np.inf), flat.max(axis=1, initial=-np.inf)
+        if not (np.isfinite(low).all() and np.isfinite(high).all()) and flat.size:
+            raise ValueError(_NOT_FINITE)
+        # Points inside the grid on an axis are left as they are by every
+        # rule below (the fold is the identity there): no pass over them.
+        inside = (low >= 0) & (high <= np.array(self.shape, dtype=np.float64) - 1.0)
         mask = None
-        if self.mode == "constant":
+        if self.mode == "constant" and not inside.all():
             limit = np.array(self.shape, dtype=np.float64)[:, None] - 1.0
             mask = ((flat < 0) | (flat > limit)).any(axis=0)
-        if not np.isfinite(flat).all():
-            raise ValueError("a coordinate is not finite: non-finite coordinates are not taken on dask "
-                             "(splinelab.map_coordinates gives scipy's values there)")
+        if inside.all() and not self.pad:
+            return flat, mask
         rows = []
         reach = self.d // 2 + 1 + 1
         for axis, x in enumerate(flat):
-            n = self.coeffs.shape[axis]
+            n = self.extent[axis]
+            if inside[axis] and not self.pad:
+                rows.append(x)
+                continue
             if self.mode == "wrap":
                 x = _wrap_axis(x, n)
             if self.engine_mode in _FOLDING and self.d > 0:
@@ -460,24 +460,179 @@ class _Plan:
             rows.append(x)
         return np.stack(rows), mask
 
+    def within(self, low, high):
+        """Whether a box lies inside the grid on every axis with room for
+        the rounding of the points in it (then every rule leaves them as
+        they are) and no padding moves them."""
+        room = 1e-9 * (1.0 + np.maximum(np.abs(low), np.abs(high)))
+        return bool(not self.pad and (low - room >= 0).all()
+                    and (high + room <= np.array(self.shape, dtype=np.float64) - 1.0).all())
+
     def region(self, x):
         """Per axis ``(lo, hi)``: the coefficients the windows at ``x`` read."""
-        m = self.d + 1
+        return [self._span(axis, row.min(), row.max()) if row.size else self._whole(axis)
+                for axis, row in enumerate(x)]
+
+    def box_region(self, low, high):
+        """:meth:`region` of every point whose raw coordinates lie in the box
+        ``[low, high]`` (per axis, before :meth:`prepared`), from the box
+        alone: a superset of the region of the points themselves, so no
+        coordinate array is made to find it."""
+        if not (np.isfinite(low).all() and np.isfinite(high).all()):
+            raise ValueError(_NOT_FINITE)
         out = []
-        for axis, row in enumerate(x):
-            n = self.coeffs.shape[axis]
-            if row.size == 0 or (self.d == 0 and self.engine_mode in _FOLDING):
-                # Degree 0 folds by its own rule at half-integers (scipy's):
-                # the whole axis (one sample per point, cheap).
-                out.append((0, n))
-                continue
-            lo = int(np.floor(row.min())) - m // 2 - 2
-            hi = int(np.ceil(row.max())) + m // 2 + 3
-            if self.engine_mode == "grid-wrap" and (lo < 0 or hi > n):
-                # A window over an end reads the other end: the whole axis.
-                lo, hi = 0, n
-            out.append((max(lo, 0), min(hi, n)))
+        for axis, (a, b) in enumerate(zip(low, high)):
+            a, b = float(a) - 1.0, float(b) + 1.0  # the rounding of the points themselves
+            n = self.extent[axis]
+            if self.mode == "wrap" and not 0 <= a <= b <= n - 1:
+                out.append(self._whole(axis))
+            elif self.engine_mode in _FOLDING and self.d > 0:
+                out.append(self._folded_span(axis, a, b))
+            else:
+                reach = self.d // 2 + 1 + 1
+                if self.pad or self.mode in ("nearest", "grid-constant"):
+                    a, b = (float(np.clip(v + self.pad, -reach, n - 1 + reach)) for v in (a, b))
+                out.append(self._span(axis, a, b))
         return out
+
+    def _folded_span(self, axis, a, b):
+        """The span of the fold of ``[a, b]``: the fold is continuous and
+        linear between its turns (mirror: multiples of ``n - 1``; reflect:
+        ``k n - 1/2``), so the image's ends are among the folded ends and
+        turns; grid-wrap jumps, so a box across an end reads the whole axis."""
+        n, mode = self.extent[axis], self.engine_mode
+        if mode == "grid-wrap":
+            inside = -0.5 <= a and b <= n - 0.5
+            return self._span(axis, a, b) if inside else self._whole(axis)
+        step, first = (n - 1.0, 0.0) if mode == "mirror" else (float(n), -0.5)
+        if step <= 0 or b - a >= 2 * step:
+            return self._whole(axis)
+        turns = first + step * np.arange(np.ceil((a - first) / step), np.floor((b - first) / step) + 1)
+        folded = _fold(np.concatenate([[a, b], turns]), n, mode)
+        return self._span(axis, folded.min(), folded.max())
+
+    def _whole(self, axis):
+        return 0, self.extent[axis]
+
+    def _span(self, axis, low, high):
+        """The coefficients the windows of points in ``[low, high]`` read."""
+        n = self.extent[axis]
+        if self.d == 0 and self.engine_mode in _FOLDING:
+            # Degree 0 folds by its own rule at half-integers (scipy's):
+            # the whole axis (one sample per point, cheap).
+            return self._whole(axis)
+        m = self.d + 1
+        lo = int(np.floor(low)) - m // 2 - 2
+        hi = int(np.ceil(high)) + m // 2 + 3
+        if self.engine_mode == "grid-wrap" and (lo < 0 or hi > n):
+            # A window over an end reads the other end: the whole axis.
+            return self._whole(axis)
+        return max(lo, 0), min(hi, n)
+
+
+_NOT_FINITE = ("a coordinate is not finite: non-finite coordinates are not taken on dask "
+               "(splinelab.map_coordinates gives scipy's values there)")
+
+
+class _Plan:
+    """The lazy side of a resampling: the coefficient array (or, fused, the
+    samples each task prefilters itself) and the :class:`_Rules`."""
+
+    def __init__(self, darr, order, mode, cval, tol, route, threads, nan_policy="propagate", compute="float64",
+                 prefilter=True, fuse=False):
+        mode, compute = _interp_mode(mode), _dt.compute_name(compute)
+        if compute == "float32":
+            darr = darr.astype(np.float32)
+        shape = darr.shape
+        engine_mode, _, pad = engine_args(mode, order, bool(prefilter), False)
+        if order > 5 and mode in ("nearest", "grid-constant"):
+            raise ValueError(f"mode {mode!r} above degree 5 (the exact extension) is not offered on dask")
+        if pad:
+            kind = {"mode": "edge"} if mode == "nearest" else {"mode": "constant", "constant_values": float(cval)}
+            darr = da.pad(darr, pad, **kind)
+        self.rules = _Rules(order, mode, cval, compute, shape, darr.shape, prefilter)
+        self.fused = None
+        if order > 1 and prefilter and fuse and _fusable(darr, mode, route, nan_policy, compute):
+            # Each output task prefilters its own region (see _Fused).
+            self.fused = _Fused(order, mode, depth(order, tol, route), threads, darr.shape)
+            self.missing = _one((~da.isfinite(darr)).any()) if darr.dtype.kind == "f" else False
+        elif order > 1 and prefilter:
+            smallest = min(darr.chunksize)
+            need = depth(order, tol, route)
+            if smallest < need:  # the overlap needs chunks of at least the depth
+                darr = darr.rechunk(tuple(min(max(c, need), n) for c, n in zip(darr.chunksize, darr.shape)))
+            # Coefficients in the arithmetic's dtype (float64: from float32
+            # blocks read as they lie, as the unchunked filter).
+            coeff_dtype = np.float32 if compute == "float32" else np.float64
+            darr = spline_filter(darr, order=order, mode=mode, tol=tol, output=coeff_dtype, threads=threads,
+                                 route=route, nan_policy=nan_policy, compute=compute)
+        elif _nan_policy(nan_policy) == "raise":
+            darr = darr.map_blocks(_refused_if_missing, dtype=darr.dtype)
+        self.coeffs = darr  # the coefficients, or (fused) the samples
+
+    def prepared(self, flat):
+        return self.rules.prepared(flat)
+
+    def region(self, x):
+        return self.rules.region(x)
+
+    def read(self, bounds):
+        """What a task reads for the coefficient region ``bounds``: the lazy
+        array, the span it covers where it holds samples to prefilter
+        (fused: the region and its certified overlap; None: coefficients),
+        and the flag of a non-finite sample anywhere (fused)."""
+        if self.fused is None:
+            return self.coeffs[tuple(slice(a, b) for a, b in bounds)], None, False
+        reach = self.fused.reach(bounds)
+        return self.coeffs[tuple(slice(a, b) for a, b in reach)], reach, self.missing
+
+
+def _fusable(darr, mode, route, nan_policy, compute):
+    """Whether the fused route gives what the chunked prefilter gives:
+    real samples, the truncated route's rule, scipy's NaN pattern (the whole
+    array NaN after a non-finite sample: one flag), float64 arithmetic, and
+    an edge rule numpy pads by (not the periodic one)."""
+    return (darr.dtype.kind in "biuf" and route == "truncated" and _nan_policy(nan_policy) == "propagate"
+            and compute == "float64" and _filter_mode(mode, False) in _NUMPY_PAD)
+
+
+class _Fused:
+    """The prefilter done by each output task on its own region: the region
+    read with the certified overlap ``depth`` on each side (no more than the
+    array), filtered exactly with zeros beyond (the array edges first
+    padded by ``depth`` samples of the mode's extension), and cropped. A
+    coefficient at least the half-width from the read edge then differs from
+    the unchunked one by at most ``b max|input|`` per axis, as in the
+    chunked filter (module documentation): the same bound. No coefficient
+    array is stored or sent between workers; each task reads float32
+    samples where the input is float32, and the overlap is filtered twice
+    where regions meet (a few percent for chunks of hundreds of samples)."""
+
+    def __init__(self, order, mode, depth, threads, extent):
+        self.order, self.mode, self.depth, self.threads = order, mode, depth, threads
+        self.extent = tuple(extent)
+
+    def reach(self, bounds):
+        return [(max(a - self.depth, 0), min(b + self.depth, n)) for (a, b), n in zip(bounds, self.extent)]
+
+    def coefficients(self, samples, reach, missing):
+        """The coefficients over ``reach`` from its samples: true within the
+        bound on the region inside it (those at least the half-width from
+        an edge that is not the array's), which is all the windows read:
+        not cropped (no copy), the region's windows never reach the rest."""
+        x = np.asarray(samples)  # the filtered axes first (``reach``'s), any others carried
+        whole = [ax for ax, ((a, b), n) in enumerate(zip(reach, self.extent)) if a == 0 and b == n]
+        seamed = [ax for ax in range(len(reach)) if ax not in whole]
+        rule = _filter_mode(self.mode, False)
+        ends = [(a == 0, b == n) for (a, b), n in zip(reach, self.extent)]
+        x, crop = _pad_ends(x, seamed, rule, self.depth, ends)
+        if seamed:
+            x = _filter(x, seamed, self.order, np.float64, "grid-constant", None, self.threads, exact_edges=True)[crop]
+        if whole:
+            x = _filter(x, whole, self.order, np.float64, self.mode, None, self.threads)
+        if missing:  # scipy's pattern: every coefficient NaN (the chunked filter's global mask)
+            x = np.full(x.shape, np.nan)
+        return x
 
 
 def _refused_if_missing(x):
@@ -486,27 +641,68 @@ def _refused_if_missing(x):
     return x
 
 
-def _evaluate_region(region_coeffs, lo, x, mask, plan, dtype):
-    """The values at global points ``x`` (prepared) from the coefficient
-    region starting at ``lo``; every window inside the region. Computed in
+def _evaluate_region(region_coeffs, lo, x, mask, rules, dtype):
+    """The values at global points ``x`` (prepared; made local in place:
+    the caller's own) from the coefficient region starting at ``lo``; every
+    window inside the region. Computed in
     the plan's arithmetic (float64: float32 results rounded once)."""
-    work = _dt.Work(plan.compute, dtype)
-    local = x - np.array(lo, dtype=np.float64)[:, None]
+    work = _dt.Work(rules.compute, dtype)
+    local = np.subtract(x, np.array(lo, dtype=np.float64)[:, None], out=x)
     coeffs = work.samples(np.ascontiguousarray(region_coeffs))
-    values = _Points(local).evaluate(coeffs, plan.d, plan.engine_mode, plan.cval, None, False, 1, None, work=work)
+    values = _Points(local).evaluate(coeffs, rules.d, rules.engine_mode, rules.cval, None, False, 1, None, work=work)
     if mask is not None:
-        values = np.where(mask, np.asarray(plan.cval, values.dtype), values)
+        values = np.where(mask, np.asarray(rules.cval, values.dtype), values)
     return values.astype(dtype, copy=False)
 
 
+def _task(read, bounds, rules, points, dtype, shape, fused=None, reach=None, box=None):
+    """One output block, computed in a worker: its points made here (not
+    sent), the coefficients of its region (read, or prefiltered here)."""
+    x, mask = rules.prepared(points(), box)
+    if reach is not None:  # fused: `read` holds the samples of `reach` (the region and its overlap)
+        read, bounds = fused.coefficients(read, reach, False), reach
+    return _evaluate_region(read, [a for a, _ in bounds], x, mask, rules, dtype).reshape(shape)
+
+
+def _with_missing(values, missing, rules, points, box):
+    """The block after the flag of a non-finite sample anywhere: scipy's
+    pattern (every coefficient NaN: every value NaN but 'constant''s cval
+    outside the grid, what the evaluation of NaN coefficients gives), else
+    the values as they are. A task of its own, after the block's, so that
+    the blocks do not wait for the flag (every chunk read) to start."""
+    if not missing:
+        return values
+    _, mask = rules.prepared(points(), box)
+    out = np.full(values.shape, np.nan, dtype=values.dtype)
+    if mask is not None:
+        out.reshape(-1)[mask] = rules.cval
+    return out
+
+
+def _lazy_block(plan, bounds, points, dtype, shape, box=None):
+    read, reach, missing = plan.read(bounds)
+    value = dask.delayed(_task, pure=True)(_one(read), bounds, plan.rules, points, dtype, shape, plan.fused, reach,
+                                           box)
+    if missing is not False:
+        value = dask.delayed(_with_missing, pure=True)(value, missing, plan.rules, points, box)
+    return da.from_delayed(value, shape=shape, dtype=dtype)
+
+
+def _one(lazy):
+    """``lazy`` (a dask array) as one Delayed that shares the keys of its
+    graph: a dask array passed to ``delayed`` is optimised call by call,
+    under new keys, so tasks many blocks read (the input's chunks, a
+    reduction) would be copied into each block's graph and run once per
+    block."""
+    if lazy.npartitions > 1:
+        lazy = lazy.rechunk(lazy.shape)
+    return lazy.to_delayed(optimize_graph=False).ravel()[0]
+
+
 def _chunk(plan, flat, dtype):
-    """One output chunk (flat values) as a lazy array."""
-    x, mask = plan.prepared(flat)
-    bounds = plan.region(x)
-    region = plan.coeffs[tuple(slice(a, b) for a, b in bounds)]
-    lo = [a for a, _ in bounds]
-    values = dask.delayed(_evaluate_region)(region, lo, x, mask, plan, dtype)
-    return da.from_delayed(values, shape=(flat.shape[1],), dtype=dtype)
+    """One chunk of scattered points (``(ndim, k)``, given) as a lazy array."""
+    bounds = plan.region(plan.prepared(flat)[0])
+    return _lazy_block(plan, bounds, functools.partial(np.array, flat, dtype=np.float64), dtype, (flat.shape[1],))
 
 
 def _work_dtype(darr, output):
@@ -516,22 +712,71 @@ def _work_dtype(darr, output):
     return dtype
 
 
-def _on_output_grid(darr, out_shape, chunks, points_of, order, mode, cval, tol, route, output, threads,
+def _on_output_grid(darr, out_shape, chunks, grid, order, mode, cval, tol, route, output, threads,
                     nan_policy="propagate", compute="float64", prefilter=True):
-    """The output of ``out_shape`` in ``chunks``, chunk ``slices`` at the
-    points ``points_of(slices)`` (``(ndim, k)``, scipy's arithmetic)."""
+    """The output of ``out_shape`` in ``chunks``; ``grid`` gives the points
+    of a block (``grid.points(slices)``, ``(ndim, k)``, scipy's arithmetic)
+    and their box (``grid.box(slices)``). Each block is one task that makes
+    its points and reads its region; the graph holds no coordinate array."""
     darr = da.asarray(darr)
     dtype = _work_dtype(darr, output)
-    plan = _Plan(darr, order, mode, cval, tol, route, threads, nan_policy, compute, prefilter)
+    plan = _Plan(darr, order, mode, cval, tol, route, threads, nan_policy, compute, prefilter, fuse=True)
     chunks = da.core.normalize_chunks(chunks if chunks is not None else darr.chunksize[: len(out_shape)] if
                                       len(out_shape) == darr.ndim else "auto", out_shape, dtype=dtype)
     starts = [np.concatenate([[0], np.cumsum(c)[:-1]]).astype(int) for c in chunks]
     blocks = np.empty([len(c) for c in chunks], dtype=object)
     for idx in itertools.product(*[range(len(c)) for c in chunks]):
-        slices = tuple(slice(starts[a][i], starts[a][i] + chunks[a][i]) for a, i in enumerate(idx))
+        slices = tuple(slice(int(starts[a][i]), int(starts[a][i] + chunks[a][i])) for a, i in enumerate(idx))
         shape = tuple(s.stop - s.start for s in slices)
-        blocks[idx] = _chunk(plan, points_of(slices), dtype).reshape(shape)
+        box = grid.box(slices) if all(shape) else None
+        bounds = plan.rules.box_region(*box) if box else [(0, 0)] * darr.ndim
+        blocks[idx] = _lazy_block(plan, bounds, functools.partial(grid.points, slices), dtype, shape, box)
     return da.block(blocks.tolist())
+
+
+class _GridPoints:
+    """The tensor grid of one coordinate vector per axis (zoom, shift)."""
+
+    def __init__(self, axes):
+        self.axes = axes
+
+    def points(self, slices):
+        mesh = np.meshgrid(*[x[s] for x, s in zip(self.axes, slices)], indexing="ij")
+        return np.stack([m.reshape(-1) for m in mesh])
+
+    def box(self, slices):
+        parts = [x[s] for x, s in zip(self.axes, slices)]
+        return np.array([p.min() for p in parts]), np.array([p.max() for p in parts])
+
+
+class _AffinePoints:
+    """The points ``m @ o + offset`` of the output indices ``o``."""
+
+    def __init__(self, m, offsets):
+        self.m, self.offsets = m, offsets
+
+    def points(self, slices):
+        """Per output axis ``h``: ``offset[h]``, then ``+= o_l m[h, l]`` for
+        each index axis ``l`` in turn (the same operations, so the same bits,
+        as adding whole index grids), the partial sums broadcast: one pass
+        over the block per added axis, no index grids."""
+        idx = [np.arange(s.start, s.stop, dtype=np.float64) for s in slices]
+        k = len(slices)
+        points = np.empty((self.m.shape[0],) + tuple(len(i) for i in idx))
+        for h in range(self.m.shape[0]):
+            t = np.full((1,) * k, self.offsets[h])
+            for ll in range(k):
+                t = t + (idx[ll] * self.m[h, ll]).reshape((1,) * ll + (-1,) + (1,) * (k - ll - 1))
+            points[h] = t
+        return points.reshape(self.m.shape[0], -1)
+
+    def box(self, slices):
+        """The box of the block's points: an affine map takes its extremes
+        at the corners of the block of indices."""
+        corners = np.array(list(itertools.product(*[(s.start, s.stop - 1) for s in slices])), dtype=np.float64).T
+        with np.errstate(invalid="ignore", over="ignore"):
+            p = self.m @ corners + self.offsets[:, None]
+        return p.min(axis=1), p.max(axis=1)
 
 
 @fill
@@ -654,7 +899,7 @@ def zoom(input, zoom, order=3, mode="constant", cval=0.0, *, grid_mode=False, to
         num, div = num - 1, div - 1
     factors = np.divide(num, div, out=np.ones(darr.ndim, dtype=np.float64), where=div != 0)
     axes = _zoom_shift_coordinates(out_shape, zooms=factors, grid_mode=grid_mode)
-    return _on_output_grid(darr, out_shape, _either(chunks, output_chunks), lambda s: _grid_points(axes, s), order,
+    return _on_output_grid(darr, out_shape, _either(chunks, output_chunks), _GridPoints(axes), order,
                            mode, cval, tol, route, output, threads, nan_policy, compute, prefilter)
 
 
@@ -688,13 +933,8 @@ def shift(input, shift, order=3, mode="constant", cval=0.0, *, tol=DEFAULT_TOL, 
     darr = da.asarray(input)
     shifts = [-s for s in _per_axis(shift, darr.ndim, "shift")]
     axes = _zoom_shift_coordinates(darr.shape, shifts=shifts)
-    return _on_output_grid(darr, darr.shape, _either(chunks, output_chunks), lambda s: _grid_points(axes, s), order,
+    return _on_output_grid(darr, darr.shape, _either(chunks, output_chunks), _GridPoints(axes), order,
                            mode, cval, tol, route, output, threads, nan_policy, compute, prefilter)
-
-
-def _grid_points(axes, slices):
-    mesh = np.meshgrid(*[x[s] for x, s in zip(axes, slices)], indexing="ij")
-    return np.stack([m.reshape(-1) for m in mesh])
 
 
 @_dask_image_names(image="input")
@@ -735,23 +975,10 @@ def affine_transform(input, matrix, offset=0.0, output_shape=None, order=3, mode
     m, offsets = _affine_parts(matrix, offset, darr.ndim, len(out_shape))
     if m.ndim == 1:
         with np.errstate(divide="ignore", invalid="ignore"):
-            axes = _zoom_shift_coordinates(out_shape, zooms=m, shifts=offsets / m)
-
-        def points_of(slices):
-            return _grid_points(axes, slices)
+            grid = _GridPoints(_zoom_shift_coordinates(out_shape, zooms=m, shifts=offsets / m))
     else:
-        def points_of(slices):
-            grid = np.indices([s.stop - s.start for s in slices], dtype=np.float64).reshape(len(slices), -1)
-            grid += np.array([s.start for s in slices], dtype=np.float64)[:, None]
-            points = np.empty((m.shape[0], grid.shape[1]))
-            for h in range(m.shape[0]):
-                t = np.full(grid.shape[1], offsets[h])
-                for ll in range(len(slices)):
-                    t += grid[ll] * m[h, ll]
-                points[h] = t
-            return points
-
-    return _on_output_grid(darr, out_shape, _either(chunks, output_chunks), points_of, order, mode, cval, tol, route,
+        grid = _AffinePoints(m, offsets)
+    return _on_output_grid(darr, out_shape, _either(chunks, output_chunks), grid, order, mode, cval, tol, route,
                            output, threads, nan_policy, compute, prefilter)
 
 

@@ -525,7 +525,9 @@ mode : str, optional
     only; ``fill_value`` does not apply (the mode decides outside).
 tol : float, optional
     With ``mode=``: the tolerance of the certified truncated prefilter
-    (:func:`splinelab.map_coordinates`' ``tol``). For "cubic" and
+    (:func:`splinelab.map_coordinates`' ``tol``; on dask data chunked
+    along an interpolated dimension also of the windows read, default
+    1e-12 there: ``splinelab.dask.bound``). For "cubic" and
     "quintic" on dask data chunked along an interpolated dimension: the
     certified bound, relative to max|data|, on the distance of the result
     read from windows from the whole-grid spline (default 1e-14).

@@ -501,6 +501,52 @@ def test_window_truncation_is_within_its_bound(seed, method, tol, chunk):
     assert (np.abs(lazy.values - whole.values) <= tol * scale + rounding).all()
 
 
+@pytest.mark.parametrize("mode", ["mirror", "reflect", "constant", "wrap"])
+def test_mode_reads_certified_windows(mode):
+    """``mode=`` on a chunked axis (400 samples in chunks of 20): linear
+    reads only the chunks under its points' cells; cubic reads its points'
+    regions with the certified overlap and, for scipy's missing-sample rule
+    (a non-finite sample makes its column NaN), one streaming pass: each
+    chunk once. Within ``splinelab.dask.bound`` of the whole-line result,
+    a NaN column as there."""
+    import splinelab.dask as sld
+    values = np.random.default_rng(7).normal(size=(400, 12, 3))
+    values[5, 3, 2] = np.nan
+    pts = dict(time=xr.DataArray([100.3, 301.7, -4.0], dims="p"), y=xr.DataArray([2.5, 7.1, 0.4], dims="p"))
+    coords = {"time": np.arange(400.0), "y": np.arange(12.0), "x": np.arange(3.0)}
+    whole = xr.DataArray(values, dims=("time", "y", "x"), coords=coords)
+    for method in ("linear", "cubic"):
+        arr = CountingArray(values, (20, 12, 3))
+        lazy = xr.DataArray(da_mod.from_array(arr, chunks=(20, 12, 3), lock=False, asarray=True),
+                            dims=("time", "y", "x"), coords=coords)
+        got = lazy.splinelab.interp(method=method, mode=mode, **pts).values
+        ref = whole.splinelab.interp(method=method, mode=mode, **pts).values
+        assert np.array_equal(np.isnan(got), np.isnan(ref)) and np.isnan(ref[:, 2]).all() == (method == "cubic")
+        bound = sld.bound(3, sld.DEFAULT_TOL, 2) * np.nanmax(np.abs(values)) if method == "cubic" else 1e-15
+        assert np.nanmax(np.abs(got - ref)) <= bound + 1e-14
+        # each chunk read once; linear: the 1 or 2 chunks under each point's region, of 20
+        assert max(arr.reads.values()) == 1
+        assert len(arr.reads) == 20 if method == "cubic" else len(arr.reads) <= 6
+
+
+@pytest.mark.parametrize("k", [3, 5])
+def test_narrowed_windows_are_those_of_a_second_solve(k):
+    """The windows cut once at a small tolerance and narrowed to a larger
+    one (one solve per chunked axis) are exactly those the larger one cuts
+    from its own solve: the same bounds, the same weights."""
+    from splinelab._xarray_dask import _narrowed, _windows_of
+    rng = np.random.default_rng(6 + k)
+    x = jittered(0.0, 300.0, 301, rng)
+    q = np.r_[-2.0, rng.uniform(0, 300, 40), 0.0, 300.0, 301.5]
+    lo, hi, w, ltail, rtail, _ = _windows_of(x, k, q, 1e-17)
+    for tol in (1e-16, 1e-13, 1e-9, 1e-3):
+        lo2, hi2, w2 = _narrowed(lo, w, ltail, rtail, tol)
+        lo3, hi3, w3, _, _, _ = _windows_of(x, k, q, tol)
+        assert np.array_equal(lo2, lo3) and np.array_equal(hi2, hi3)
+        assert all(np.array_equal(a, b) for a, b in zip(w2, w3))
+    assert (hi3 - lo3).sum() < (hi - lo).sum() / 2  # narrowed, not kept
+
+
 def test_cardinal_weights_are_the_spline():
     """W @ y is the not-a-knot spline at the points (scipy's make_interp_spline), for any y."""
     from scipy.interpolate import make_interp_spline
