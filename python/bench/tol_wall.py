@@ -9,11 +9,15 @@ shared 2-core machine wall times of long calls stretch more than short ones
 (a 4 ms copy fits in one time slice, a 40 ms call does not), so compare
 ratios measured in the same run only (not run by CI):
 
-    .venv/bin/python python/bench/tol_wall.py [--rounds 7] [--n 10000000]
+    .venv/bin/python python/bench/tol_wall.py [--rounds 7] [--n 10000000] [--base DIR]
+
+--base: a folder holding another build importable as ``splinelab_base``
+(as ``ab_builds.py``), whose tol route is timed in the same rounds ("before").
 """
 
 import argparse
 import os
+import sys
 import time
 
 import numpy as np
@@ -26,6 +30,7 @@ def main():
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--rounds", type=int, default=7)
     p.add_argument("--n", type=int, default=10**7)
+    p.add_argument("--base", help="folder holding the other build as splinelab_base")
     args = p.parse_args()
     x = np.random.default_rng(7).standard_normal(args.n)
     dst = np.empty_like(x)
@@ -36,6 +41,14 @@ def main():
         "tol_2T_wall": (lambda: sl.spline_filter1d(x, 3, output=dst, threads=2, tol=1e-12), time.perf_counter),
         "exact_1T_cpu": (lambda: sl.spline_filter1d(x, 3, output=dst, threads=1), time.process_time),
     }
+    if args.base:
+        sys.path.insert(0, args.base)
+        import splinelab_base as base
+
+        cases["before_tol_1T_cpu"] = (
+            lambda: base.spline_filter1d(x, 3, output=dst, threads=1, tol=1e-12), time.process_time)
+        cases["before_tol_2T_wall"] = (
+            lambda: base.spline_filter1d(x, 3, output=dst, threads=2, tol=1e-12), time.perf_counter)
     best = {k: float("inf") for k in cases}
     for _ in range(args.rounds):
         for k, (fn, clock) in cases.items():
@@ -47,6 +60,9 @@ def main():
     print(f"tol=1e-12 cubic    1T cpu {ms['tol_1T_cpu']:7.2f} ms   {ms['tol_1T_cpu'] / copy:.2f}x copy (goal <= 2)")
     print(f"tol=1e-12 cubic    2T wall {ms['tol_2T_wall']:6.2f} ms   {ms['tol_2T_wall'] / copy:.2f}x copy (goal <= 1.2)")
     print(f"exact cubic        1T cpu {ms['exact_1T_cpu']:7.2f} ms   {ms['exact_1T_cpu'] / copy:.2f}x copy")
+    if args.base:
+        print(f"before: tol 1T cpu {ms['before_tol_1T_cpu']:.2f} ms ({ms['before_tol_1T_cpu'] / copy:.2f}x copy), "
+              f"2T wall {ms['before_tol_2T_wall']:.2f} ms ({ms['before_tol_2T_wall'] / copy:.2f}x copy)")
 
 
 if __name__ == "__main__":
