@@ -32,14 +32,19 @@ fn local_options(
     prefilter: bool,
     scipy_pad: usize,
 ) -> PyResult<LocalOptions> {
-    Ok(LocalOptions {
-        cval,
-        tol,
-        nan_policy: crate::error::nan_policy(nan_policy)?,
+    let mut opts = LocalOptions {
         prefilter,
         scipy_pad,
         ..LocalOptions::new(degree, mode.parse().map_err(value_error)?)
-    })
+    };
+    opts.options.cval = cval;
+    opts.options.nan_policy = crate::error::nan_policy(nan_policy)?;
+    // The local route runs the truncated convolution of `tol` (`None`:
+    // its default tolerance).
+    if let Some(tol) = tol {
+        opts.options.route = Route::Convolution { tol };
+    }
+    Ok(opts)
 }
 
 /// Derivative orders, `None` where all are 0.

@@ -10,7 +10,9 @@
 //! (the same in f32 at `tol=1e-6`), `filter2d`
 //! (N × N), `filter3d` (N × N × N), `lines2d` (N × N, the contiguous axis
 //! only: `spline_filter1d` along axis 1), `eval2d` (10⁶ points on an N × N
-//! cubic interpolant, mirror). Threads: `RAYON_NUM_THREADS`.
+//! cubic interpolant, mirror), `copy1d` (a plain copy of N `f64` into a
+//! reused buffer: the memory wall the 1-D routes are quoted against, timed
+//! by the same clock in the same run). Threads: `RAYON_NUM_THREADS`.
 
 use splinelab::ndarray::{Array2, ArrayD, IxDyn};
 use splinelab::prelude::*;
@@ -57,7 +59,7 @@ fn main() {
     let args: Vec<String> = std::env::args().collect();
     if args.len() != 5 {
         eprintln!(
-            "usage: engine_peer filter1d|blocks1d|tol1d|tol1d32|filter2d|filter3d|lines2d|eval2d DEGREE N REPS"
+            "usage: engine_peer filter1d|blocks1d|tol1d|tol1d32|copy1d|filter2d|filter3d|lines2d|eval2d DEGREE N REPS"
         );
         std::process::exit(2);
     }
@@ -86,6 +88,14 @@ fn main() {
             let mut out = vec![0.0; n];
             time(reps, || {
                 b.apply_into(black_box(&s), &mut out, block).unwrap();
+                black_box(&out);
+            })
+        }
+        "copy1d" => {
+            let s: Vec<f64> = (0..n).map(value).collect();
+            let mut out = vec![0.0; n];
+            time(reps, || {
+                out.copy_from_slice(black_box(&s));
                 black_box(&out);
             })
         }

@@ -70,7 +70,8 @@ pub fn line_filter<T: Real>(
     if let Some(f) = hit.and_then(|f| f.downcast::<LineFilter<T>>().ok()) {
         return Ok(f);
     }
-    let family = SplineFamily::order(degree.saturating_add(1))?;
+    // Degree → order and its limit in their one home (`spline_order`).
+    let family = SplineFamily::order(super::spline_order(degree)?)?;
     let f = Arc::new(LineFilter::new(&family, mode, cval, route)?.with_nan_policy(nan_policy)?);
     let mut map = filters.lock().unwrap_or_else(|p| p.into_inner());
     if map.len() >= CAPACITY {

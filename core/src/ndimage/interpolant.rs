@@ -48,8 +48,8 @@ pub use point_rule::PointRule;
 /// How to build an [`Interpolant`].
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Options {
-    /// Spline degree `1..=199` (scipy's `order`; our B-spline order `m` is
-    /// degree + 1).
+    /// Spline degree `0..=199` (scipy's `order`; our B-spline order `m` is
+    /// degree + 1, [`spline_order`]).
     pub degree: u32,
     /// Boundary mode.
     pub mode: Mode,

@@ -32,7 +32,7 @@ use serde_json::json;
 use splinelab::ndimage::interpolant::PointRule;
 use splinelab::ndimage::local::{LocalOptions, LocalPlan, LocalSpec, LocalStats};
 use splinelab::ndimage::samples::SampleSource;
-use splinelab::prelude::{NanPolicy, NdimageError, RecursivePrefilter, SplineFamily};
+use splinelab::prelude::{NanPolicy, NdimageError, RecursivePrefilter, Route, SplineFamily};
 use splinelab::scalar::Real;
 use splinelab_verify::check::UserFormat;
 use std::fs::File;
@@ -143,13 +143,15 @@ where
         RecursivePrefilter::<T>::new_within(&family, max_error)
             .map_err(|err| CliError::Numerical(format!("{err} (or accept it with --max-error)")))?;
     }
-    let opts = LocalOptions {
-        cval: e.cval,
-        tol,
-        nan_policy: e.nan_policy,
+    let mut opts = LocalOptions {
         prefilter: !args.coeffs,
         ..LocalOptions::new(degree, e.mode)
     };
+    opts.options.cval = e.cval;
+    opts.options.nan_policy = e.nan_policy;
+    if let Some(tol) = tol {
+        opts.options.route = Route::Convolution { tol };
+    }
     let engine = |err| super::engine_io::engine_error(&e.input, err);
     let spec = LocalSpec::<T>::new(&shape, opts).map_err(engine)?;
     let points = read_points(&args.at, shape.len())?;

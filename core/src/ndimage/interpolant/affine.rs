@@ -7,7 +7,7 @@
 //! kernels of `kernel.rs`): no `ndim × count` array of coordinates in
 //! memory; under [`PointRule::CvalOutside`] the points outside the grid
 //! take `cval` without evaluation. Where a fixed-size kernel serves (1 to 3
-//! dimensions, degrees 1 to 5, `f64`/`f32`), the outputs go by runs along
+//! dimensions, degrees 0 to 5, `f64`/`f32`), the outputs go by runs along
 //! the last output axis (`runs.rs`): the interval of each run whose points
 //! lie inside the grid is found once and evaluated without per-point
 //! checks, the same values bit for bit.

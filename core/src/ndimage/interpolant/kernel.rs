@@ -1,7 +1,16 @@
 //! Fixed-size evaluation kernels: [`Interpolant::eval_many`] and
-//! [`Interpolant::resample_affine`] for 1 to 3 dimensions and degrees 1 to
+//! [`Interpolant::resample_affine`] for 1 to 3 dimensions and degrees 0 to
 //! 5 (scipy's range) at `f64`/`f32` precision, with the dimension `D` and
 //! the order `M = degree + 1` known to the compiler.
+//!
+//! Degree 0 (`M = 1`, nearest sample): inside `[0, n − 1]` the sample
+//! [`Mode::nearest_index`](crate::ndimage::mode::Mode::nearest_index)
+//! picks is `⌊x⌋ + [x − ⌊x⌋ ≥ ½]`, which is [`cell_lanes`]`::<1>` (every
+//! mode's fold is the identity there), weight 1; a point outside the grid
+//! on some axis is not folded here (scipy folds order-0 points by its own
+//! rule, which the coordinate fold of higher orders is not) but evaluated
+//! by the general [`Interpolant::eval_in`], so the rounding stays
+//! `nearest_index`'s bit for bit.
 //!
 //! Why: the general path ([`Interpolant::locate`],
 //! [`Interpolant::tensor_sum`]) loops over run-time `ndim` and `m` with
@@ -88,7 +97,7 @@ pub(super) fn cells_and_weights<T: Real, const M: usize>(
     for j in 0..BATCH {
         let (f, u) = cell_lanes::<M>(x[j]);
         first[j] = f;
-        let c = closed_form::<M>(u).expect("kernels serve orders 2 to 6");
+        let c = closed_form::<M>(u).expect("kernels serve orders 1 to 6");
         for l in 0..M {
             w[l][j] = T::from_f64_exact(c[l]);
         }
@@ -173,9 +182,9 @@ impl<T: Real, const D: usize, const M: usize> Located<T, D, M> {
 
 impl<T: Real + Send + Sync> Interpolant<T> {
     /// Whether a fixed-size kernel serves this interpolant: `f64`/`f32`
-    /// precision, 1 to 3 dimensions, degree 1 to 5.
+    /// precision, 1 to 3 dimensions, degree 0 to 5.
     pub(super) fn has_kernel(&self) -> bool {
-        T::FITS_F64 && (1..=3).contains(&self.ndim()) && (2..=6).contains(&self.order)
+        T::FITS_F64 && (1..=3).contains(&self.ndim()) && (1..=6).contains(&self.order)
     }
 
     /// The points `start..start + out.len()` of `src` into `out` by the
@@ -195,6 +204,7 @@ impl<T: Real + Send + Sync> Interpolant<T> {
         macro_rules! by_order {
             ($d:literal) => {
                 match self.order {
+                    1 => self.eval_fixed::<S, $d, 1>(src, start, out),
                     2 => self.eval_fixed::<S, $d, 2>(src, start, out),
                     3 => self.eval_fixed::<S, $d, 3>(src, start, out),
                     4 => self.eval_fixed::<S, $d, 4>(src, start, out),
@@ -284,6 +294,7 @@ impl<T: Real + Send + Sync> Interpolant<T> {
         } = lanes;
         src.fill_lanes(start, xs, &mut take_cval[..n])?;
         let plain = !take_cval[..n].iter().any(|&cv| cv);
+        let mut inside = plain;
         for (a, f) in folded.iter_mut().enumerate() {
             let high = (self.shape[a] - 1) as f64;
             if plain && within(&xs[a][..n], high) {
@@ -291,12 +302,15 @@ impl<T: Real + Send + Sync> Interpolant<T> {
                 *f = xs[a];
                 continue;
             }
+            inside = false;
             for j in 0..n {
-                // A point that takes cval is not located (no fold).
-                f[j] = if take_cval[j] {
-                    0.0
-                } else {
-                    self.fold_fixed(xs[a][j], a)
+                // A point that takes cval is not located (no fold); degree
+                // 0 is not folded either ([`Self::base_fixed`] declines a
+                // point outside, module documentation).
+                f[j] = match (take_cval[j], M) {
+                    (true, _) => 0.0,
+                    (false, 1) => xs[a][j],
+                    (false, _) => self.fold_fixed(xs[a][j], a),
                 };
             }
         }
@@ -304,7 +318,8 @@ impl<T: Real + Send + Sync> Interpolant<T> {
             cells_and_weights::<T, M>(&folded[a], &mut firsts[a], &mut at.ws[a]);
         }
         let (pad, top, strides) = self.lane_bounds::<D, M>();
-        if plain && n == BATCH && bases_in_lanes(firsts, pad, &top, &strides, flat) {
+        let lanes_serve = plain && (M > 1 || inside);
+        if lanes_serve && n == BATCH && bases_in_lanes(firsts, pad, &top, &strides, flat) {
             for (base, &f) in at.bases.iter_mut().zip(flat.iter()) {
                 self.prefetch_fixed::<D, M>(c, f);
                 *base = Some(f);
@@ -363,7 +378,9 @@ impl<T: Real + Send + Sync> Interpolant<T> {
 
     /// The flat offset of the first coefficient of point `j` of a batch
     /// (its cells in `firsts`), or `None` when its window leaves the padded
-    /// coefficients. A coordinate of `2^51` or more in magnitude, beyond
+    /// coefficients, or at degree 0 (`M = 1`) when the point lies outside
+    /// `[0, n − 1]` on some axis (module documentation). A coordinate of
+    /// `2^51` or more in magnitude, beyond
     /// [`cells_and_weights`]' rounding, gets its cell and weights here from
     /// [`centred_cell`].
     #[inline(always)]
@@ -376,10 +393,14 @@ impl<T: Real + Send + Sync> Interpolant<T> {
     ) -> Option<usize> {
         let mut base = 0;
         for a in 0..D {
+            let x = folded[a][j];
+            if M == 1 && !(x >= 0.0 && x <= (self.shape[a] - 1) as f64) {
+                return None;
+            }
             if folded[a][j].abs() >= LANE_CELL_LIMIT {
                 let (first, u) = centred_cell(M as u32, folded[a][j]);
                 firsts[a][j] = first as f64;
-                let f = closed_form::<M>(u).expect("kernels serve orders 2 to 6");
+                let f = closed_form::<M>(u).expect("kernels serve orders 1 to 6");
                 for (l, v) in f.into_iter().enumerate() {
                     ws[a][l][j] = T::from_f64_exact(v);
                 }
@@ -493,10 +514,122 @@ mod tests {
                 );
             }
         }
+        check::<1>(&xs);
         check::<2>(&xs);
         check::<3>(&xs);
         check::<4>(&xs);
         check::<5>(&xs);
         check::<6>(&xs);
+    }
+}
+
+/// Degree 0 through the fixed kernels against the rule it must keep:
+/// the sample [`Mode::nearest_index`](crate::ndimage::mode::Mode::nearest_index)
+/// names, read from the samples themselves (not the padded coefficients),
+/// `cval` where it names none.
+#[cfg(test)]
+mod degree_0 {
+    use crate::ndimage::interpolant::{Interpolant, Options, PointRule};
+    use crate::ndimage::mode::Mode;
+    use ndarray::{Array2, ArrayD, Dimension, IxDyn};
+    use proptest::prelude::*;
+
+    const CVAL: f64 = 0.625;
+
+    /// `x` moved by `steps` representable values (up for positive).
+    fn nudge(mut x: f64, steps: i32) -> f64 {
+        for _ in 0..steps.unsigned_abs() {
+            x = if steps > 0 {
+                x.next_up()
+            } else {
+                x.next_down()
+            };
+        }
+        x
+    }
+
+    /// The value scipy's order 0 gives at `x` (outside points by the mode's
+    /// own rule, `nearest_index`), from the samples.
+    fn nearest(data: &ArrayD<f64>, mode: Mode, x: &[f64]) -> f64 {
+        let k: Option<Vec<usize>> = x
+            .iter()
+            .zip(data.shape())
+            .map(|(&t, &n)| mode.nearest_index(t, n))
+            .collect();
+        k.map_or(CVAL, |k| data[IxDyn(&k)])
+    }
+
+    fn data(shape: &[usize]) -> ArrayD<f64> {
+        ArrayD::from_shape_fn(IxDyn(shape), |ix| {
+            let k = ix.slice().iter().fold(5, |k, &i| k * 31 + i * 7);
+            (k % 97) as f64 / 8.0 - 6.0
+        })
+    }
+
+    fn interpolant(data: &ArrayD<f64>, mode: Mode) -> Interpolant<f64> {
+        let mut opts = Options::new(0, mode);
+        opts.cval = CVAL;
+        Interpolant::new(data, opts).unwrap()
+    }
+
+    proptest! {
+        /// Points at half-integers and a few ulps beside them (the ties and
+        /// their neighbours), inside and outside the grid, 1 to 3
+        /// dimensions, every mode: `eval_many` (batches of 64, lanes and
+        /// single points) equals the rule exactly.
+        #[test]
+        fn eval_many_takes_the_nearest_index_sample(
+            shape in proptest::collection::vec(1usize..8, 1..=3),
+            mode in proptest::sample::select(Mode::ALL.to_vec()),
+            ticks in proptest::collection::vec((-14i32..30, -2i32..=2), 3..600),
+        ) {
+            let d = shape.len();
+            let a = data(&shape);
+            let f = interpolant(&a, mode);
+            let count = ticks.len() / d;
+            let pts = Array2::from_shape_fn((count, d), |(p, h)| {
+                let (k, s) = ticks[p * d + h];
+                nudge(f64::from(k) * 0.5, s)
+            });
+            let mut out = vec![0.0; count];
+            f.eval_many(pts.view(), &mut out).unwrap();
+            for (p, got) in out.iter().enumerate() {
+                let x = pts.row(p).to_vec();
+                prop_assert_eq!(*got, nearest(&a, mode, &x), "{:?} {:?} at {:?}", shape, mode, x);
+            }
+        }
+
+        /// The affine route (runs inside the grid, the batch path or `cval`
+        /// outside) with half-integer steps from a half-integer offset, a
+        /// few ulps off: every output equals the rule (scipy's `constant`,
+        /// `CvalOutside`: `cval` outside `[0, n − 1]`).
+        #[test]
+        fn affine_runs_take_the_nearest_index_sample(
+            n0 in 1usize..12,
+            n1 in 1usize..12,
+            mode in proptest::sample::select(Mode::ALL.to_vec()),
+            off in (-10i32..10, -10i32..10, -2i32..=2),
+            flip in any::<bool>(),
+            cval_outside in any::<bool>(),
+        ) {
+            let a = data(&[n0, n1]);
+            let f = interpolant(&a, mode);
+            let s = if flip { -0.5 } else { 0.5 };
+            let matrix = [0.5, 0.0, 0.0, s];
+            let offset = [nudge(f64::from(off.0) * 0.5, off.2), f64::from(off.1) * 0.5];
+            let (rule, shape) = (
+                if cval_outside { PointRule::CvalOutside } else { PointRule::Fold },
+                [2 * n0 + 9, 2 * n1 + 70],
+            );
+            let mut out = vec![0.0; shape[0] * shape[1]];
+            f.resample_affine(&matrix, &offset, &shape, 0.0, rule, &mut out).unwrap();
+            for (k, got) in out.iter().enumerate() {
+                let (i, j) = (k / shape[1], k % shape[1]);
+                let x = [offset[0] + i as f64 * 0.5, offset[1] + j as f64 * s];
+                let outside = x.iter().zip([n0, n1]).any(|(&t, n)| t < 0.0 || t > (n - 1) as f64);
+                let want = if cval_outside && outside { CVAL } else { nearest(&a, mode, &x) };
+                prop_assert_eq!(*got, want, "{:?} at {:?}", mode, x);
+            }
+        }
     }
 }

@@ -169,6 +169,7 @@ impl<T: Real + Send + Sync> Interpolant<T> {
         macro_rules! by_order {
             ($d:literal) => {
                 match self.order {
+                    1 => self.inside_fixed::<$d, 1>(run, at, out),
                     2 => self.inside_fixed::<$d, 2>(run, at, out),
                     3 => self.inside_fixed::<$d, 3>(run, at, out),
                     4 => self.inside_fixed::<$d, 4>(run, at, out),
@@ -296,7 +297,7 @@ mod tests {
     /// Rotations (runs crossing cell boundaries, entering and leaving the
     /// grid, both signs of the step), a transpose and a constant step (whole
     /// runs inside or outside), integer offsets whose points fall exactly on
-    /// the grid's ends, every mode, degrees 1 to 5, f64 and f32, 1 to 3
+    /// the grid's ends, every mode, degrees 0 to 5, f64 and f32, 1 to 3
     /// dimensions, runs longer than a chunk: the runs equal the batch path
     /// bit for bit under every rule.
     #[test]
@@ -318,7 +319,7 @@ mod tests {
         ];
         let mut inside = 0;
         for mode in modes {
-            for degree in 1..=5 {
+            for degree in 0..=5 {
                 let mut opts = Options::new(degree, mode);
                 opts.cval = 0.625;
                 let f = Interpolant::<f64>::new(&d2, opts).unwrap();
@@ -341,7 +342,7 @@ mod tests {
         let d3 = samples(&[9, 8, 10]);
         let m3 = [0.9, 0.1, 0.05, -0.1, 0.95, 0.02, 0.03, -0.02, 1.05];
         for mode in [Mode::Mirror, Mode::Nearest, Mode::GridConstant] {
-            for degree in [1, 3, 5] {
+            for degree in [0, 1, 3, 5] {
                 let f = Interpolant::<f64>::new(&d3, Options::new(degree, mode)).unwrap();
                 for rule in rules {
                     inside += compare(&f, &m3, &[-0.5, 0.25, -1.0], &[10, 9, 12], 0.0, rule);

@@ -49,13 +49,16 @@ fn quintic_middle(s: f64) -> f64 {
 }
 
 /// The `M` weights `w[l] = N_{0,M}(u + M − 1 − l)` of cell position `u`,
-/// `M = 2..=6`, in closed form (module documentation). `None` for other
-/// orders. Cubics: `v³/6`, `2/3 − u²(2 − u)/2`, `2/3 − v²(2 − v)/2`, `u³/6`.
+/// `M = 1..=6`, in closed form (module documentation; order 1 is the
+/// single weight 1). `None` for other orders. Cubics: `v³/6`, `2/3 − u²(2 − u)/2`, `2/3 − v²(2 − v)/2`, `u³/6`.
 #[inline(always)]
 pub(super) fn closed_form<const M: usize>(u: f64) -> Option<[f64; M]> {
     let v = 1.0 - u;
     let mut w = [0.0; M];
     match M {
+        // Degree 0: the nearest sample, weight one (its cell is the
+        // rounding of `centred_cell`, scipy's order-0 rule inside the grid).
+        1 => w[0] = 1.0,
         2 => {
             w[0] = v;
             w[1] = u;

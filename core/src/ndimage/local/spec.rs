@@ -6,6 +6,7 @@
 use super::axis_map::AxisMap;
 use super::route::default_tol;
 use crate::ndimage::filter_cache;
+use crate::ndimage::interpolant::Options;
 use crate::ndimage::line_filter::{LineFilter, Route};
 use crate::ndimage::mode::Mode;
 use crate::ndimage::nan_policy::NanPolicy;
@@ -13,25 +14,23 @@ use crate::ndimage::{NdimageError, spline_order};
 use crate::scalar::Real;
 use std::sync::Arc;
 
-/// How to build the local route of a spline (the global route's
-/// [`Options`](crate::ndimage::interpolant::Options) plus what the Python
-/// drop-in maps scipy's modes onto).
+/// How to build the local route of a spline: the global route's
+/// [`Options`] (degree, mode, `cval`, NaN policy, and the tolerance in its
+/// route: the one carrier of `tol`) plus what the Python drop-in maps
+/// scipy's modes and `prefilter` onto.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct LocalOptions {
-    /// Spline degree `0..=199`.
-    pub degree: u32,
-    /// The engine's boundary mode (scipy's `constant` and `wrap` are the
-    /// mirror spline with a [`PointRule`](crate::ndimage::interpolant::PointRule)).
-    pub mode: Mode,
-    /// The constant of `grid-constant`.
-    pub cval: f64,
-    /// The truncation tolerance; `None`: [`default_tol`] (below the global
-    /// route's own rounding error).
-    pub tol: Option<f64>,
-    /// What non-finite samples do (module documentation of
-    /// [`crate::ndimage::local`]: a missing sample reaches only the points
-    /// whose windows read it).
-    pub nan_policy: NanPolicy,
+    /// Degree `0..=199`, the engine's boundary mode (scipy's `constant` and
+    /// `wrap` are the mirror spline with a
+    /// [`PointRule`](crate::ndimage::interpolant::PointRule)), the constant
+    /// of `grid-constant`, what non-finite samples do (module documentation
+    /// of [`crate::ndimage::local`]: a missing sample reaches only the
+    /// points whose windows read it), and the truncation tolerance: the
+    /// local route always runs the truncated convolution, of the `tol` of
+    /// [`Route::Truncated`] or [`Route::Convolution`]; [`Route::Exact`]
+    /// asks for [`default_tol`] (below the global route's own rounding
+    /// error). [`LocalOptions::tol`] reads it.
+    pub options: Options,
     /// `false`: the array holds the coefficients (scipy's `prefilter=False`).
     pub prefilter: bool,
     /// scipy's padding of `nearest` / `grid-constant` at degrees 2–5 (12 in
@@ -45,13 +44,27 @@ impl LocalOptions {
     /// propagation, a prefilter, the exact extension.
     pub fn new(degree: u32, mode: Mode) -> Self {
         LocalOptions {
-            degree,
-            mode,
-            cval: 0.0,
-            tol: None,
-            nan_policy: NanPolicy::Propagate,
+            options: Options::new(degree, mode),
             prefilter: true,
             scipy_pad: 0,
+        }
+    }
+
+    /// The tolerance asked for: that of a truncated route, `None` for
+    /// [`Route::Exact`] (the default, [`default_tol`]).
+    ///
+    /// ```
+    /// use splinelab::ndimage::local::LocalOptions;
+    /// use splinelab::prelude::*;
+    /// let mut o = LocalOptions::new(3, Mode::Mirror);
+    /// assert_eq!(o.tol(), None);
+    /// o.options.route = Route::Truncated { tol: 1e-9 };
+    /// assert_eq!(o.tol(), Some(1e-9));
+    /// ```
+    pub fn tol(&self) -> Option<f64> {
+        match self.options.route {
+            Route::Exact => None,
+            Route::Truncated { tol } | Route::Convolution { tol } => Some(tol),
         }
     }
 }
@@ -87,10 +100,12 @@ impl<T: Real> LocalSpec<T> {
         if shape.is_empty() || shape.contains(&0) {
             return Err(NdimageError::Empty);
         }
+        let requested = opts.tol();
+        let (opts, prefilter, scipy_pad) = (opts.options, opts.prefilter, opts.scipy_pad);
         let order = spline_order(opts.degree)?;
-        let filtered = opts.prefilter && opts.degree >= 2;
+        let filtered = prefilter && opts.degree >= 2;
         let (filter, tol) = if filtered {
-            let tol = match opts.tol {
+            let tol = match requested {
                 Some(t) => t,
                 None => default_tol::<T>(opts.degree)?,
             };
@@ -107,9 +122,8 @@ impl<T: Real> LocalSpec<T> {
             (None, None)
         };
         let half = order as usize / 2;
-        let padded = filtered
-            && opts.scipy_pad > 0
-            && matches!(opts.mode, Mode::Nearest | Mode::GridConstant);
+        let padded =
+            filtered && scipy_pad > 0 && matches!(opts.mode, Mode::Nearest | Mode::GridConstant);
         let clamp = match &filter {
             // The global route clamps beyond the exact pad; every
             // coefficient of a window beyond `n + ⌊m/2⌋ + 1` is the end one.
@@ -126,7 +140,7 @@ impl<T: Real> LocalSpec<T> {
             .iter()
             .map(|&len| {
                 if padded {
-                    AxisMap::scipy_padded(opts.mode, len, opts.scipy_pad, half)
+                    AxisMap::scipy_padded(opts.mode, len, scipy_pad, half)
                 } else {
                     AxisMap::engine(opts.mode, len, clamp)
                 }

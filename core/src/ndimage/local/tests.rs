@@ -40,16 +40,19 @@ fn global<T: Real + Copy + Send + Sync>(
     rule: PointRule,
     deriv: &[u32],
 ) -> Result<Vec<T>, NdimageError> {
-    let padded = opts.prefilter
+    let (prefilter, pad) = (opts.prefilter, opts.scipy_pad);
+    let opts = opts.options;
+    let padded = prefilter
         && opts.degree >= 2
-        && opts.scipy_pad > 0
+        && pad > 0
         && matches!(opts.mode, Mode::Nearest | Mode::GridConstant);
+    // The global route's exact coefficients (the local route's truncation
+    // is what is measured against them).
     let base = Options {
         cval: opts.cval,
         ..Options::new(opts.degree, opts.mode)
     };
     let (f, shift) = if padded {
-        let pad = opts.scipy_pad;
         let shape: Vec<usize> = data.shape().iter().map(|n| n + 2 * pad).collect();
         let mut p = ArrayD::from_shape_fn(IxDyn(&shape), |i| {
             let idx: Option<Vec<usize>> = i
@@ -72,7 +75,7 @@ fn global<T: Real + Copy + Send + Sync>(
         let lf = LineFilter::<T>::new(&family, rule, 0.0, Route::Exact).unwrap();
         spline_filter(&mut p, &lf)?;
         (Interpolant::from_coefficients_with(&p, base)?, pad as f64)
-    } else if opts.prefilter {
+    } else if prefilter {
         (Interpolant::new(data, base)?, 0.0)
     } else {
         (Interpolant::from_coefficients_with(data, base)?, 0.0)
@@ -251,7 +254,8 @@ proptest! {
         let d = shape.len();
         let deriv: Vec<u32> = deriv[..d].iter().map(|&k| k.min(degree)).collect();
         let deriv = if rule == PointRule::Fold { deriv } else { vec![0; d] };
-        let opts = LocalOptions { cval, prefilter, scipy_pad: pad, ..LocalOptions::new(degree, mode) };
+        let mut opts = LocalOptions { prefilter, scipy_pad: pad, ..LocalOptions::new(degree, mode) };
+        opts.options.cval = cval;
         check_case::<f64>(&shape, opts, &coords, rule, &deriv, seed)?;
         check_case::<f32>(&shape, opts, &coords, rule, &deriv, seed)?;
     }
@@ -301,10 +305,8 @@ fn a_missing_sample_reaches_only_the_windows_that_read_it() {
         out[0].is_nan() && out[1].is_finite() && out[2].is_finite(),
         "{out:?}"
     );
-    let opts = LocalOptions {
-        nan_policy: crate::ndimage::nan_policy::NanPolicy::Raise,
-        ..LocalOptions::new(3, Mode::Mirror)
-    };
+    let mut opts = LocalOptions::new(3, Mode::Mirror);
+    opts.options.nan_policy = crate::ndimage::nan_policy::NanPolicy::Raise;
     let spec = LocalSpec::<f64>::new(&[300, 300], opts).unwrap();
     let far = Array2::from_shape_vec((1, 2), vec![20.0, 20.0]).unwrap();
     let plan = LocalPlan::new(&spec, far.view(), PointRule::Fold, None).unwrap();
@@ -372,10 +374,8 @@ proptest! {
 #[test]
 fn refused_updates_change_nothing() {
     let data = data_of::<f64>(&[30, 30], 9);
-    let opts = LocalOptions {
-        nan_policy: crate::ndimage::nan_policy::NanPolicy::Raise,
-        ..LocalOptions::new(3, Mode::Mirror)
-    };
+    let mut opts = LocalOptions::new(3, Mode::Mirror);
+    opts.options.nan_policy = crate::ndimage::nan_policy::NanPolicy::Raise;
     let mut f = LocalInterpolant::<f64>::new(&[30, 30], opts, 1 << 24).unwrap();
     let at = Array2::from_shape_vec((1, 2), vec![5.5, 6.5]).unwrap();
     let mut before = [0.0];
