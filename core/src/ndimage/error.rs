@@ -124,8 +124,8 @@ pub enum NdimageError {
         /// What the memory was for.
         what: &'static str,
     },
-    /// A degree outside `1..=199`.
-    #[error("degree {0} is outside the supported range 1..=199")]
+    /// A degree outside `0..=199` (degree 0: nearest, 1: linear).
+    #[error("degree {0} is outside the supported range 0..=199")]
     Degree(u32),
     /// The 1-D prefilter failed (ill-conditioned scalar, end rule, poles).
     #[error(transparent)]

@@ -1,6 +1,6 @@
 //! The tensor-product spline interpolant of an N-dimensional array of
 //! samples (scipy.ndimage's `map_coordinates` engine, any degree
-//! `1..=199`): `f(x) = Σ_i D_i Π_a β(x_a − i_a)` with `D` the prefiltered
+//! `0..=199`): `f(x) = Σ_i D_i Π_a β(x_a − i_a)` with `D` the prefiltered
 //! coefficients, so that `f(j) = s_j` at every grid point `j`.
 //!
 //! Built once ([`Interpolant::new`], `O(p)` per sample and axis for the
