@@ -39,9 +39,13 @@ def interp_mode(mode):
 
 
 def filter_mode(mode, exact_edges):
-    """The engine's filter for scipy's ``mode`` (its rule), or with
+    """The engine's filter for scipy's ``mode`` (checked: :func:`interp_mode`)."""
+    return filter_rule(interp_mode(mode), exact_edges)
+
+
+def filter_rule(mode, exact_edges):
+    """The engine's filter for a known scipy ``mode`` (its rule), or with
     ``exact_edges`` the exact extension for nearest / grid-constant (cval 0)."""
-    mode = interp_mode(mode)
     if exact_edges and mode in EXACT_EDGES:
         return mode
     return SCIPY_FILTER_RULE[mode]

@@ -12,10 +12,10 @@ from . import _local
 from ._doc import fill
 from ._engine import _direct, _interpolate, _map_real, _Points, _refuse_non_finite
 from ._engine import _wrap_coordinates  # noqa: F401 (python/tests/test_scipy.py reads it here)
-from ._modes import EXACT_EDGES as _EXACT_EDGES, SCIPY_FILTER_RULE as _FILTER_RULE
-from ._settings import Settings, _plain_threads
+from ._modes import filter_rule
+from ._settings import Settings, _defaults
 from .errors import CoordinateShapeError
-from ._validate import DEFAULT_TOL, MAX_DEGREE, _cval, _flag, _int, _real_array
+from ._validate import DEFAULT_TOL, _cval, _flag, _int, _real_array
 
 def _same_layout(a, b):
     """Whether `a` and `b` are the same elements in the same places."""
@@ -199,10 +199,8 @@ def _common(input, order, axis, output, mode, tol, threads, exact_edges, nan_pol
     or an int in range). Every check of
     :func:`_filter` passes there and changes nothing, so its result is
     :func:`_common_filter`'s, a microsecond or two sooner."""
-    if not (type(input) is np.ndarray and input.dtype in _FLOATS and type(order) is int and 0 <= order <= MAX_DEGREE
-            and type(mode) is str and mode in _FILTER_RULE and tol is DEFAULT_TOL and _plain_threads(threads)
-            and (exact_edges is False or exact_edges is True) and type(nan_policy) is str
-            and nan_policy == "propagate" and type(compute) is str and compute == "float64"):
+    if not (type(input) is np.ndarray and input.dtype in _FLOATS and (exact_edges is False or exact_edges is True)
+            and _defaults(order, mode, True, tol, threads, nan_policy, compute)):
         return None
     if axis is _EVERY:
         axes = list(range(input.ndim))
@@ -218,8 +216,7 @@ def _common(input, order, axis, output, mode, tol, threads, exact_edges, nan_pol
             return None
     else:
         return None
-    rule = mode if exact_edges and mode in _EXACT_EDGES else _FILTER_RULE[mode]
-    return input, axes, dtype, rule, threads
+    return input, axes, dtype, filter_rule(mode, exact_edges), threads
 
 
 def _common_filter(order, a, axes, dtype, rule, threads):

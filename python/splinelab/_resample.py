@@ -57,27 +57,25 @@ def _at_points(s, input, output, shape, flat_of):
     """The values under the settings ``s`` at the points ``flat_of(a)``
     (``(ndim, prod(shape))``)."""
     points = flat_of(input)
-    points = points if isinstance(points, _Points) else _Points(points)
-    values = _direct(input, points, s, output)
-    if values is not None:
-        return values.reshape(shape)
-
-    def evaluate(a, cv, work):
-        return _map_real(a, points, s, cv, work=work)
-
-    return _interpolate(input, output, shape, s.cval, evaluate, compute=s.compute)
+    return _evaluated(s, input, output, shape, points if isinstance(points, _Points) else _Points(points))
 
 
 def _on_grid(s, input, output, shape, axis_coordinates):
     """The values under the settings ``s`` on the tensor grid of per-axis
     coordinate vectors."""
-    grid = _Grid(axis_coordinates)
-    values = _direct(input, grid, s, output)
+    return _evaluated(s, input, output, shape, _Grid(axis_coordinates))
+
+
+def _evaluated(s, input, output, shape, where):
+    """The values under the settings ``s`` at ``where`` (a :class:`_Points`
+    or :class:`_Grid`): the common call in one step (:func:`_direct`),
+    else through the dtype rules of :func:`_interpolate`."""
+    values = _direct(input, where, s, output)
     if values is not None:
         return values.reshape(shape)
 
     def evaluate(a, cv, work):
-        return _map_real(a, grid, s, cv, work=work)
+        return _map_real(a, where, s, cv, work=work)
 
     return _interpolate(input, output, shape, s.cval, evaluate, compute=s.compute)
 
@@ -284,7 +282,7 @@ def _reserve_output(a, output, shape):
     else:
         with warnings.catch_warnings():  # the promotion warning comes with the result
             warnings.simplefilter("ignore")
-            dtype, _ = _dt.output_dtype(output, a.dtype, _dt.default_output(a.dtype, True), True)
+            dtype, _ = _dt.output_dtype(output, a.dtype, None, True)
     np.empty(shape, dtype)
 
 

@@ -13,7 +13,7 @@ from __future__ import annotations
 from typing import NamedTuple
 
 from . import _dtypes as _dt
-from ._modes import EXACT_EDGES, SCIPY_FILTER_RULE, interp_mode
+from ._modes import SCIPY_FILTER_RULE, filter_rule, interp_mode
 from ._validate import (DEFAULT_TOL, MAX_DEGREE, MAX_THREADS, _degree, _flag, _nan_policy, _opt_float, _threads,
                         _tol_for)
 
@@ -84,12 +84,8 @@ class Settings(NamedTuple):
                    _dt.compute_name(compute))
 
     def filter_rule(self):
-        """The engine's filter for this mode: scipy's rule
-        (:data:`splinelab._modes.SCIPY_FILTER_RULE`), or with
-        ``exact_edges`` the exact extension of nearest / grid-constant."""
-        if self.exact_edges and self.mode in EXACT_EDGES:
-            return self.mode
-        return SCIPY_FILTER_RULE[self.mode]
+        """The engine's filter for this mode (:func:`splinelab._modes.filter_rule`)."""
+        return filter_rule(self.mode, self.exact_edges)
 
 
 def _defaults(order, mode, prefilter, tol, threads, nan_policy, compute):

@@ -209,12 +209,8 @@ def _map(darr, axes, order, mode, tol, output, threads, route, nan_policy="propa
                            compute=compute)
         info = block_info[0]
         ends = [(i == 0, i == k - 1) for i, k in zip(info["chunk-location"], info["num-chunks"])]
-        x, crop = _pad_ends(x, seamed, rule, d, ends)
-        y = _filter(x, seamed, order, dtype, "grid-constant", local_tol, threads, exact_edges=True,
-                    nan_policy=nan_policy, compute=compute)[crop]
         whole = [ax for ax in axes if ax not in seamed]
-        return (_filter(y, whole, order, dtype, mode, local_tol, threads, nan_policy=nan_policy, compute=compute)
-                if whole else y)
+        return _filter_block(x, seamed, whole, order, mode, d, ends, dtype, local_tol, threads, nan_policy, compute)
 
     out = darr.map_overlap(block, depth=depths, boundary=boundary, dtype=dtype, meta=np.array((), dtype=dtype))
     if nan_policy != "propagate" or order < 2 or darr.dtype.kind not in "fc":
@@ -223,6 +219,24 @@ def _map(darr, axes, order, mode, tol, output, threads, route, nan_policy="propa
     # along a filtered axis (a reduction no block can make alone).
     spread = (~da.isfinite(darr)).any(axis=tuple(axes), keepdims=True)
     return da.where(spread, np.asarray(np.nan, dtype), out)
+
+
+def _filter_block(x, seamed, whole, order, mode, d, ends, dtype, tol, threads, nan_policy="propagate",
+                  compute="float64"):
+    """A block's filter with zeros beyond its read edges: the ``seamed``
+    axes, the block's ends that are the array's first extended by ``d``
+    samples of the mode's rule (:func:`_pad_ends`), filtered exactly with
+    zeros beyond and cropped; then the ``whole`` axes (in one block) under
+    ``mode`` itself. The chunked prefilter's blocks and the fused route's
+    regions (:class:`_Fused`) both."""
+    x, crop = _pad_ends(x, seamed, _filter_mode(mode, False), d, ends)
+    # Run with no seamed axis too: it converts the block to ``dtype`` (and
+    # applies ``nan_policy``) before the whole axes, as it always has.
+    x = _filter(x, seamed, order, dtype, "grid-constant", tol, threads, exact_edges=True, nan_policy=nan_policy,
+                compute=compute)[crop]
+    if whole:
+        x = _filter(x, whole, order, dtype, mode, tol, threads, nan_policy=nan_policy, compute=compute)
+    return x
 
 
 def _pad_ends(x, seamed, rule, d, ends):
@@ -623,13 +637,9 @@ class _Fused:
         x = np.asarray(samples)  # the filtered axes first (``reach``'s), any others carried
         whole = [ax for ax, ((a, b), n) in enumerate(zip(reach, self.extent)) if a == 0 and b == n]
         seamed = [ax for ax in range(len(reach)) if ax not in whole]
-        rule = _filter_mode(self.mode, False)
         ends = [(a == 0, b == n) for (a, b), n in zip(reach, self.extent)]
-        x, crop = _pad_ends(x, seamed, rule, self.depth, ends)
-        if seamed:
-            x = _filter(x, seamed, self.order, np.float64, "grid-constant", None, self.threads, exact_edges=True)[crop]
-        if whole:
-            x = _filter(x, whole, self.order, np.float64, self.mode, None, self.threads)
+        x = _filter_block(x, seamed, whole, self.order, self.mode, self.depth, ends, np.dtype(np.float64), None,
+                          self.threads)
         if missing:  # scipy's pattern: every coefficient NaN (the chunked filter's global mask)
             x = np.full(x.shape, np.nan)
         return x
