@@ -488,15 +488,6 @@ def _mode_windows_apply(grid, xi, opts):
             and sld._filter_mode(opts.mode, False) in sld._NUMPY_PAD)
 
 
-def _index_points(grid, xi):
-    """The points in index coordinates, ``(ngrid, P)`` (as _evaluate_mode)."""
-    idx = np.empty((len(grid), len(xi)))
-    for a, g in enumerate(grid):
-        step = (g[-1] - g[0]) / (len(g) - 1) if len(g) > 1 else 1.0
-        idx[a] = (xi[:, a] - g[0]) / step
-    return idx
-
-
 def _mode_windows(data, grid, xi, opts, chunked):
     """``mode=`` with chunked grid axes, reading certified windows: each
     group of points (by the input chunks their windows touch) reads the
@@ -509,6 +500,7 @@ def _mode_windows(data, grid, xi, opts, chunked):
     import dask.array as da
 
     from . import dask as sld
+    from .xarray import _index_points
     ng, nb = len(grid), data.ndim - len(grid)
     rules = _mode_rules(grid, opts)
     x, mask = rules.prepared(_index_points(grid, xi))

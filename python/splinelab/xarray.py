@@ -313,16 +313,23 @@ def _evaluate(grid, values, xi, opts, dims):
     return _apply_fill(_raw(grid, values, xi, opts), grid, xi, opts, dims)
 
 
+def _index_points(grid, xi):
+    """The points ``xi`` (``(P, ngrid)``) in the uniform axes' index
+    coordinates, ``(ngrid, P)``: ndimage's, for ``mode=``."""
+    idx = np.empty((len(grid), len(xi)))
+    for a, g in enumerate(grid):
+        step = (g[-1] - g[0]) / (len(g) - 1) if len(g) > 1 else 1.0
+        idx[a] = (xi[:, a] - g[0]) / step
+    return idx
+
+
 def _evaluate_mode(grid, values, xi, opts):
     """``mode=``: splinelab.map_coordinates on the uniform axes' index
     coordinates (ndimage's boundary modes, the certified prefilter at
     ``tol``), one call per trailing column."""
     values = np.asarray(values)
     ng = len(grid)
-    idx = np.empty((ng, len(xi)))
-    for a, g in enumerate(grid):
-        step = (g[-1] - g[0]) / (len(g) - 1) if len(g) > 1 else 1.0
-        idx[a] = (xi[:, a] - g[0]) / step
+    idx = _index_points(grid, xi)
     trailing = values.shape[ng:]
     cols = values.reshape(values.shape[:ng] + (-1,))
     out = np.empty((len(xi), cols.shape[-1]), dtype=np.result_type(values.dtype, np.float64))
