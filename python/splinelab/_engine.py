@@ -289,8 +289,7 @@ def _direct(a, points, s, output):
     if work is None or not (type(cv) is float or type(cv) is int):
         return None
     d, prefilter, tol = s.degree, s.prefilter, s.tol
-    if type(points) is not _Grid and (
-            _local.ROUTE == "local" or _local.may_be_local(a.shape, points.count(), d, prefilter, tol)):
+    if type(points) is not _Grid and _may_be_local(a.shape, points, d, prefilter, tol):
         return None
     mode, rule, pad = engine_args(s.mode, d, prefilter, s.exact_edges)
     if pad or rule == "wrap":
@@ -328,6 +327,19 @@ def _map_real(a, flat, s, cv, deriv=None, work=_F64):
 _AFFINE_LOCAL_MAX = 1 << 16
 
 
+def _may_be_local(shape, points, d, prefilter, tol):
+    """Whether the local route may take ``points`` on an in-memory array of
+    ``shape`` (:func:`splinelab._local.may_be_local`; always where the
+    route is forced). Not scattered points of degree 0 or 1 that the engine
+    reads in place (:func:`splinelab._local.in_place_pays`), which no
+    window reads beat."""
+    if _local.ROUTE == "local":
+        return True
+    if type(points) is _Points and _local.in_place_pays(shape, points.count(), d):
+        return False
+    return _local.may_be_local(shape, points.count(), d, prefilter, tol)
+
+
 def _local_candidates(points):
     """The explicit points ``(ndim, k)`` the local route may take
     (:mod:`splinelab._local` decides by cost): map_coordinates' points, and
@@ -349,8 +361,7 @@ def _map_points(a, points, s, cv, deriv, work=_F64):
     d, mode, prefilter, tol, threads = s.degree, s.mode, s.prefilter, s.tol, s.threads
     nan_policy = s.nan_policy
     flat = None
-    if not work.f32 and (a.dtype == np.float64 or work.out32) and (
-            _local.ROUTE == "local" or _local.may_be_local(a.shape, points.count(), d, prefilter, tol)):
+    if not work.f32 and (a.dtype == np.float64 or work.out32) and _may_be_local(a.shape, points, d, prefilter, tol):
         flat = _local_candidates(points)
     if flat is not None:
         local = _local.try_map(a, flat, s, cv, deriv)

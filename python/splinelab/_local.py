@@ -72,6 +72,17 @@ def may_be_local(shape, k, d, prefilter, tol):
     return _COST["call"] + k * _COST["locate"] < global_ns and floor_ns(len(shape), k, d, filtered, tol) < global_ns
 
 
+def in_place_pays(shape, k, d):
+    """Whether ``k`` points of degree ``d`` (0 or 1) on an in-memory array
+    of ``shape`` are read in place by the engine (``map_samples_in_place``:
+    nothing proportional to the array) rather than through its padded copy
+    (the engine's ``route::in_place_pays``, the same formula from the same
+    constants, :data:`_COST`). Then no window of the local route reads
+    less."""
+    taps = float(d + 1) ** len(shape)
+    return d <= 1 and k * taps * _COST["in_place_tap"] < math.prod(shape) * _COST["copy"]
+
+
 def half_width(d, tol):
     """The certified half-width of the local route's prefilter for degree
     ``d`` (2 or more) and ``tol`` (the same for every mode and

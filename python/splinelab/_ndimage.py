@@ -386,9 +386,12 @@ def map_coordinates(
     one float64 array of coefficients, the input's shape grown by
     ``order // 2 + 2`` per side (scipy: a float64 copy of the
     coefficients); float64 and float32 input is read where it lies (other
-    dtypes: a float32 or float64 copy first). Without (``order <= 1``,
-    ``prefilter=False``) the same padded float64 copy of the input, which
-    scipy does not hold (it reads the input). 'nearest' and 'grid-constant'
+    dtypes: a float32 or float64 copy first). Degrees 0 and 1 read the
+    samples where they lie, as scipy does, where the points are few for
+    the array (their samples cost less to read one by one than a copy;
+    ``splinelab._local.in_place_pays``), else, as ``prefilter=False``
+    above them, through a padded float64 copy of the input, which scipy
+    does not hold. 'nearest' and 'grid-constant'
     (scipy's route): the input padded by 12 (a copy in its dtype, as
     scipy's) and one float64 coefficient array of that.
     ``compute="float32"``: float32 arrays instead. The prefilter's work

@@ -18,8 +18,10 @@ use crate::pool::run_with;
 use ndarray::ArrayViewD;
 use numpy::{Element, PyArrayMethods, PyReadonlyArray2};
 use pyo3::prelude::*;
-use splinelab::ndimage::interpolant::PointRule;
-use splinelab::ndimage::local::route::global_ns;
+use splinelab::ndimage::interpolant::{
+    InPlaceOptions, PointRule, SampleOrder, map_samples_in_place,
+};
+use splinelab::ndimage::local::route::{self, global_ns};
 use splinelab::ndimage::samples::{Sample, Stored};
 use splinelab::prelude::*;
 
@@ -88,6 +90,25 @@ where
     }
 }
 
+/// How degrees 0 and 1 are evaluated where the samples lie (their
+/// coefficients are the samples, whatever `prefilter` or the filter rule
+/// say): values only, where it pays ([`route::in_place_pays`]), and not
+/// under `nan_policy="local"` with a non-finite `cval` (the padded route's
+/// alone, see [`InPlaceOptions`]).
+/// `None`: the interpolant's padded route.
+fn in_place(opts: &Options, deriv: bool, shape: &[usize], points: usize) -> Option<InPlaceOptions> {
+    let order = SampleOrder::of_degree(opts.degree)?;
+    let local_cval = opts.nan_policy == NanPolicy::Local && !opts.cval.is_finite();
+    let taps = f64::from(opts.degree + 1).powi(shape.len() as i32);
+    let pays = route::in_place_pays(shape.iter().product(), points, taps);
+    (!deriv && !local_cval && pays).then_some(InPlaceOptions {
+        order,
+        mode: opts.mode,
+        cval: opts.cval,
+        nan_policy: opts.nan_policy,
+    })
+}
+
 /// The values (or the partial derivative `deriv`) at the columns of
 /// `coordinates`, in a new array of `O` (numpy's allocation).
 #[allow(clippy::too_many_arguments)]
@@ -118,17 +139,25 @@ where
     let result = crate::alloc::zeros::<O>(py, &[at.ncols()])?;
     let mut view = result.readwrite();
     let out = view.as_slice_mut()?;
+    let deriv = deriv.filter(|d| d.iter().any(|&k| k > 0));
+    let in_place = in_place(&opts, deriv.is_some(), data.shape(), at.ncols());
     let run = || {
-        let deriv = deriv.filter(|d| d.iter().any(|&k| k > 0));
+        if let Some(o) = &in_place {
+            return map_samples_in_place::<T, E, O>(&data, at.t(), o, rule, out);
+        }
         let f = interpolant::<T, E>(&data, opts, how)?;
-        match deriv {
-            Some(d) => f.eval_derivatives(at.t(), &d, out),
+        match &deriv {
+            Some(d) => f.eval_derivatives(at.t(), d, out),
             None => f.eval_many_with_as(at.t(), rule, out),
         }
     };
     let m = f64::from(opts.degree) + 1.0;
     let taps = at.ncols() as f64 * m.powi(at.nrows() as i32);
-    let work = work_ns(data.shape(), &opts, how, taps);
+    // In place, nothing is proportional to the input (issue 50).
+    let work = match in_place {
+        Some(_) => taps,
+        None => work_ns(data.shape(), &opts, how, taps),
+    };
     py.detach(|| run_with(threads, work, run))?
         .map_err(engine_error)?;
     drop(view);
@@ -165,4 +194,13 @@ pub fn map_coordinates<'py>(
     crate::dispatch_compute!(input, f32, out32, <T, O> a => {
         map_generic::<T, _, O>(py, a, c, opts, how, threads, deriv, cval_outside)
     })
+}
+
+/// Whether `points` points of `degree` (0 or 1) on an array of `shape` are
+/// read in place ([`route::in_place_pays`]): what
+/// `splinelab._local.in_place_pays` decides in Python before any call.
+#[pyfunction]
+pub fn in_place_pays(shape: Vec<usize>, points: usize, degree: u32) -> bool {
+    let taps = f64::from(degree.saturating_add(1)).powi(shape.len() as i32);
+    degree <= 1 && route::in_place_pays(shape.iter().product(), points, taps)
 }

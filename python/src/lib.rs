@@ -48,7 +48,7 @@ fn _splinelab(m: &Bound<'_, PyModule>) -> PyResult<()> {
     // global route before any call (`splinelab._local.may_be_local`).
     {
         use splinelab::ndimage::local::route::{
-            C_CALL, C_COPY, C_GLOBAL, C_LOCATE, C_POINT, C_READ, C_TAP,
+            C_CALL, C_COPY, C_GLOBAL, C_IN_PLACE_TAP, C_LOCATE, C_POINT, C_READ, C_TAP,
         };
         let cost = pyo3::types::PyDict::new(m.py());
         cost.set_item("call", C_CALL)?;
@@ -58,12 +58,14 @@ fn _splinelab(m: &Bound<'_, PyModule>) -> PyResult<()> {
         cost.set_item("tap", C_TAP)?;
         cost.set_item("global", C_GLOBAL)?;
         cost.set_item("copy", C_COPY)?;
+        cost.set_item("in_place_tap", C_IN_PLACE_TAP)?;
         m.add("LOCAL_ROUTE_COST", cost)?;
     }
     m.add_function(wrap_pyfunction!(filter::nan_reach, m)?)?;
     m.add_function(wrap_pyfunction!(filter::filter, m)?)?;
     m.add_function(wrap_pyfunction!(filter::filter_bound, m)?)?;
     m.add_function(wrap_pyfunction!(interp::map_coordinates, m)?)?;
+    m.add_function(wrap_pyfunction!(interp::in_place_pays, m)?)?;
     m.add_function(wrap_pyfunction!(local::local_map_f64, m)?)?;
     m.add_function(wrap_pyfunction!(local::local_map_f32, m)?)?;
     m.add_function(wrap_pyfunction!(local::local_route_cost, m)?)?;

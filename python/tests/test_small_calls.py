@@ -74,6 +74,36 @@ def test_the_engine_declines_where_the_count_decides_the_global_route(c):
     assert out is None
 
 
+@settings(max_examples=300, deadline=None)
+@given(calls())
+def test_the_in_place_decision_is_the_engines(c):
+    """``in_place_pays`` (shape, count and degree alone) decides as the
+    engine's ``route::in_place_pays`` does, and never for degrees above 1
+    (their coefficients are not the samples)."""
+    k = c["flat"].shape[1]
+    ours = _local.in_place_pays(c["shape"], k, c["d"])
+    assert ours == ext.in_place_pays(list(c["shape"]), k, c["d"])
+    assert not (ours and c["d"] > 1)
+
+
+@settings(max_examples=200, deadline=None)
+@given(calls(), st.sampled_from([np.float64, np.float32]))
+def test_points_read_in_place_are_scipys(c, dtype):
+    """Degrees 0 and 1 at points the engine reads in place (and at those
+    it reads through its padded copy): scipy's values, every mode, points
+    inside, at and beyond the edges. Degree 1 to rounding; degree 0 the
+    same sample, except at the half-integers where scipy's ``floor(x +
+    0.5)`` in float64 and the exact rounding part (none drawn here)."""
+    d = c["d"] % 2
+    a = np.random.default_rng(5).normal(size=c["shape"]).astype(dtype)
+    kw = dict(order=d, mode=c["mode"], cval=0.25)
+    theirs = ndi.map_coordinates(a, c["flat"], **kw)
+    ours = splinelab.map_coordinates(a, c["flat"], **kw)
+    assert ours.dtype == theirs.dtype
+    tol = 0 if d == 0 else (2e-6 if dtype == np.float32 else 1e-14)
+    np.testing.assert_allclose(ours, theirs, rtol=0, atol=tol * 4)
+
+
 @pytest.fixture
 def engine_calls(monkeypatch):
     """Every call into the extension's functions, by name, in order."""

@@ -36,12 +36,14 @@ use std::sync::Arc;
 mod accuracy;
 mod affine;
 mod batch;
+mod in_place;
 mod kernel;
 mod padding;
 mod point_rule;
 mod runs;
 mod separable;
 mod weights;
+pub use in_place::{InPlaceOptions, SampleOrder, map_samples_in_place};
 use padding::{extend_in_place, extend_padded, relocate_to_padded};
 pub use point_rule::PointRule;
 
@@ -667,7 +669,9 @@ mod tests {
     use crate::sspline::SplineFamily;
     use ndarray::{Array, Axis, IxDyn, Zip};
 
-    fn samples(shape: &[usize]) -> ArrayD<f64> {
+    /// Smooth deterministic samples of `shape` (also the in-place route's
+    /// tests').
+    pub(super) fn samples(shape: &[usize]) -> ArrayD<f64> {
         ArrayD::from_shape_fn(IxDyn(shape), |i| {
             i.slice()
                 .iter()

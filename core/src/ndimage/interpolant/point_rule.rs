@@ -17,6 +17,7 @@ pub enum PointRule {
 impl PointRule {
     /// The rule applied to point `x` of a grid of `shape`: whether it takes
     /// `cval` (moving it by whole periods for the `wrap` rule).
+    #[inline]
     pub(crate) fn apply(self, x: &mut [f64], shape: &[usize]) -> bool {
         match self {
             PointRule::Fold => false,

@@ -55,6 +55,14 @@ pub const C_READ: f64 = 5.0;
 pub const C_GLOBAL: f64 = 4.0;
 /// Nanoseconds per sample of the global route's copy (padding, conversion).
 pub const C_COPY: f64 = 1.5;
+/// Nanoseconds per sample read by a point of degree 0 or 1 evaluated in
+/// place ([`map_samples_in_place`](crate::ndimage::interpolant::map_samples_in_place)),
+/// beyond what the padded route's kernels spend on it. Measured (issue 50,
+/// `threads=1`, the loaded 2-core machine, both routes alternated): 16.5
+/// against 1.5 ns a point of degree 0 on 128², 29 against 2.6 ns a point of
+/// degree 1; 38 ns a point of degree 0 on 512², whose reads miss the caches
+/// (the padded route prefetches them).
+pub const C_IN_PLACE_TAP: f64 = 8.0;
 /// Nanoseconds per point of the local route's bookkeeping (cell, grouping).
 /// Measured (issue 42, `LocalPlan::new` alone, random points on a 2048²
 /// array, the loaded 2-core machine): 0.5 µs a point at 10⁴ points, 0.63
@@ -163,6 +171,22 @@ pub fn floor_ns(ndim: usize, degree: u32, half_width: Option<usize>, points: usi
         None => C_READ * (f64::from(degree) + 1.0).powi(ndim as i32),
     };
     locate_ns(points) + C_POINT + first_box
+}
+
+/// Whether `points` points of degree 0 or 1 (`taps = (d + 1)^ndim` samples
+/// each) on `samples` samples cost less read in place than through the
+/// padded copy: `points · taps · C_IN_PLACE_TAP < samples · C_COPY`. A
+/// few points on an array of any size are read in place (nothing
+/// proportional to it); many points on a small one take the copy, whose
+/// kernels prefetch.
+///
+/// ```
+/// use splinelab::ndimage::local::route::in_place_pays;
+/// assert!(in_place_pays(32 * 32 * 32, 25, 8.0));
+/// assert!(!in_place_pays(128 * 128, 4096, 1.0));
+/// ```
+pub fn in_place_pays(samples: usize, points: usize, taps: f64) -> bool {
+    points as f64 * taps * C_IN_PLACE_TAP < samples as f64 * C_COPY
 }
 
 /// The global route's cost on `samples` samples of `ndim` axes, with a
