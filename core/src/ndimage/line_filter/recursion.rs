@@ -1,0 +1,174 @@
+//! A pole's first-order recursions and their initial values: the causal
+//! pass `c⁺_k = c_k + ξ c⁺_{k−1}` and the anti-causal pass
+//! `c⁻_k = ξ (c⁻_{k+1} − c⁺_k)` of one line (two steps at a time), the
+//! causal start summed over the mode's extension to the pole's horizon and
+//! the anti-causal start in the mode's closed form (the
+//! [`line_filter`](super) documentation), for one line and for every column
+//! of rows side by side. The one-line forms are what
+//! [`LineFilter::apply`](super::LineFilter::apply) runs pole after pole; the
+//! column starts begin the strided passes (`rows`, `blocks`). Apart because
+//! they are the filter's mathematics, shared by every way of running it.
+
+use crate::ndimage::mode::Mode;
+use crate::scalar::Real;
+use multiversion::multiversion;
+
+/// One Horner step of a start, `acc = row + ξ · acc` for a row of `w`
+/// values, or `acc = g · row + ξ · acc` with a gain `g` (the row scaled
+/// first, as [`lanes::scale`](crate::ndimage::lanes::scale) does).
+#[multiversion(targets("x86_64+avx512f+avx512vl+avx2+fma", "x86_64+avx2+fma", "aarch64+neon"))]
+fn horner_row<T: Real>(acc: &mut [T], z: &T, row: &[T], gain: Option<&T>) {
+    match gain {
+        Some(g) => {
+            for (a, x) in acc.iter_mut().zip(row) {
+                *a = g.clone() * x + z.clone() * &*a;
+            }
+        }
+        None => {
+            for (a, x) in acc.iter_mut().zip(row) {
+                *a = x.clone() + z.clone() * &*a;
+            }
+        }
+    }
+}
+
+/// [`causal_start`] of every column of `rows` (times `gain` first, if
+/// given), into `acc`.
+pub(super) fn causal_start_of<T: Real, R: AsRef<[T]>>(
+    rows: &[R],
+    gain: Option<&T>,
+    z: &T,
+    horizon: usize,
+    mode: Mode,
+    acc: &mut [T],
+) {
+    acc.fill(T::zero());
+    for j in (0..horizon.max(1)).rev() {
+        let i = mode.fold(-(j as i64), rows.len()).unwrap_or(0);
+        horner_row(acc, z, rows[i].as_ref(), gain);
+    }
+}
+
+/// [`anticausal_start`] of every column, into `acc`.
+pub(super) fn anticausal_start_rows<T: Real>(
+    c: &[T],
+    w: usize,
+    z: &T,
+    horizon: usize,
+    mode: Mode,
+    acc: &mut [T],
+) {
+    let n = c.len() / w;
+    let last = &c[(n - 1) * w..];
+    match mode {
+        Mode::Reflect => {
+            let f = z.clone() / (z.clone() - T::one());
+            for (a, x) in acc.iter_mut().zip(last) {
+                *a = f.clone() * x;
+            }
+        }
+        Mode::GridWrap => {
+            acc.fill(T::zero());
+            for j in (0..horizon.max(1)).rev() {
+                let i = (n - 1 + j) % n;
+                horner_row(acc, z, &c[i * w..(i + 1) * w], None);
+            }
+            let mz = -z.clone();
+            for a in acc.iter_mut() {
+                *a = mz.clone() * a.clone();
+            }
+        }
+        _ => {
+            let f = z.clone() / (z.clone() * z - T::one());
+            let before = &c[(n - 2) * w..(n - 1) * w];
+            for ((a, x), y) in acc.iter_mut().zip(last).zip(before) {
+                *a = f.clone() * (x.clone() + z.clone() * y.clone());
+            }
+        }
+    }
+}
+
+/// `c⁺_k = c_k + ξ c⁺_{k−1}`, `k ≥ 1`, run two steps at a time:
+/// `c⁺_k = (c_k + ξ c_{k−1}) + ξ² c⁺_{k−2}`. One step is a dependent
+/// multiply-add (the loop is bound by its latency, not by arithmetic);
+/// with the look-ahead, two interleaved chains advance at once, the
+/// `ξ c_{k−1}` terms being independent work. Rounding: one more operation
+/// per sample and the rounded `ξ²`, each a relative `u` on terms the
+/// recursion damps by `1/(1 − ξ²)`: the same few ulps.
+#[inline]
+pub(super) fn causal<T: Real>(c: &mut [T], z: T) {
+    if c.len() < 2 {
+        return;
+    }
+    let z2 = z.clone() * &z;
+    let mut older = c[0].clone();
+    let mut s_prev = c[1].clone();
+    c[1] += z.clone() * &older;
+    let mut prev = c[1].clone();
+    for x in c[2..].iter_mut() {
+        let s = x.clone();
+        *x = (s.clone() + z.clone() * s_prev) + z2.clone() * older;
+        older = prev;
+        prev = x.clone();
+        s_prev = s;
+    }
+}
+
+/// `c⁻_k = ξ (c⁻_{k+1} − c⁺_k)`, `k < ν − 1`, two steps at a time as in
+/// [`causal`]: `c⁻_k = ξ² c⁻_{k+2} − (ξ² c⁺_{k+1} + ξ c⁺_k)`.
+#[inline]
+pub(super) fn anticausal<T: Real>(c: &mut [T], z: T) {
+    let n = c.len();
+    if n < 2 {
+        return;
+    }
+    let z2 = z.clone() * &z;
+    let mut later = c[n - 1].clone();
+    let mut s_next = c[n - 2].clone();
+    c[n - 2] = z.clone() * (later.clone() - &s_next);
+    let mut next = c[n - 2].clone();
+    for x in c[..n - 2].iter_mut().rev() {
+        let s = x.clone();
+        *x = z2.clone() * later - (z2.clone() * s_next + z.clone() * &s);
+        later = next;
+        next = x.clone();
+        s_next = s;
+    }
+}
+
+/// `c⁺_0 = Σ_{j<K} ξ^j s_{−j}`, the samples extended by `mode` (symmetric
+/// or periodic), truncated at the horizon `K` and evaluated by Horner's
+/// rule from the far end, `a ← s_{−j} + ξ a` for `j = K − 1, …, 0`: each
+/// rounding is damped by `ξ^j` on its way to `c⁺_0`, so the sum carries
+/// about `u |c⁺_0| / (1 − |ξ|)`, as one step of the recursion does. (Summed
+/// from `j = 0` with running powers, every one of the `≈ K` additions rounds
+/// at the full size of the sum: for a line shorter than the horizon,
+/// folded back and forth, that was the largest error of the filter after
+/// the gain's; `verify/tests/it/prefilter_rounding.rs` pins it.)
+pub(super) fn causal_start<T: Real>(c: &[T], z: &T, horizon: usize, mode: Mode) -> T {
+    let n = c.len();
+    let mut sum = T::zero();
+    for j in (0..horizon.max(1)).rev() {
+        let i = mode.fold(-(j as i64), n).unwrap_or(0);
+        sum = c[i].clone() + z.clone() * sum;
+    }
+    sum
+}
+
+/// `c⁻_{ν−1}` of the mode (module documentation); grid-wrap's periodic sum
+/// `−ξ Σ_{j<K} ξ^j c⁺_{(ν−1+j) mod ν}` by Horner's rule as [`causal_start`].
+pub(super) fn anticausal_start<T: Real>(c: &[T], z: &T, horizon: usize, mode: Mode) -> T {
+    let n = c.len();
+    let z = z.clone();
+    match mode {
+        Mode::Reflect => z.clone() / (z - T::one()) * c[n - 1].clone(),
+        Mode::GridWrap => {
+            let mut sum = T::zero();
+            for j in (0..horizon.max(1)).rev() {
+                sum = c[(n - 1 + j) % n].clone() + z.clone() * sum;
+            }
+            -z * sum
+        }
+        _ => z.clone() / (z.clone() * &z - T::one()) * (c[n - 1].clone() + z * c[n - 2].clone()),
+    }
+}
