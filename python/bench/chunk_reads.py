@@ -9,7 +9,11 @@ random standard-normal samples (seed 0), and times for each point count
 (random cubic points, seed 1, the default mode):
 
 (a) ``splinelab.map_coordinates`` reading the zarr array directly;
-(b) the same through ``dask.array.from_zarr``;
+(b) the same through ``dask.array.from_zarr`` (its blocks are plain reads
+    of the zarr array, so the call reads the zarr array itself, with no
+    dask graph: ``splinelab._local._dask_reader``); (b') the same through
+    dask's graph (one ``dask.compute`` of the parts: the route of every
+    other dask array, and of this one before);
 (c) reading once, one ``arr[chunk slices]`` after another (each released
     before the next), the chunks the points' windows touch (the boxes the
     local route asks for, mapped to chunks by floor division here);
@@ -21,11 +25,14 @@ checked to read each touched chunk once and to give the bits of
 ``splinelab.map_coordinates(np.asarray(arr), ...)``. Times: the fastest of
 ``--repeats`` runs; memory: the peak resident size above the call's start
 (``_peak``). (a) reads its chunks on one thread per core (the default) and
-on one thread (``threads=1``); (c) on one.
+on one thread (``threads=1``); (c) on one. The load average is printed
+before and after (the figures are wall times: say the load with them).
 """
 
 import argparse
 import collections
+import contextlib
+import os
 import pathlib
 import tempfile
 import time
@@ -78,6 +85,21 @@ def touched_chunks(shape, chunk, at):
     return sorted(out)
 
 
+@contextlib.contextmanager
+def dask_graph(on):
+    """With ``on``: dask arrays read through their graph (the reading of a
+    plain from-zarr array's store directly turned off)."""
+    from splinelab import _local
+
+    real = _local._dask_reader
+    if on:
+        _local._dask_reader = lambda darr, boxes, grid: (darr, grid)
+    try:
+        yield
+    finally:
+        _local._dask_reader = real
+
+
 def best(f, repeats):
     """``(result, seconds)``: the fastest of ``repeats`` runs."""
     times, out = [], None
@@ -111,12 +133,14 @@ def run(z, reads, at, chunk, repeats, whole):
     _, t_c = best(read_touched, repeats)
     print(f"{k} points: (c) reading the {len(chunks)} touched chunks once: {t_c:.2f} s")
     results = {}
-    cases = (("(a) zarr directly", z, None), ("(a) zarr directly, threads=1", z, 1),
-             ("(b) dask.array.from_zarr", da.from_zarr(z), None))
-    for name, src, threads in cases:
+    cases = (("(a) zarr directly", z, None, False), ("(a) zarr directly, threads=1", z, 1, False),
+             ("(b) dask.array.from_zarr", da.from_zarr(z), None, False),
+             ("(b') dask.array.from_zarr through dask's graph", da.from_zarr(z), None, True))
+    for name, src, threads, graph in cases:
         reads.clear()
         base = reset_peak()
-        results[name], t = best(lambda: splinelab.map_coordinates(src, at, order=3, threads=threads), repeats)
+        with dask_graph(graph):
+            results[name], t = best(lambda: splinelab.map_coordinates(src, at, order=3, threads=threads), repeats)
         peak = (rss_kib("VmHWM") - base) / 1024
         got = chunk_reads(reads)
         assert set(got) == want and set(got.values()) == {repeats}, (name, len(got), len(want))
@@ -140,6 +164,7 @@ def main():
     args = p.parse_args()
     import zarr
 
+    print("load average (1, 5, 15 min): {:.2f} {:.2f} {:.2f}".format(*os.getloadavg()))
     with tempfile.TemporaryDirectory() as tmp:
         path = pathlib.Path(args.dir or tmp) / f"a{args.side}_{args.chunk}.zarr"
         z, reads = open_array(zarr, path, args.side, args.chunk)
@@ -159,6 +184,7 @@ def main():
                 t = time.perf_counter() - start
                 print(f"{k} points: (d) scipy: {t_read + t:.2f} s ({t_read:.2f} s read whole + {t:.2f} s), "
                       f"max |splinelab - scipy| {np.abs(ref - v).max():.1e}")
+    print("load average (1, 5, 15 min): {:.2f} {:.2f} {:.2f}".format(*os.getloadavg()))
 
 
 if __name__ == "__main__":
