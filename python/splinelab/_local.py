@@ -259,18 +259,37 @@ def _dask_reader(darr, boxes, grid):
     where it exposes none): the same samples without a dask graph per call,
     about 1 ms of this process' time per chunk part (issue 51's 100 points of
     the 12000^2 zarr array: 82 parts). Else ``darr`` and ``grid`` (any other
-    graph, a lock to honour, or a distributed scheduler: its workers read)."""
-    leaf = _from_array_leaf(darr, {c for box in boxes for c in _touched_by(box, grid)}, grid)
-    if leaf is None:
+    graph, a lock to honour, or a distributed scheduler: its workers read).
+    The leaf comes as a :class:`_Leaf`, read as dask's scheduler read it."""
+    found = _from_array_leaf(darr, {c for box in boxes for c in _touched_by(box, grid)}, grid)
+    if found is None:
         return darr, grid
-    own = chunk_grid(leaf)
+    leaf = _Leaf(*found)
+    own = chunk_grid(found[0])
     return leaf, grid if own is None else own
+
+
+class _Leaf:
+    """The array-like under a plain dask graph (:func:`_dask_reader`), read
+    as dask's scheduler read it (:func:`_read`): on threads under the
+    threaded one (``threaded``: dask calls its lock-free getters from
+    several threads at once, so xarray's lazily indexed zarr variables, for
+    one, decode in parallel as they did), one read after another under the
+    synchronous one."""
+
+    def __init__(self, a, threaded):
+        self.a, self.threaded = a, threaded
+        self.shape, self.dtype, self.ndim = tuple(a.shape), a.dtype, len(a.shape)
+
+    def __getitem__(self, key):
+        return self.a[key]
 
 
 def _from_array_leaf(darr, blocks, grid):
     """The array-like every one of ``blocks`` (chunk indices of ``darr``)
-    is a plain read of, or None (see :func:`_dask_reader`). dask's task
-    objects are read, so a dask that changes them takes its graph (None)."""
+    is a plain read of and whether dask's scheduler is the threaded one, or
+    None (see :func:`_dask_reader`). dask's task objects are read, so a dask
+    that changes them takes its graph (None)."""
     import dask.base
     import dask.local
     import dask.threaded
@@ -282,7 +301,8 @@ def _from_array_leaf(darr, blocks, grid):
         return None
     # The local schedulers run the getters here; distributed's workers may
     # see a store this process does not (and its reads belong to them).
-    if dask.base.get_scheduler(collections=[darr]) not in (dask.threaded.get, dask.local.get_sync):
+    scheduler = dask.base.get_scheduler(collections=[darr])
+    if scheduler not in (dask.threaded.get, dask.local.get_sync):
         return None
     graph = darr.__dask_graph__()
     if not hasattr(graph, "cull"):
@@ -306,7 +326,7 @@ def _from_array_leaf(darr, blocks, grid):
         leaf = ref
     ok = (leaf is not None and (isinstance(leaf, np.ndarray) or is_array_like(leaf))
           and tuple(leaf.shape) == darr.shape and np.dtype(leaf.dtype) == darr.dtype)
-    return leaf if ok else None
+    return (leaf, scheduler is dask.threaded.get) if ok else None
 
 
 def _same_slices(got, want):
@@ -377,14 +397,15 @@ _THREAD_SAFE = ("zarr",)
 def _read(src, keys, threads):
     """``src[key]`` for each of ``keys``: a dask array's in one graph
     (``dask.compute``: each chunk under them computed once), a zarr
-    array's on ``threads`` threads (None: one per core), others' one
-    call after another."""
+    array's (and a :class:`_Leaf` that dask read on threads) on ``threads``
+    threads (None: one per core), others' one call after another."""
     if _is_dask(src):
         import dask
 
         return list(dask.compute(*[src[k] for k in keys])) if keys else []
     workers = min(len(keys), threads or os.cpu_count() or 1)
-    if workers > 1 and type(src).__module__.split(".")[0] in _THREAD_SAFE:
+    pooled = src.threaded if isinstance(src, _Leaf) else type(src).__module__.split(".")[0] in _THREAD_SAFE
+    if workers > 1 and pooled:
         with ThreadPoolExecutor(workers) as pool:
             return list(pool.map(src.__getitem__, keys))
     return [src[k] for k in keys]

@@ -386,3 +386,50 @@ def test_other_dask_graphs_are_computed_by_dask():
     leaf.keys.clear()  # dask's probe of an empty slice for the array's meta
     _route("local", lambda: splinelab.map_coordinates(locked, at, order=3))
     _assert_each_touched_chunk_read_once(a.shape, chunks, boxes.keys, leaf.keys)
+
+
+def test_a_plain_leaf_is_read_as_dask_would_read_it(tmp_path):
+    # The leaf of a plain from_array graph (here a recording array-like, and
+    # xarray's lazily indexed zarr variable) is read with no dask task: on
+    # threads under dask's threaded scheduler (as dask's lock-free getters
+    # were called), on this thread under the synchronous one; each touched
+    # block once; the in-memory bits.
+    import os
+    import threading
+
+    import dask
+    import dask.array as da
+
+    xr = _extra("xarray")
+    _extra("zarr")
+    rng = np.random.default_rng(11)
+    a = rng.standard_normal((400, 300))
+    at = np.stack([rng.uniform(0, 399, 12), rng.uniform(0, 299, 12)])
+    chunks = ((100, 150, 150), (90, 210))
+    want = _route("local", lambda: splinelab.map_coordinates(a, at, order=3))
+    boxes = Recording(a)
+    _route("local", lambda: splinelab.map_coordinates(boxes, at, order=3))
+
+    class Threads(Recording):
+        def __getitem__(self, key):
+            self.where.append(threading.get_ident())
+            return super().__getitem__(key)
+
+    main = threading.get_ident()
+    for scheduler in ("threads", "sync"):
+        leaf = Threads(a)
+        src = da.from_array(leaf, chunks=chunks, asarray=False)
+        leaf.keys.clear()  # dask's probe of an empty slice for the array's meta
+        leaf.where = []
+        with dask.config.set(scheduler=scheduler), _dask_tasks_run() as tasks:
+            np.testing.assert_array_equal(_route("local", lambda: splinelab.map_coordinates(src, at, order=3)), want)
+        assert tasks.n == 0
+        _assert_each_touched_chunk_read_once(a.shape, chunks, boxes.keys, leaf.keys)
+        on_main = {w == main for w in leaf.where}
+        assert on_main == ({True} if scheduler == "sync" or os.cpu_count() == 1 else {False}), scheduler
+    xr.DataArray(a, dims=("y", "x"), name="v").to_dataset().to_zarr(
+        tmp_path / "x.zarr", encoding={"v": {"chunks": (64, 64)}}, consolidated=False)
+    v = xr.open_zarr(tmp_path / "x.zarr", consolidated=False).v.data
+    with _dask_tasks_run() as tasks:
+        np.testing.assert_array_equal(_route("local", lambda: splinelab.map_coordinates(v, at, order=3)), want)
+    assert tasks.n == 0
