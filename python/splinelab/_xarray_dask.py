@@ -507,11 +507,9 @@ def _mode_windows(data, grid, xi, opts, chunked):
     tol = sld.DEFAULT_TOL if opts.tol is None else float(opts.tol)
     fused = sld._Fused(rules.d, opts.mode, sld.depth(rules.d, tol), 1, rules.extent) if rules.d > 1 else None
     spans = []
-    half = (rules.d + 1) // 2 + 2 + (fused.depth if fused is not None else 0)
-    for a in chunked:  # each point's region (rules._span), with the overlap it is filtered with
-        lo = np.maximum(np.floor(x[a]).astype(np.intp) - half, 0)
-        hi = np.minimum(np.ceil(x[a]).astype(np.intp) + half + 1, rules.extent[a])
-        spans.append((a, lo, hi))
+    for a in chunked:  # each point's region, with the overlap it is filtered with (as an output task's)
+        lo, hi = rules.spans(a, x[a], x[a])
+        spans.append((a, *(fused.widened(a, lo, hi) if fused is not None else (lo, hi))))
     order, starts, ends = _chunk_groups(data, spans)
     # scipy's pattern where a prefilter runs: a non-finite sample, its column NaN
     flag = (~da.isfinite(data)).any(axis=tuple(range(ng))) if fused and data.dtype.kind in "fc" else None

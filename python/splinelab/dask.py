@@ -56,6 +56,7 @@ from __future__ import annotations
 import functools
 import inspect
 import itertools
+from typing import NamedTuple
 
 import dask
 import dask.array as da
@@ -67,7 +68,7 @@ from splinelab import _local
 from splinelab._doc import fill
 from splinelab._engine import _Points, _refuse_non_finite, _wrap_axis
 from splinelab._modes import engine_args, filter_mode as _filter_mode, interp_mode as _interp_mode
-from splinelab._ndimage import _axis, _filter
+from splinelab._ndimage import _axis, _filter_with
 from splinelab._resample import _affine_parts, _per_axis, _rotation, _zoom_shift_coordinates
 from splinelab._settings import Settings
 from splinelab._validate import _cval, _degree, _nan_policy, _tol_for
@@ -201,16 +202,20 @@ def _map(darr, axes, order, mode, tol, output, threads, route, nan_policy="propa
     # below run the same recursion under a truncated route).
     local_tol = tol if nan_policy == "local" else None
     block_tol = tol if route == "truncated" or local_tol else None
+    # The settings checked once a call (here, not in every block's task).
+    if zeros_beyond:
+        settings = _BlockSettings.of(order, mode, local_tol, threads, nan_policy, compute)
+    else:
+        conv = Settings.for_filter(order, mode, block_tol, threads, False, nan_policy, compute)
 
     def block(x, block_info=None):
         if not zeros_beyond:
             # The local convolution: a coefficient reads only samples within `n`.
-            return _filter(x, axes, order, dtype, mode, block_tol, threads, convolution=True, nan_policy=nan_policy,
-                           compute=compute)
+            return _filter_array(x, axes, conv, dtype, convolution=True)
         info = block_info[0]
         ends = [(i == 0, i == k - 1) for i, k in zip(info["chunk-location"], info["num-chunks"])]
         whole = [ax for ax in axes if ax not in seamed]
-        return _filter_block(x, seamed, whole, order, mode, d, ends, dtype, local_tol, threads, nan_policy, compute)
+        return _filter_block(x, seamed, whole, d, ends, dtype, settings)
 
     out = darr.map_overlap(block, depth=depths, boundary=boundary, dtype=dtype, meta=np.array((), dtype=dtype))
     if nan_policy != "propagate" or order < 2 or darr.dtype.kind not in "fc":
@@ -221,21 +226,47 @@ def _map(darr, axes, order, mode, tol, output, threads, route, nan_policy="propa
     return da.where(spread, np.asarray(np.nan, dtype), out)
 
 
-def _filter_block(x, seamed, whole, order, mode, d, ends, dtype, tol, threads, nan_policy="propagate",
-                  compute="float64"):
+class _BlockSettings(NamedTuple):
+    """The two filters of :func:`_filter_block`, checked once a call
+    (:meth:`Settings.for_filter`, the checks the filters make) and pickled
+    into its tasks: ``seamed`` ('grid-constant' with exact edges: zeros
+    beyond the read edges), ``whole`` (the mode itself); ``rule``: the
+    mode's filter rule, which extends the array's own edges."""
+
+    seamed: Settings
+    whole: Settings
+    rule: str
+
+    @classmethod
+    def of(cls, order, mode, tol, threads, nan_policy="propagate", compute="float64"):
+        return cls(Settings.for_filter(order, "grid-constant", tol, threads, True, nan_policy, compute),
+                   Settings.for_filter(order, mode, tol, threads, False, nan_policy, compute),
+                   _filter_mode(mode, False))
+
+
+def _filter_array(x, axes, s, dtype, convolution=False):
+    """``splinelab._ndimage._filter`` of a block under the settings ``s``
+    made once a call: the block's own checks (a numeric dtype; ``dtype``
+    against the block's, complex blocks promoted as scipy promotes them),
+    then :func:`splinelab._ndimage._filter_with`."""
+    a = _dt.input_array(x)
+    dtype, _ = _dt.output_dtype(dtype, a.dtype, None, a.dtype.kind == "c")
+    return _filter_with(a, axes, s, dtype, None, convolution)
+
+
+def _filter_block(x, seamed, whole, d, ends, dtype, settings):
     """A block's filter with zeros beyond its read edges: the ``seamed``
     axes, the block's ends that are the array's first extended by ``d``
     samples of the mode's rule (:func:`_pad_ends`), filtered exactly with
     zeros beyond and cropped; then the ``whole`` axes (in one block) under
-    ``mode`` itself. The chunked prefilter's blocks and the fused route's
-    regions (:class:`_Fused`) both."""
-    x, crop = _pad_ends(x, seamed, _filter_mode(mode, False), d, ends)
+    the mode itself (``settings``: :class:`_BlockSettings`). The chunked
+    prefilter's blocks and the fused route's regions (:class:`_Fused`) both."""
+    x, crop = _pad_ends(x, seamed, settings.rule, d, ends)
     # Run with no seamed axis too: it converts the block to ``dtype`` (and
     # applies ``nan_policy``) before the whole axes, as it always has.
-    x = _filter(x, seamed, order, dtype, "grid-constant", tol, threads, exact_edges=True, nan_policy=nan_policy,
-                compute=compute)[crop]
+    x = _filter_array(x, seamed, settings.seamed, dtype)[crop]
     if whole:
-        x = _filter(x, whole, order, dtype, mode, tol, threads, nan_policy=nan_policy, compute=compute)
+        x = _filter_array(x, whole, settings.whole, dtype)
     return x
 
 
@@ -530,18 +561,29 @@ class _Rules:
 
     def _span(self, axis, low, high):
         """The coefficients the windows of points in ``[low, high]`` read."""
+        lo, hi = self.spans(axis, low, high)
+        return int(lo), int(hi)
+
+    def spans(self, axis, low, high):
+        """:meth:`_span` of each pair of ``low`` and ``high`` (arrays or
+        numbers, prepared coordinates): the arrays of ``lo`` and ``hi``."""
         n = self.extent[axis]
+        low, high = np.asarray(low, dtype=np.float64), np.asarray(high, dtype=np.float64)
         if self.d == 0 and self.engine_mode in _FOLDING:
             # Degree 0 folds by its own rule at half-integers (scipy's):
             # the whole axis (one sample per point, cheap).
-            return self._whole(axis)
+            return np.zeros(low.shape, np.intp), np.full(high.shape, n, np.intp)
         m = self.d + 1
-        lo = int(np.floor(low)) - m // 2 - 2
-        hi = int(np.ceil(high)) + m // 2 + 3
-        if self.engine_mode == "grid-wrap" and (lo < 0 or hi > n):
+        # Clipped first so that far points convert to integers without
+        # overflow: a window at 2^52 or beyond lies off the array either way.
+        far = 2.0**52
+        lo = np.floor(np.clip(low, -far, far)).astype(np.intp) - (m // 2 + 2)
+        hi = np.ceil(np.clip(high, -far, far)).astype(np.intp) + (m // 2 + 3)
+        if self.engine_mode == "grid-wrap":
             # A window over an end reads the other end: the whole axis.
-            return self._whole(axis)
-        return max(lo, 0), min(hi, n)
+            over = (lo < 0) | (hi > n)
+            lo, hi = np.where(over, 0, lo), np.where(over, n, hi)
+        return np.maximum(lo, 0), np.minimum(hi, n)
 
 
 _NOT_FINITE = ("a coordinate is not finite: non-finite coordinates are not taken on dask "
@@ -625,9 +667,17 @@ class _Fused:
     def __init__(self, order, mode, depth, threads, extent):
         self.order, self.mode, self.depth, self.threads = order, mode, depth, threads
         self.extent = tuple(extent)
+        # Checked once, pickled into every task (not made per region).
+        self.settings = _BlockSettings.of(order, mode, None, threads)
 
     def reach(self, bounds):
-        return [(max(a - self.depth, 0), min(b + self.depth, n)) for (a, b), n in zip(bounds, self.extent)]
+        """The region ``bounds`` (per axis ``(lo, hi)``) with its overlap."""
+        return [tuple(int(v) for v in self.widened(axis, a, b)) for axis, (a, b) in enumerate(bounds)]
+
+    def widened(self, axis, lo, hi):
+        """:meth:`reach` along ``axis`` of each of the spans ``[lo, hi)``
+        (arrays or numbers)."""
+        return np.maximum(np.subtract(lo, self.depth), 0), np.minimum(np.add(hi, self.depth), self.extent[axis])
 
     def coefficients(self, samples, reach, missing):
         """The coefficients over ``reach`` from its samples: true within the
@@ -638,8 +688,7 @@ class _Fused:
         whole = [ax for ax, ((a, b), n) in enumerate(zip(reach, self.extent)) if a == 0 and b == n]
         seamed = [ax for ax in range(len(reach)) if ax not in whole]
         ends = [(a == 0, b == n) for (a, b), n in zip(reach, self.extent)]
-        x = _filter_block(x, seamed, whole, self.order, self.mode, self.depth, ends, np.dtype(np.float64), None,
-                          self.threads)
+        x = _filter_block(x, seamed, whole, self.depth, ends, np.dtype(np.float64), self.settings)
         if missing:  # scipy's pattern: every coefficient NaN (the chunked filter's global mask)
             x = np.full(x.shape, np.nan)
         return x

@@ -188,6 +188,16 @@ def _count_store_reads(zarr, monkeypatch):
     return reads
 
 
+def _counted_zarr(tmp_path, monkeypatch, a, chunks):
+    """``a`` written to a zarr array in ``chunks``, and the counter of its
+    store's reads (:func:`_count_store_reads`)."""
+    zarr = _extra("zarr")
+    reads = _count_store_reads(zarr, monkeypatch)
+    z = zarr.create_array(store=str(tmp_path / "a.zarr"), shape=a.shape, chunks=chunks, dtype=a.dtype)
+    z[...] = a
+    return z, reads
+
+
 @pytest.mark.parametrize("mode", MODES)
 def test_zarr_h5py_and_dask_give_the_in_memory_bits(tmp_path, mode):
     zarr, h5py = _extra("zarr"), _extra("h5py")
@@ -218,14 +228,11 @@ def test_zarr_chunks_are_decompressed_once_on_the_default_route(tmp_path, monkey
     # 40 cubic points of 1500 x 1200 in 100 x 100 chunks (180 chunks), the
     # default route (the windows, not the whole array): each chunk the
     # windows touch fetched from the store once, the others never.
-    zarr = _extra("zarr")
     import dask.array as da
 
     rng = np.random.default_rng(5)
     a = rng.standard_normal((1500, 1200))
-    reads = _count_store_reads(zarr, monkeypatch)
-    z = zarr.create_array(store=str(tmp_path / "a.zarr"), shape=a.shape, chunks=(100, 100), dtype=a.dtype)
-    z[...] = a
+    z, reads = _counted_zarr(tmp_path, monkeypatch, a, (100, 100))
     at = np.stack([rng.uniform(0, 1499, 40), rng.uniform(0, 1199, 40)])
     want = splinelab.map_coordinates(a, at, order=3)
     boxes = Recording(a)
@@ -298,3 +305,131 @@ def test_interpolant_refuses_bad_settings_as_before(kw, error, message):
     # The classes and messages of the checks before the settings object.
     with pytest.raises(error, match=re.escape(message)):
         splinelab.Interpolant(Recording(np.zeros((20, 20)), (8, 8)), **kw)
+
+
+def _dask_tasks_run():
+    """A dask callback counting the tasks dask's local schedulers run."""
+    from dask.callbacks import Callback
+
+    class Count(Callback):
+        def __init__(self):
+            super().__init__()
+            self.n = 0
+
+        def _pretask(self, key, dsk, state):
+            self.n += 1
+
+    return Count()
+
+
+def test_plain_from_zarr_reads_the_store_directly(tmp_path, monkeypatch):
+    # da.from_zarr, with dask's chunks or coarser ones: its blocks are plain
+    # reads of the zarr array, so the call reads the zarr array itself (no
+    # dask task runs) with zarr's own chunks: each stored chunk the windows
+    # touch fetched once (also where one dask block holds four of them),
+    # the in-memory bits.
+    import dask.array as da
+
+    rng = np.random.default_rng(9)
+    a = rng.standard_normal((600, 500))
+    z, reads = _counted_zarr(tmp_path, monkeypatch, a, (50, 50))
+    at = np.stack([rng.uniform(-2, 601, 30), rng.uniform(-2, 501, 30)])
+    want = splinelab.map_coordinates(a, at, order=3, mode="mirror")
+    boxes = Recording(a)
+    np.testing.assert_array_equal(_route("local", lambda: splinelab.map_coordinates(boxes, at, order=3, mode="mirror")),
+                                  want)
+    touched = {f"c/{c[0][0] // 50}/{c[1][0] // 50}" for c in _touched(a.shape, boxes.keys, (50, 50))}
+    for src in (da.from_zarr(z), da.from_zarr(z, chunks=(100, 100)), da.from_zarr(z, inline_array=True)):
+        reads.clear()
+        with _dask_tasks_run() as tasks:
+            got = _route("local", lambda: splinelab.map_coordinates(src, at, order=3, mode="mirror"))
+            np.testing.assert_array_equal(got, want)
+            chunk_reads = {k: n for k, n in reads.items() if k.startswith("c/")}
+            np.testing.assert_array_equal(splinelab.Interpolant(src, order=3, mode="mirror")(at), want)
+        assert set(chunk_reads) == touched and set(chunk_reads.values()) == {1}, (len(chunk_reads), len(touched))
+        assert tasks.n == 0
+
+
+def test_other_dask_graphs_are_computed_by_dask():
+    # Blocks that are not plain reads of one array-like (arithmetic, a
+    # slice, a lock to honour, a scheduler that is not dask's local one):
+    # dask computes them, each touched block once; the in-memory bits.
+    import dask
+    import dask.array as da
+
+    rng = np.random.default_rng(10)
+    a = rng.standard_normal((300, 260))
+    at = np.stack([rng.uniform(0, 239, 20), rng.uniform(0, 259, 20)])
+    chunks = ((70, 90, 140), (60, 200))
+    runs = []
+
+    def counting_get(dsk, keys, **kw):
+        runs.append(len(keys))
+        return dask.local.get_sync(dsk, keys, **kw)
+
+    leaf = Recording(a)
+    plain = da.from_array(leaf, chunks=chunks, asarray=False)
+    cases = [(da.from_array(a, chunks=chunks) * 1.0, {}), (da.from_array(leaf, chunks=chunks)[:240], {}),
+             (da.from_array(leaf, chunks=chunks, lock=True), {}), (plain, dict(scheduler=counting_get))]
+    for src, config in cases:
+        want = _route("local", lambda: splinelab.map_coordinates(np.asarray(src), at, order=3))
+        leaf.keys.clear()
+        with dask.config.set(**config), _dask_tasks_run() as tasks:
+            got = _route("local", lambda: splinelab.map_coordinates(src, at, order=3))
+        np.testing.assert_array_equal(got, want)
+        assert tasks.n > 0 or runs, src.name
+    assert runs  # the custom scheduler ran the reads
+    # The leaf read through dask's getters: each touched block once.
+    boxes = Recording(np.asarray(plain[:240]))
+    _route("local", lambda: splinelab.map_coordinates(boxes, at, order=3))
+    locked = da.from_array(leaf, chunks=chunks, lock=True)
+    leaf.keys.clear()  # dask's probe of an empty slice for the array's meta
+    _route("local", lambda: splinelab.map_coordinates(locked, at, order=3))
+    _assert_each_touched_chunk_read_once(a.shape, chunks, boxes.keys, leaf.keys)
+
+
+def test_a_plain_leaf_is_read_as_dask_would_read_it(tmp_path):
+    # The leaf of a plain from_array graph (here a recording array-like, and
+    # xarray's lazily indexed zarr variable) is read with no dask task: on
+    # threads under dask's threaded scheduler (as dask's lock-free getters
+    # were called), on this thread under the synchronous one; each touched
+    # block once; the in-memory bits.
+    import os
+    import threading
+
+    import dask
+    import dask.array as da
+
+    xr = _extra("xarray")
+    _extra("zarr")
+    rng = np.random.default_rng(11)
+    a = rng.standard_normal((400, 300))
+    at = np.stack([rng.uniform(0, 399, 12), rng.uniform(0, 299, 12)])
+    chunks = ((100, 150, 150), (90, 210))
+    want = _route("local", lambda: splinelab.map_coordinates(a, at, order=3))
+    boxes = Recording(a)
+    _route("local", lambda: splinelab.map_coordinates(boxes, at, order=3))
+
+    class Threads(Recording):
+        def __getitem__(self, key):
+            self.where.append(threading.get_ident())
+            return super().__getitem__(key)
+
+    main = threading.get_ident()
+    for scheduler in ("threads", "sync"):
+        leaf = Threads(a)
+        src = da.from_array(leaf, chunks=chunks, asarray=False)
+        leaf.keys.clear()  # dask's probe of an empty slice for the array's meta
+        leaf.where = []
+        with dask.config.set(scheduler=scheduler), _dask_tasks_run() as tasks:
+            np.testing.assert_array_equal(_route("local", lambda: splinelab.map_coordinates(src, at, order=3)), want)
+        assert tasks.n == 0
+        _assert_each_touched_chunk_read_once(a.shape, chunks, boxes.keys, leaf.keys)
+        on_main = {w == main for w in leaf.where}
+        assert on_main == ({True} if scheduler == "sync" or os.cpu_count() == 1 else {False}), scheduler
+    xr.DataArray(a, dims=("y", "x"), name="v").to_dataset().to_zarr(
+        tmp_path / "x.zarr", encoding={"v": {"chunks": (64, 64)}}, consolidated=False)
+    v = xr.open_zarr(tmp_path / "x.zarr", consolidated=False).v.data
+    with _dask_tasks_run() as tasks:
+        np.testing.assert_array_equal(_route("local", lambda: splinelab.map_coordinates(v, at, order=3)), want)
+    assert tasks.n == 0

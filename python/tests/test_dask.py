@@ -106,3 +106,62 @@ def test_zero_continuation_blocks_within_bound_whatever_the_chunks(mode, shape, 
         assert err <= sld.bound(order, tol, x.ndim) * np.abs(x).max() + 64 * EPS * np.abs(exact).max(), (order, err)
         if tol == 1e-6:
             assert err > 1e3 * EPS, err
+
+
+@pytest.mark.parametrize("call", [
+    lambda d: sld.spline_filter(d, order=3, mode="mirror"),
+    lambda d: sld.spline_filter(d, order=3, mode="grid-wrap"),  # the convolution's blocks
+    lambda d: sld.spline_filter1d(d, order=5, axis=0, route="recursive"),
+    lambda d: sld.zoom(d, 1.25, order=3, mode="reflect"),  # the fused route's tasks
+])
+def test_filter_settings_are_made_once_a_call(data, monkeypatch, call):
+    # The filters' settings are checked when the graph is built: the same
+    # number of times for 4 blocks as for 64, none in the tasks; the values
+    # those of the unchunked call within the certified bound.
+    from splinelab._settings import Settings
+
+    made = []
+    real = Settings.for_filter.__func__
+
+    def counted(cls, *args, **kwargs):
+        made.append(args)
+        return real(cls, *args, **kwargs)
+
+    monkeypatch.setattr(Settings, "for_filter", classmethod(counted))
+    counts = []
+    for chunks in (N // 2, N // 8):
+        made.clear()
+        lazy = call(da.from_array(data, chunks=chunks))
+        counts.append(len(made))
+        made.clear()
+        got = lazy.compute(scheduler="sync")
+        assert made == [], len(made)
+        np.testing.assert_allclose(got, call(da.from_array(data, chunks=N)).compute(scheduler="sync"), rtol=0,
+                                   atol=sld.bound(5, sld.DEFAULT_TOL, ndim=2) * 8 + 1e-12)
+    assert counts[0] == counts[1] <= 4, counts
+
+
+@pytest.mark.parametrize("mode", ["constant", "nearest", "mirror", "reflect", "wrap", "grid-mirror", "grid-constant",
+                                  "grid-wrap"])
+def test_region_spans_by_the_arithmetic_they_stand_for(mode):
+    # _Rules.spans and _Fused.widened (what the output tasks and the
+    # accessor's mode= windows read) against the windows' arithmetic written
+    # out point by point: `d + 1` coefficients around the point with the
+    # engine's margin of 2 below and 3 above, clamped to the axis (the whole
+    # axis for degree 0 under folding and for grid-wrap over an end), then
+    # the certified overlap `depth` each side, clamped again.
+    rng = np.random.default_rng(19)
+    for d in range(6):
+        for n in (1, 2, 7, 40):
+            rules = sld._Rules(d, mode, 0.0, "float64", (n,), (n,), True)
+            x = np.concatenate([rng.uniform(-5, n + 5, 100), rng.uniform(-1e15, 1e15, 10),
+                                [-0.5, 0.0, n - 1.0, n - 0.5, 2.0**52, -2.0**52]])
+            for depth in (0, 7):
+                lo, hi = sld._Fused(max(d, 2), mode, depth, 1, (n,)).widened(0, *rules.spans(0, x, x))
+                for v, a, b in zip(x, lo, hi):
+                    low, high = int(np.floor(v)) - (d + 1) // 2 - 2, int(np.ceil(v)) + (d + 1) // 2 + 3
+                    whole = ((d == 0 and rules.engine_mode in sld._FOLDING)
+                             or (rules.engine_mode == "grid-wrap" and (low < 0 or high > n)))
+                    low, high = (0, n) if whole else (max(low, 0), min(high, n))
+                    assert (a, b) == (max(low - depth, 0), min(high + depth, n)), (d, n, v)
+                    assert rules._span(0, v, v) == (low, high)
