@@ -174,12 +174,17 @@ class _Grid(_Points):
         values = self.evaluate(a, d, mode, cv, tol, prefilter, threads, deriv, nan_policy=nan_policy, work=work,
                                filter_rule=filter_rule)
         if cval_outside:
-            fill = 0.0 if deriv and any(deriv) else cv
-            grid = values.reshape([len(x) for x in self.flat])
-            for axis, (x, n) in enumerate(zip(self.flat, a.shape)):
-                for where in _outside(np.asarray(x), n):
-                    grid[(slice(None),) * axis + (where,)] = fill
+            self.fill_outside(values.reshape([len(x) for x in self.flat]), a.shape,
+                              0.0 if deriv and any(deriv) else cv)
         return values
+
+    def fill_outside(self, grid, shape, fill):
+        """``fill`` written into the slabs of ``grid`` (the values, shaped
+        as the grid) whose index on some axis lies outside ``[0, n - 1]``
+        of the input's ``shape``."""
+        for axis, (x, n) in enumerate(zip(self.flat, shape)):
+            for where in _outside(np.asarray(x), n):
+                grid[(slice(None),) * axis + (where,)] = fill
 
     def count(self):
         return math.prod(len(x) for x in self.flat)
@@ -289,12 +294,28 @@ def _direct(a, points, s, output):
     if work is None or not (type(cv) is float or type(cv) is int):
         return None
     d, prefilter, tol = s.degree, s.prefilter, s.tol
-    if type(points) is not _Grid and _may_be_local(a.shape, points, d, prefilter, tol):
+    if type(points) is not _Grid and _may_be_local(a, points, d, prefilter, tol):
         return None
     mode, rule, pad = engine_args(s.mode, d, prefilter, s.exact_edges)
     if pad or rule == "wrap":
         return None
     try:
+        if type(points) is _Grid and all(type(x) is np.ndarray and x.dtype == np.float64 for x in points.flat):
+            # zoom's and shift's axes: :meth:`_Grid.run`'s call, without its layers.
+            values = _ext.resample(a, points.flat, d, mode, float(cv), tol, prefilter, [0] * a.ndim, s.threads,
+                                   s.nan_policy, out32=work.out32, f32=False)
+            if rule == "cval-outside":
+                points.fill_outside(values, a.shape, cv)
+            return values
+        if type(points) is _Points and type(points.flat) is np.ndarray and points.flat.dtype == np.float64:
+            # map_coordinates' points: :meth:`_Points.run`'s call, without
+            # its layers (a microsecond of a small call's five).
+            return _ext.map_coordinates(a, points.flat, d, mode, float(cv), tol, prefilter, s.threads, None,
+                                        rule == "cval-outside", s.nan_policy, out32=work.out32, f32=False)
+        if type(points) is _Affine and not points.wrap:
+            # affine_transform's and rotate's map: :meth:`_Affine.run`'s call, without its layers.
+            return _ext.affine(a, points.matrix, points.offset, list(points.out_shape), d, mode, float(cv), tol,
+                               prefilter, points.shift, rule, s.threads, s.nan_policy, out32=work.out32, f32=False)
         return points.run(a, d, mode, float(cv), tol, prefilter, s.threads, None,
                           cval_outside=rule == "cval-outside", nan_policy=s.nan_policy, work=work)
     except _ext.NonFiniteCoordinateError:
@@ -327,17 +348,18 @@ def _map_real(a, flat, s, cv, deriv=None, work=_F64):
 _AFFINE_LOCAL_MAX = 1 << 16
 
 
-def _may_be_local(shape, points, d, prefilter, tol):
-    """Whether the local route may take ``points`` on an in-memory array of
-    ``shape`` (:func:`splinelab._local.may_be_local`; always where the
-    route is forced). Not scattered points of degree 0 or 1 that the engine
-    reads in place (:func:`splinelab._local.in_place_pays`), which no
-    window reads beat."""
+def _may_be_local(a, points, d, prefilter, tol):
+    """Whether the local route may take ``points`` on the in-memory array
+    ``a`` (:func:`splinelab._local.may_be_local`; always where the route is
+    forced). Not scattered points of degree 0 or 1 on a C-contiguous array,
+    which the engine reads in place (:func:`splinelab._local.in_place_pays`)
+    and no window reads beat; a strided view (a broadcast one among them)
+    would be copied whole first, so its windows are read instead."""
     if _local.ROUTE == "local":
         return True
-    if type(points) is _Points and _local.in_place_pays(shape, points.count(), d):
+    if type(points) is _Points and a.flags.c_contiguous and _local.in_place_pays(a.shape, points.count(), d):
         return False
-    return _local.may_be_local(shape, points.count(), d, prefilter, tol)
+    return _local.may_be_local(a.shape, points.count(), d, prefilter, tol)
 
 
 def _local_candidates(points):
@@ -361,7 +383,7 @@ def _map_points(a, points, s, cv, deriv, work=_F64):
     d, mode, prefilter, tol, threads = s.degree, s.mode, s.prefilter, s.tol, s.threads
     nan_policy = s.nan_policy
     flat = None
-    if not work.f32 and (a.dtype == np.float64 or work.out32) and _may_be_local(a.shape, points, d, prefilter, tol):
+    if not work.f32 and (a.dtype == np.float64 or work.out32) and _may_be_local(a, points, d, prefilter, tol):
         flat = _local_candidates(points)
     if flat is not None:
         local = _local.try_map(a, flat, s, cv, deriv)

@@ -566,7 +566,10 @@ def _coordinates(coordinates, ndim):
     infinity stays one through the folds and shifts made here first), so a
     non-finite coordinate is refused with ``ValueError("coordinate k is not
     finite")`` without a serial pass over the array here."""
-    at = _real_array(coordinates, "coordinates").astype(np.float64, copy=False)
+    if type(coordinates) is np.ndarray and coordinates.dtype == np.float64:
+        at = coordinates  # the common call: nothing to convert
+    else:
+        at = _real_array(coordinates, "coordinates").astype(np.float64, copy=False)
     if at.ndim < 1 or at.shape[0] != ndim:
         raise CoordinateShapeError(f"coordinates must have shape ({ndim}, ...), got {at.shape}")
     return at

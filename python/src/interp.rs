@@ -92,12 +92,24 @@ where
 
 /// How degrees 0 and 1 are evaluated where the samples lie (their
 /// coefficients are the samples, whatever `prefilter` or the filter rule
-/// say): values only, where it pays ([`route::in_place_pays`]), and not
+/// say): values only, from a C-ordered array, where it pays
+/// ([`route::in_place_pays`]), and not
 /// under `nan_policy="local"` with a non-finite `cval` (the padded route's
 /// alone, see [`InPlaceOptions`]).
 /// `None`: the interpolant's padded route.
-fn in_place(opts: &Options, deriv: bool, shape: &[usize], points: usize) -> Option<InPlaceOptions> {
+fn in_place<E>(
+    data: &ArrayViewD<'_, E>,
+    opts: &Options,
+    deriv: bool,
+    points: usize,
+) -> Option<InPlaceOptions> {
     let order = SampleOrder::of_degree(opts.degree)?;
+    // A strided view (a zero-stride broadcast among them) would be copied
+    // whole first: the local route reads its windows instead.
+    if !data.is_standard_layout() {
+        return None;
+    }
+    let shape = data.shape();
     let local_cval = opts.nan_policy == NanPolicy::Local && !opts.cval.is_finite();
     let taps = f64::from(opts.degree + 1).powi(shape.len() as i32);
     let pays = route::in_place_pays(shape.iter().product(), points, taps);
@@ -140,7 +152,7 @@ where
     let mut view = result.readwrite();
     let out = view.as_slice_mut()?;
     let deriv = deriv.filter(|d| d.iter().any(|&k| k > 0));
-    let in_place = in_place(&opts, deriv.is_some(), data.shape(), at.ncols());
+    let in_place = in_place(&data, &opts, deriv.is_some(), at.ncols());
     let run = || {
         if let Some(o) = &in_place {
             return map_samples_in_place::<T, E, O>(&data, at.t(), o, rule, out);

@@ -195,3 +195,18 @@ def test_the_common_call_is_scipys_and_the_general_paths_to_the_bit(name, args, 
     np.testing.assert_array_equal(ours, general)
     tol = 1e-4 if x.dtype == np.float32 else 1e-9
     np.testing.assert_allclose(ours, theirs, rtol=0, atol=tol * max(1.0, np.abs(theirs).max()))
+
+
+@pytest.mark.parametrize("order", [0, 1])
+def test_a_broadcast_view_at_few_points_reads_only_their_samples(order):
+    """Degrees 0 and 1 read a C-contiguous array in place; a strided view
+    (here a 40000² zero-stride broadcast, 12.8 GB if copied) is not copied
+    whole to be read in place but takes the local route's windows:
+    scipy's values."""
+    huge = np.broadcast_to(np.arange(40000.0), (40000, 40000))
+    c = np.array([[0.5, 2.25, 100.7, -3.2], [1.0, 30000.5, 2.5, 39999.9]])
+    for mode in ("constant", "mirror", "nearest"):
+        theirs = ndi.map_coordinates(huge, c, order=order, mode=mode)
+        # Degree 1 to rounding (scipy forms the weights otherwise).
+        np.testing.assert_allclose(splinelab.map_coordinates(huge, c, order=order, mode=mode), theirs,
+                                   rtol=0, atol=4e-16 * order * 40000)

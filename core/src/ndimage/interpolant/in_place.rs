@@ -305,11 +305,15 @@ impl<'a, E> Reader<'a, E> {
         E: Sample<T>,
     {
         let m = self.order.taps();
-        let at = |l: usize| taps[l].0.unwrap_or(0);
-        let dot = |base: usize, axis: usize| {
+        // Axis a's taps (offsets) and weights.
+        let axis = |a: usize| {
+            let r = a * m..(a + 1) * m;
+            taps[r.clone()].iter().map(|t| t.0.unwrap_or(0)).zip(&w[r])
+        };
+        let dot = |base: usize, a: usize| {
             let mut sum = T::zero();
-            for l in axis * m..(axis + 1) * m {
-                sum += w[l].clone() * self.read(base + at(l));
+            for (at, wl) in axis(a) {
+                sum += wl.clone() * self.read(base + at);
             }
             sum
         };
@@ -317,19 +321,19 @@ impl<'a, E> Reader<'a, E> {
             1 => dot(0, 0),
             2 => {
                 let mut sum = T::zero();
-                for l0 in 0..m {
-                    sum += w[l0].clone() * dot(at(l0), 1);
+                for (at0, w0) in axis(0) {
+                    sum += w0.clone() * dot(at0, 1);
                 }
                 sum
             }
             3 => {
                 let mut sum = T::zero();
-                for l0 in 0..m {
+                for (at0, w0) in axis(0) {
                     let mut plane = T::zero();
-                    for l1 in m..2 * m {
-                        plane += w[l1].clone() * dot(at(l0) + at(l1), 2);
+                    for (at1, w1) in axis(1) {
+                        plane += w1.clone() * dot(at0 + at1, 2);
                     }
-                    sum += w[l0].clone() * plane;
+                    sum += w0.clone() * plane;
                 }
                 sum
             }
@@ -516,6 +520,57 @@ mod tests {
                     }
                 }
             }
+        }
+    }
+
+    proptest::proptest! {
+        /// Points on half-integers, integers and the edges `0` and `n − 1`
+        /// and a few ulps beside them (the ties, the interior fast paths'
+        /// limits, `−0.0`), inside and far outside, 1 to 4 axes of 1 to 7
+        /// samples, every mode and point rule, degrees 0 and 1: the padded
+        /// route's bits.
+        #[test]
+        fn near_ties_and_edges_equal_the_padded_route(
+            shape in proptest::collection::vec(1usize..8, 1..=4),
+            mode in proptest::sample::select(Mode::ALL.to_vec()),
+            rule in proptest::sample::select(vec![
+                PointRule::Fold, PointRule::CvalOutside, PointRule::WrapPeriodNMinus1,
+            ]),
+            degree in 0u32..=1,
+            ticks in proptest::collection::vec((-40i32..40, -3i32..=3), 4..200),
+        ) {
+            let a = samples(&shape);
+            let nd = shape.len();
+            let count = ticks.len() / nd;
+            let at = Array2::from_shape_fn((count, nd), |(k, ax)| {
+                let (half, ulps) = ticks[k * nd + ax];
+                let n = shape[ax] as f64;
+                // Half-integers around the grid, and its two edges.
+                let x = match half {
+                    -40 => -0.0,
+                    39 => n - 1.0,
+                    h => f64::from(h) / 2.0,
+                };
+                let mut x = x;
+                for _ in 0..ulps.unsigned_abs() {
+                    x = if ulps > 0 { x.next_up() } else { x.next_down() };
+                }
+                x
+            });
+            let opts = Options { cval: 0.375, ..Options::new(degree, mode) };
+            let f = Interpolant::<f64>::new(&a, opts).unwrap();
+            let mut want = vec![0.0; count];
+            f.eval_many_with(at.view(), rule, &mut want).unwrap();
+            let in_place = InPlaceOptions {
+                order: SampleOrder::of_degree(degree).unwrap(),
+                mode,
+                cval: 0.375,
+                nan_policy: NanPolicy::Propagate,
+            };
+            let mut got = vec![0.0f64; count];
+            map_samples_in_place::<f64, _, _>(&a.view(), at.view(), &in_place, rule, &mut got).unwrap();
+            let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+            proptest::prop_assert_eq!(bits(&got), bits(&want));
         }
     }
 
