@@ -93,10 +93,10 @@ def _wrap_coordinates(flat, shape):
 _F64 = _dt.Work("float64", np.float64)
 
 
-def _engine(run, *args, work=_F64, filter_rule=None):
-    """The extension's ``run(*args)`` in ``work``'s arithmetic (float64,
-    float64 or float32 results; or float32) with ``filter_rule``."""
-    return run(*args, out32=work.out32, filter_rule=filter_rule, f32=work.f32)
+def _engine(run, *args, work=_F64, filter_rule=None, **keywords):
+    """The extension's ``run(*args, **keywords)`` in ``work``'s arithmetic
+    (float64, float64 or float32 results; or float32) with ``filter_rule``."""
+    return run(*args, out32=work.out32, filter_rule=filter_rule, f32=work.f32, **keywords)
 
 
 class _Points:
@@ -168,23 +168,12 @@ class _Grid(_Points):
 
     def run(self, a, d, mode, cv, tol, prefilter, threads, deriv, cval_outside=False, nan_policy="propagate",
             work=_F64, filter_rule=None):
-        """As :meth:`_Points.run`; ``cval`` written in place into the slabs
-        of output indices outside ``[0, n - 1]`` on some axis (no mask of
-        the whole output, no second output array)."""
-        values = self.evaluate(a, d, mode, cv, tol, prefilter, threads, deriv, nan_policy=nan_policy, work=work,
-                               filter_rule=filter_rule)
-        if cval_outside:
-            self.fill_outside(values.reshape([len(x) for x in self.flat]), a.shape,
-                              0.0 if deriv and any(deriv) else cv)
-        return values
-
-    def fill_outside(self, grid, shape, fill):
-        """``fill`` written into the slabs of ``grid`` (the values, shaped
-        as the grid) whose index on some axis lies outside ``[0, n - 1]``
-        of the input's ``shape``."""
-        for axis, (x, n) in enumerate(zip(self.flat, shape)):
-            for where in _outside(np.asarray(x), n):
-                grid[(slice(None),) * axis + (where,)] = fill
+        """As :meth:`_Points.run`; ``cval`` (0 for a derivative) written by
+        the engine into the slabs of output indices outside ``[0, n - 1]``
+        on some axis (no mask of the whole output, no second output
+        array)."""
+        return self.evaluate(a, d, mode, cv, tol, prefilter, threads, deriv, cval_outside=cval_outside,
+                             nan_policy=nan_policy, work=work, filter_rule=filter_rule)
 
     def count(self):
         return math.prod(len(x) for x in self.flat)
@@ -193,7 +182,7 @@ class _Grid(_Points):
                  work=_F64, filter_rule=None):
         axes = [np.ascontiguousarray(x, dtype=np.float64) for x in self.flat]
         return _engine(_ext.resample, a, axes, d, mode, cv, tol, prefilter, list(deriv or [0] * a.ndim), threads,
-                       nan_policy, work=work, filter_rule=filter_rule).reshape(-1)
+                       nan_policy, work=work, filter_rule=filter_rule, cval_outside=cval_outside).reshape(-1)
 
     def combine(self, per_axis):
         """Per grid point (C order), whether any axis' flag holds."""
@@ -203,30 +192,6 @@ class _Grid(_Points):
             shape[axis] = -1
             flags = flags | np.asarray(f).reshape(shape)
         return flags.reshape(-1)
-
-
-def _outside(x, n):
-    """The indices of ``x`` (one axis' coordinates) outside ``[0, n - 1]``,
-    as index sets for an assignment. An axis' coordinates are monotone in
-    the index (zoom's and shift's arithmetic, k * z + s and its variants:
-    each rounding is monotone), so its ends bound it (no mask of an axis
-    that lies inside) and, ascending, the points outside are a prefix and a
-    suffix (two slices, found by bisection); a NaN end or a descending axis
-    takes the mask."""
-    if not x.size:
-        return ()
-    first, last, top = x.item(0), x.item(-1), float(n - 1)
-    if 0 <= first <= top and 0 <= last <= top:
-        return ()
-    if first <= last:
-        slabs = []
-        if first < 0:
-            slabs.append(slice(0, int(x.searchsorted(0.0, "left"))))
-        if last > top:
-            slabs.append(slice(int(x.searchsorted(top, "right")), None))
-        return slabs
-    outside = np.flatnonzero((x < 0) | (x > top))
-    return (outside,) if outside.size else ()
 
 
 def _affine_points(m, offsets, out_shape):
@@ -302,11 +267,8 @@ def _direct(a, points, s, output):
     try:
         if type(points) is _Grid and all(type(x) is np.ndarray and x.dtype == np.float64 for x in points.flat):
             # zoom's and shift's axes: :meth:`_Grid.run`'s call, without its layers.
-            values = _ext.resample(a, points.flat, d, mode, float(cv), tol, prefilter, [0] * a.ndim, s.threads,
-                                   s.nan_policy, out32=work.out32, f32=False)
-            if rule == "cval-outside":
-                points.fill_outside(values, a.shape, cv)
-            return values
+            return _ext.resample(a, points.flat, d, mode, float(cv), tol, prefilter, [0] * a.ndim, s.threads,
+                                 s.nan_policy, out32=work.out32, f32=False, cval_outside=rule == "cval-outside")
         if type(points) is _Points and type(points.flat) is np.ndarray and points.flat.dtype == np.float64:
             # map_coordinates' points: :meth:`_Points.run`'s call, without
             # its layers (a microsecond of a small call's five).

@@ -86,12 +86,17 @@ def _zoom_shift_coordinates(out_shape, zooms=None, shifts=None, grid_mode=False)
     ``- 0.5``), in scipy's order of operations."""
     coords = []
     for axis, n in enumerate(out_shape):
-        cc = np.arange(n, dtype=np.float64)
+        cc = np.arange(n, dtype=np.float64)  # new and contiguous: worked in place
         if shifts is not None:
-            cc = cc + shifts[axis]
+            cc += shifts[axis]
         if zooms is not None:
-            cc = (cc + 0.5) * zooms[axis] - 0.5 if grid_mode else cc * zooms[axis]
-        coords.append(np.ascontiguousarray(cc))
+            if grid_mode:
+                cc += 0.5
+                cc *= zooms[axis]
+                cc -= 0.5
+            else:
+                cc *= zooms[axis]
+        coords.append(cc)
     return coords
 
 

@@ -29,6 +29,7 @@ fn resample_generic<'py, T, E, O>(
     how: Coefficients,
     deriv: &[u32],
     threads: Option<usize>,
+    cval_outside: bool,
 ) -> PyResult<Bound<'py, PyAny>>
 where
     T: Real + Copy + Send + Sync,
@@ -50,7 +51,17 @@ where
     let work = work_ns(data.shape(), &opts, how, taps);
     let run = || {
         let f = interpolant::<T, E>(&data, opts, how)?;
-        f.resample_grid_as(&axes, deriv, out)
+        f.resample_grid_as(&axes, deriv, out)?;
+        if cval_outside {
+            // 0 for a derivative, as the constant beyond the grid has.
+            let fill = if deriv.iter().any(|&k| k > 0) {
+                0.0
+            } else {
+                opts.cval
+            };
+            fill_outside(out, &axes, data.shape(), O::store(&T::from_f64_exact(fill)));
+        }
+        Ok(())
     };
     py.detach(|| run_with(threads, work, run))?
         .map_err(engine_error)?;
@@ -58,11 +69,32 @@ where
     Ok(result.into_any())
 }
 
+/// scipy's `constant` on a grid: `fill` in every slab of `out` (the grid's
+/// values, C order) whose coordinate on some axis lies outside `[0, n − 1]`
+/// of the input's `shape` (a NaN coordinate is not outside, as numpy's
+/// comparisons have it).
+fn fill_outside<O: Clone>(out: &mut [O], axes: &[&[f64]], shape: &[usize], fill: O) {
+    let dims: Vec<usize> = axes.iter().map(|x| x.len()).collect();
+    let Ok(mut grid) = ndarray::ArrayViewMutD::from_shape(dims, out) else {
+        return;
+    };
+    for (a, (x, &n)) in axes.iter().zip(shape).enumerate() {
+        let top = n as f64 - 1.0;
+        for (i, &t) in x.iter().enumerate() {
+            if t < 0.0 || t > top {
+                grid.index_axis_mut(ndarray::Axis(a), i).fill(fill.clone());
+            }
+        }
+    }
+}
+
 /// Values of the interpolant of `input` on the grid of per-axis coordinate
 /// vectors: in float64 (float32 results with `out32`), or with `f32` in
-/// float32 from a float32 array.
+/// float32 from a float32 array; with `cval_outside`, `cval` (0 for a
+/// derivative) in the slabs of grid points outside the input on some axis
+/// (scipy's `constant`).
 #[pyfunction]
-#[pyo3(signature = (input, coordinates, degree, mode, cval, tol, prefilter, deriv, threads, nan_policy="propagate", out32=false, filter_rule=None, f32=false))]
+#[pyo3(signature = (input, coordinates, degree, mode, cval, tol, prefilter, deriv, threads, nan_policy="propagate", out32=false, filter_rule=None, f32=false, cval_outside=false))]
 #[allow(clippy::too_many_arguments)]
 pub fn resample<'py>(
     py: Python<'py>,
@@ -79,12 +111,13 @@ pub fn resample<'py>(
     out32: bool,
     filter_rule: Option<&str>,
     f32: bool,
+    cval_outside: bool,
 ) -> PyResult<Bound<'py, PyAny>> {
     let opts = options(degree, mode, cval, tol, nan_policy)?;
     let how = Coefficients::new(prefilter, filter_rule)?;
     let c = &coordinates;
     crate::dispatch_compute!(input, f32, out32, <T, O> a => {
-        resample_generic::<T, _, O>(py, a, c, opts, how, &deriv, threads)
+        resample_generic::<T, _, O>(py, a, c, opts, how, &deriv, threads, cval_outside)
     })
 }
 
