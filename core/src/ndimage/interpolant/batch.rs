@@ -248,27 +248,12 @@ impl<T: Real + Send + Sync> Interpolant<T> {
         rule: PointRule,
         out: &mut [O],
     ) -> Result<(), NdimageError> {
-        if points.ncols() != self.ndim() {
-            return Err(NdimageError::PointDimension {
-                expected: self.ndim(),
-                got: points.ncols(),
-            });
-        }
-        if out.len() != points.nrows() {
-            return Err(NdimageError::BufferLength {
-                expected: points.nrows(),
-                got: out.len(),
-            });
-        }
+        check_points(points, self.ndim(), out.len())?;
         // Each batch checks its points as it reads them; the first
         // non-finite one is named only when one is met.
         let rows = Rows::new(points, rule, &self.shape);
-        self.eval_source(&rows, out).map_err(|e| match e {
-            NdimageError::NonFiniteCoordinate(_) => {
-                first_non_finite(points).map_or(e, NdimageError::NonFiniteCoordinate)
-            }
-            e => e,
-        })
+        self.eval_source(&rows, out)
+            .map_err(|e| name_non_finite(e, points))
     }
 
     /// The points of `src` into `out` (one per element), in parallel over
@@ -521,6 +506,39 @@ where
             O::store_from(&values, chunk);
             Ok(())
         })
+}
+
+/// Points `(count, ndim)` of an array of `ndim` axes, and `out` of one
+/// value per point: else the error a batch evaluation gives.
+pub(super) fn check_points(
+    points: ArrayView2<'_, f64>,
+    ndim: usize,
+    out: usize,
+) -> Result<(), NdimageError> {
+    if points.ncols() != ndim {
+        return Err(NdimageError::PointDimension {
+            expected: ndim,
+            got: points.ncols(),
+        });
+    }
+    if out != points.nrows() {
+        return Err(NdimageError::BufferLength {
+            expected: points.nrows(),
+            got: out,
+        });
+    }
+    Ok(())
+}
+
+/// `e` with a non-finite coordinate named by the first one of `points`
+/// (the chunk that met one named its own).
+pub(super) fn name_non_finite(e: NdimageError, points: ArrayView2<'_, f64>) -> NdimageError {
+    match e {
+        NdimageError::NonFiniteCoordinate(_) => {
+            first_non_finite(points).map_or(e, NdimageError::NonFiniteCoordinate)
+        }
+        e => e,
+    }
 }
 
 /// The flat (row-major) index of the first non-finite coordinate of

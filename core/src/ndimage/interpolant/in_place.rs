@@ -20,7 +20,7 @@
 //! route's nested order from zero
 //! (`in_place.rs::tests::equals_the_padded_route_bit_for_bit`).
 
-use super::batch::store_chunks;
+use super::batch::{check_points, name_non_finite, store_chunks};
 use super::{PointRule, cell_weights_into};
 use crate::ndimage::NdimageError;
 use crate::ndimage::alloc::try_standard_layout;
@@ -126,19 +126,7 @@ where
     E: Sample<T>,
     O: Stored<T>,
 {
-    let ndim = data.ndim();
-    if points.ncols() != ndim {
-        return Err(NdimageError::PointDimension {
-            expected: ndim,
-            got: points.ncols(),
-        });
-    }
-    if out.len() != points.nrows() {
-        return Err(NdimageError::BufferLength {
-            expected: points.nrows(),
-            got: out.len(),
-        });
-    }
+    check_points(points, data.ndim(), out.len())?;
     if data.is_empty() {
         return Err(NdimageError::Empty);
     }
@@ -156,14 +144,7 @@ where
         let rows = points.slice(s![start..start + values.len(), ..]);
         reader.eval_rows(rows, rule, values)
     })
-    .map_err(|e| match e {
-        // A chunk names its own first; the first of all is named here.
-        NdimageError::NonFiniteCoordinate(_) => points
-            .iter()
-            .position(|x| !x.is_finite())
-            .map_or(e, NdimageError::NonFiniteCoordinate),
-        e => e,
-    })
+    .map_err(|e| name_non_finite(e, points))
 }
 
 /// One sample a point reads along one axis: its offset in the C-ordered
