@@ -5,7 +5,8 @@ the interpolant and the dask wrappers all ask here)."""
 
 from __future__ import annotations
 
-from ._validate import _mode
+from . import _splinelab as _ext
+from ._validate import MAX_DEGREE, _mode
 from .errors import ModeError
 
 #: The filter scipy's spline_filter1d applies under each mode (ni_splines.c
@@ -59,11 +60,19 @@ def engine_args(mode, d, prefilter, exact_edges):
     degrees 2 to 5 with the prefilter (and without ``exact_edges``) scipy's
     route, the samples padded by 12 and filtered with scipy's rule
     (:data:`SCIPY_FILTER_RULE`), the point moved by 12; every other mode
-    the engine's own, points folded ('fold')."""
-    if mode == "constant":
-        return "mirror", "cval-outside", 0
-    if mode == "wrap":
-        return "mirror", "wrap", 0
-    if mode in EXACT_EDGES and prefilter and 1 < d <= 5 and not exact_edges:
-        return mode, "fold", 12
-    return mode, "fold", 0
+    the engine's own, points folded ('fold'), by its canonical name
+    ('grid-mirror' is 'reflect'). The engine's mapping
+    (``python/src/scipy_mode.rs``, which its one-step common call takes
+    too), asked once per setting at import (:data:`_ENGINE_ARGS`): a
+    small call makes no call into the engine but its evaluation."""
+    try:
+        return _ENGINE_ARGS[mode, d, bool(prefilter), bool(exact_edges)]
+    except (KeyError, TypeError):
+        raise ValueError(f"unknown mode {mode!r} or degree {d!r}") from None
+
+
+#: :func:`engine_args` of every scipy mode, degree, prefilter and
+#: ``exact_edges``, from the engine.
+_ENGINE_ARGS = {(m, d, p, e): _ext.engine_args(m, d, p, e)
+                for m in SCIPY_FILTER_RULE for d in range(MAX_DEGREE + 1) for p in (False, True)
+                for e in (False, True)}

@@ -419,6 +419,13 @@ def map_coordinates(
     >>> bool(abs(d[0] - 2.0) < 1e-8)
     True
     """
+    if output is None and derivative is None and tol is DEFAULT_TOL and exact_edges is False and _local.ROUTE == "auto":
+        # The common call in one step: the engine recognises it from the
+        # arguments as given (exact types) and evaluates it, or says None.
+        values = _ext.map_coordinates_common(input, coordinates, order, mode, cval, prefilter, threads, nan_policy,
+                                             compute)
+        if values is not None:
+            return values
     prefilter = _flag(prefilter, "prefilter")
     at = _coordinates(coordinates, np.ndim(input))
     shape = at.shape[1:]

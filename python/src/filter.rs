@@ -22,7 +22,6 @@
 //! the pool first.
 
 use crate::error::{engine_error, value_error};
-use crate::pool::run_with;
 use ndarray::{ArrayView1, ArrayViewD, ArrayViewMut1, ArrayViewMutD};
 use numpy::{Element, PyReadwriteArrayDyn};
 use pyo3::prelude::*;
@@ -252,20 +251,16 @@ where
         let f = spec.line_filter::<T>().ok().flatten()?;
         BlockPrefilter::from_line_filter(&f).filter(|b| b.pays_off(out.len()))
     };
-    let work = if one_line(out.shape(), out.len(), &axes) && blocks().is_none() {
-        // One thread's work whatever the pool.
-        0.0
-    } else {
-        global_ns(out.len(), axes.len(), true)
-    };
+    let work = global_ns(out.len(), axes.len(), true);
+    let single = one_line(out.shape(), out.len(), &axes) && blocks().is_none();
     let threads = match threads {
-        Some(n) if n > 0 && work == 0.0 => None,
+        Some(0) => Some(0), // refused by the pool, as before
+        // One thread's work whatever the pool.
+        _ if single => Some(1),
         t => t,
     };
-    py.detach(|| {
-        run_with(threads, work, || {
-            filter_into::<T, E, O>(src, &mut out, &axes, &spec)
-        })
+    crate::pool::run_detached(py, threads, work, || {
+        filter_into::<T, E, O>(src, &mut out, &axes, &spec)
     })?
     .map_err(engine_error)
 }

@@ -65,8 +65,7 @@ fn results<'py>(
     let out = crate::alloc::zeros::<f64>(py, &[n, m])?;
     let mut view = out.readwrite();
     let slice = view.as_slice_mut()?;
-    py.detach(|| run_with(threads, work, || fill(slice)))?
-        .map_err(grid_error)?;
+    crate::pool::run_detached(py, threads, work, || fill(slice))?.map_err(grid_error)?;
     drop(view);
     Ok(out.into_any())
 }
@@ -155,18 +154,14 @@ impl GridSpline {
         let built = match Values::extract(values)? {
             Values::F64(v) => {
                 let v = v.as_array();
-                py.detach(|| {
-                    run_with(threads, work, || {
-                        gridded::GridSpline::interpolate(nodes, v, degree)
-                    })
+                crate::pool::run_detached(py, threads, work, || {
+                    gridded::GridSpline::interpolate(nodes, v, degree)
                 })?
             }
             Values::F32(v) => {
                 let v = v.as_array();
-                py.detach(|| {
-                    run_with(threads, work, || {
-                        gridded::GridSpline::interpolate(nodes, v, degree)
-                    })
+                crate::pool::run_detached(py, threads, work, || {
+                    gridded::GridSpline::interpolate(nodes, v, degree)
                 })?
             }
         };

@@ -14,16 +14,20 @@
 //! with `cval_outside`, `cval` at points outside the grid (scipy's 'constant').
 
 use crate::error::{engine_error, value_error};
-use crate::pool::run_with;
-use ndarray::ArrayViewD;
-use numpy::{Element, PyArrayMethods, PyReadonlyArray2};
+use crate::scipy_mode::{EngineArgs, engine_args};
+use ndarray::{ArrayView2, ArrayViewD};
+use numpy::{Element, PyArrayDyn, PyArrayMethods, PyReadonlyArray2, PyUntypedArray};
 use pyo3::prelude::*;
+use pyo3::type_object::{PyTypeCheck, PyTypeInfo};
+use pyo3::types::{PyBool, PyFloat, PyInt, PyString};
 use splinelab::ndimage::interpolant::{
     InPlaceOptions, PointRule, SampleOrder, map_samples_in_place,
 };
 use splinelab::ndimage::local::route::{self, global_ns};
 use splinelab::ndimage::samples::{Sample, Stored};
+use splinelab::ndimage::spline_order;
 use splinelab::prelude::*;
+use splinelab_reports::threads::MAX_THREADS;
 
 pub(crate) fn options(
     degree: u32,
@@ -122,12 +126,14 @@ fn in_place<E>(
 }
 
 /// The values (or the partial derivative `deriv`) at the columns of
-/// `coordinates`, in a new array of `O` (numpy's allocation).
+/// `at`, in a new array of `O` and of `out_shape` (numpy's allocation;
+/// as many elements as columns).
 #[allow(clippy::too_many_arguments)]
 fn map_generic<'py, T, E, O>(
     py: Python<'py>,
     data: ArrayViewD<'_, E>,
-    coordinates: &PyReadonlyArray2<'py, f64>,
+    at: ArrayView2<'_, f64>,
+    out_shape: &[usize],
     opts: Options,
     how: Coefficients,
     threads: Option<usize>,
@@ -139,7 +145,6 @@ where
     E: Sample<T>,
     O: Stored<T> + Element,
 {
-    let at = coordinates.as_array();
     // scipy's 'constant': cval outside the grid, decided per point in the
     // parallel evaluation (not by passes over the points in numpy after it).
     let rule = if cval_outside {
@@ -148,7 +153,7 @@ where
         PointRule::Fold
     };
     // numpy's allocation: a result it cannot allocate is `MemoryError`.
-    let result = crate::alloc::zeros::<O>(py, &[at.ncols()])?;
+    let result = crate::alloc::zeros::<O>(py, out_shape)?;
     let mut view = result.readwrite();
     let out = view.as_slice_mut()?;
     let deriv = deriv.filter(|d| d.iter().any(|&k| k > 0));
@@ -170,8 +175,7 @@ where
         Some(_) => taps,
         None => work_ns(data.shape(), &opts, how, taps),
     };
-    py.detach(|| run_with(threads, work, run))?
-        .map_err(engine_error)?;
+    crate::pool::run_detached(py, threads, work, run)?.map_err(engine_error)?;
     drop(view);
     Ok(result.into_any())
 }
@@ -202,9 +206,10 @@ pub fn map_coordinates<'py>(
 ) -> PyResult<Bound<'py, PyAny>> {
     let opts = options(degree, mode, cval, tol, nan_policy)?;
     let how = Coefficients::new(prefilter, filter_rule)?;
-    let c = &coordinates;
+    let at = coordinates.as_array();
+    let shape = [at.ncols()];
     crate::dispatch_compute!(input, f32, out32, <T, O> a => {
-        map_generic::<T, _, O>(py, a, c, opts, how, threads, deriv, cval_outside)
+        map_generic::<T, _, O>(py, a, at.view(), &shape, opts, how, threads, deriv, cval_outside)
     })
 }
 
@@ -215,4 +220,195 @@ pub fn map_coordinates<'py>(
 pub fn in_place_pays(shape: Vec<usize>, points: usize, degree: u32) -> bool {
     let taps = f64::from(degree.saturating_add(1)).powi(shape.len() as i32);
     degree <= 1 && route::in_place_pays(shape.iter().product(), points, taps)
+}
+
+/// The common call of `splinelab.map_coordinates`, recognised from its
+/// arguments as Python passed them: an int `order` the engine takes, one
+/// of scipy's mode names that needs no padding or moving of the points
+/// (not 'wrap'; not scipy's padded route for 'nearest' / 'grid-constant'),
+/// a float or int `cval`, a bool `prefilter`, `threads` None or an int in
+/// range, `nan_policy="propagate"`, `compute="float64"`. Exact types only:
+/// anything else is the Python layer's to check (its checks raise what
+/// scipy raises; here nothing is refused).
+struct CommonCall {
+    degree: u32,
+    args: EngineArgs,
+    cval: f64,
+    prefilter: bool,
+    threads: Option<usize>,
+}
+
+impl CommonCall {
+    #[allow(clippy::too_many_arguments)]
+    fn recognise(
+        order: &Bound<'_, PyAny>,
+        mode: &Bound<'_, PyAny>,
+        cval: &Bound<'_, PyAny>,
+        prefilter: &Bound<'_, PyAny>,
+        threads: &Bound<'_, PyAny>,
+        nan_policy: &Bound<'_, PyAny>,
+        compute: &Bound<'_, PyAny>,
+    ) -> Option<Self> {
+        let degree = exact::<PyInt>(order)?.extract::<u32>().ok()?;
+        spline_order(degree).ok()?;
+        let prefilter = exact::<PyBool>(prefilter)?.is_true();
+        let args = engine_args(
+            exact::<PyString>(mode)?.to_str().ok()?,
+            degree,
+            prefilter,
+            false,
+        )?;
+        if args.pad != 0 || args.rule == PointRule::WrapPeriodNMinus1 {
+            return None;
+        }
+        let cval = match exact::<PyFloat>(cval) {
+            Some(v) => v.value(),
+            None => exact::<PyInt>(cval)?.extract::<i64>().ok()? as f64,
+        };
+        let threads = match threads.is_none() {
+            true => None,
+            false => {
+                let n = exact::<PyInt>(threads)?.extract::<usize>().ok()?;
+                // Out of range: the Python layer's refusal.
+                Some(n).filter(|n| (1..=MAX_THREADS).contains(n))?;
+                Some(n)
+            }
+        };
+        let is = |s: &Bound<'_, PyAny>, value: &str| {
+            exact::<PyString>(s).is_some_and(|s| s.to_str().is_ok_and(|s| s == value))
+        };
+        if !is(nan_policy, "propagate") || !is(compute, "float64") {
+            return None;
+        }
+        Some(CommonCall {
+            degree,
+            args,
+            cval,
+            prefilter,
+            threads,
+        })
+    }
+
+    /// The values at the points `coordinates` (`(ndim, ...)`, C-ordered) of
+    /// the non-empty samples `data` (any strides: a strided view is read
+    /// in place by neither route, [`in_place`]), of `coordinates.shape[1:]`
+    /// in `O` (the samples' dtype); `None` where the local route may read
+    /// less ([`may_be_local`], the Python layer's to route) or where the
+    /// engine refuses the call (the Python layer's to answer as scipy).
+    fn run<'py, E, O>(
+        &self,
+        py: Python<'py>,
+        data: ArrayViewD<'_, E>,
+        coordinates: ArrayViewD<'_, f64>,
+    ) -> Option<Bound<'py, PyAny>>
+    where
+        E: Sample<f64>,
+        O: Stored<f64> + Element,
+    {
+        let ndim = data.ndim();
+        if !coordinates.is_standard_layout()
+            || data.is_empty()
+            || coordinates.shape().first() != Some(&ndim)
+        {
+            return None;
+        }
+        let out_shape = coordinates.shape().get(1..)?.to_vec();
+        let k: usize = out_shape.iter().product();
+        let at = coordinates.into_shape_with_order((ndim, k)).ok()?;
+        let mut opts = Options::new(self.degree, self.args.mode);
+        opts.cval = self.cval;
+        let filtered = self.prefilter && self.degree >= 2;
+        if in_place(&data, &opts, false, k).is_none()
+            && may_be_local(data.shape(), k, self.degree, filtered)
+        {
+            return None;
+        }
+        let how = Coefficients::new(self.prefilter, None).ok()?;
+        let outside = self.args.rule == PointRule::CvalOutside;
+        map_generic::<f64, E, O>(
+            py,
+            data,
+            at,
+            &out_shape,
+            opts,
+            how,
+            self.threads,
+            None,
+            outside,
+        )
+        .ok()
+    }
+}
+
+/// `value` where its type is exactly `T` (not a subclass: numpy's scalars,
+/// bools for ints, str subclasses are the Python layer's to check).
+fn exact<'a, 'py, T: PyTypeCheck + PyTypeInfo>(
+    value: &'a Bound<'py, PyAny>,
+) -> Option<&'a Bound<'py, T>> {
+    value
+        .is_exact_instance_of::<T>()
+        .then(|| value.cast::<T>().ok())
+        .flatten()
+}
+
+/// Whether the local route may read less than the global one for `k`
+/// points on an array of `shape` at the default `tol`: the floor of its
+/// cost ([`floor_ns`]) below the global route's ([`global_ns`]), as
+/// `LocalPlan::new_if_local` decides first and `splinelab._local.may_be_local`
+/// decides in Python. True where the half-width is unknown (the Python
+/// layer then decides).
+fn may_be_local(shape: &[usize], k: usize, degree: u32, filtered: bool) -> bool {
+    let global = global_ns(shape.iter().product(), shape.len(), filtered);
+    if route::locate_ns(k) >= global {
+        return false;
+    }
+    let n = match filtered {
+        true => match crate::local::default_half_width(degree) {
+            Some(n) => Some(n),
+            None => return true,
+        },
+        false => None,
+    };
+    route::floor_ns(shape.len(), degree, n, k) < global
+}
+
+/// `splinelab.map_coordinates`'s common call in one step (issue 50):
+/// float64 or float32 arrays (exactly `numpy.ndarray`) of samples (any
+/// strides) and of float64 coordinates `(ndim, ...)` (C-ordered), the settings of
+/// [`CommonCall`]; the values in a new array of the samples' dtype and of
+/// `coordinates.shape[1:]`, as the full call gives them (the same engine
+/// call: the interpolant, or degrees 0 and 1 read in place). `None` for
+/// any other call, and where the local route may pay or the engine refuses
+/// the call: the Python layer then checks, routes and answers it. The
+/// caller has checked the arguments this does not take (`output`,
+/// `derivative`, `tol`, `exact_edges`, the forced route).
+#[pyfunction]
+#[allow(clippy::too_many_arguments)]
+pub fn map_coordinates_common<'py>(
+    py: Python<'py>,
+    input: &Bound<'py, PyAny>,
+    coordinates: &Bound<'py, PyAny>,
+    order: &Bound<'py, PyAny>,
+    mode: &Bound<'py, PyAny>,
+    cval: &Bound<'py, PyAny>,
+    prefilter: &Bound<'py, PyAny>,
+    threads: &Bound<'py, PyAny>,
+    nan_policy: &Bound<'py, PyAny>,
+    compute: &Bound<'py, PyAny>,
+) -> Option<Bound<'py, PyAny>> {
+    let call = CommonCall::recognise(order, mode, cval, prefilter, threads, nan_policy, compute)?;
+    exact::<PyUntypedArray>(input)?;
+    exact::<PyUntypedArray>(coordinates)?;
+    let points = coordinates
+        .cast::<PyArrayDyn<f64>>()
+        .ok()?
+        .try_readonly()
+        .ok()?;
+    let at = points.as_array();
+    if let Ok(a) = input.cast::<PyArrayDyn<f64>>() {
+        call.run::<f64, f64>(py, a.try_readonly().ok()?.as_array(), at)
+    } else {
+        let a = input.cast::<PyArrayDyn<f32>>().ok()?.try_readonly().ok()?;
+        call.run::<f32, f32>(py, a.as_array(), at)
+    }
 }

@@ -30,6 +30,7 @@ mod pages;
 mod pool;
 mod resample;
 mod samples;
+mod scipy_mode;
 mod width;
 
 use pyo3::prelude::*;
@@ -66,6 +67,8 @@ fn _splinelab(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(filter::filter_bound, m)?)?;
     m.add_function(wrap_pyfunction!(interp::map_coordinates, m)?)?;
     m.add_function(wrap_pyfunction!(interp::in_place_pays, m)?)?;
+    m.add_function(wrap_pyfunction!(interp::map_coordinates_common, m)?)?;
+    m.add_function(wrap_pyfunction!(scipy_mode::engine_args_py, m)?)?;
     m.add_function(wrap_pyfunction!(local::local_map_f64, m)?)?;
     m.add_function(wrap_pyfunction!(local::local_map_f32, m)?)?;
     m.add_function(wrap_pyfunction!(local::local_route_cost, m)?)?;

@@ -11,7 +11,7 @@
 
 use crate::error::{engine_error, value_error};
 use crate::pool::{parallel, run_with};
-use crate::resample::point_rule;
+use crate::scipy_mode::point_rule;
 use numpy::{
     Element, IntoPyArray, PyArray1, PyReadonlyArray1, PyReadonlyArray2, PyReadonlyArrayDyn,
 };
@@ -20,6 +20,8 @@ use splinelab::ndimage::local::route::{C_POINT, locate_ns};
 use splinelab::ndimage::local::{LocalInterpolant, LocalOptions, LocalPlan, LocalSpec};
 use splinelab::ndimage::samples::{Blocks, Sample, SampleSource, Stored};
 use splinelab::prelude::*;
+use std::collections::HashMap;
+use std::sync::{Mutex, OnceLock};
 
 /// The local route's options from the Python layer's arguments.
 #[allow(clippy::too_many_arguments)]
@@ -177,6 +179,20 @@ pub fn local_half_width(degree: u32, tol: Option<f64>) -> PyResult<usize> {
     let opts = local_options(degree, "mirror", 0.0, tol, "propagate", true, 0)?;
     let spec = LocalSpec::<f64>::new(&[1], opts).map_err(engine_error)?;
     Ok(spec.half_width())
+}
+
+/// [`local_half_width`] of `degree` at the default `tol`, kept per degree
+/// (a `LocalSpec` per call would cost a small call a microsecond); `None`
+/// where the engine refuses the degree.
+pub(crate) fn default_half_width(degree: u32) -> Option<usize> {
+    static KEPT: OnceLock<Mutex<HashMap<u32, usize>>> = OnceLock::new();
+    let kept = KEPT.get_or_init(|| Mutex::new(HashMap::new()));
+    if let Some(&n) = kept.lock().ok()?.get(&degree) {
+        return Some(n);
+    }
+    let n = local_half_width(degree, None).ok()?;
+    kept.lock().ok()?.insert(degree, n);
+    Some(n)
 }
 
 /// `(k, ndim)` non-negative indices (numpy's `intp`) as a flat `usize` list.

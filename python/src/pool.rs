@@ -125,11 +125,33 @@ pub fn run_with<R: Send>(
     f: impl FnOnce() -> R + Send,
 ) -> PyResult<R> {
     match threads {
-        Some(1) => Ok(inline(f)),
-        None if work_ns <= SMALL_NS => Ok(inline(f)),
+        _ if runs_inline(threads, work_ns) => Ok(inline(f)),
         None => Ok(parallel(f)),
         Some(n) => Ok(pool(n)?.install(f)),
     }
+}
+
+/// [`run_with`] from Python: a small call ([`SMALL_NS`] or less, which
+/// runs on the calling thread) keeps the GIL, since releasing and taking
+/// it back costs a tenth of its arithmetic (issue 50); any other releases
+/// it while it works, so that Python threads (dask's threaded scheduler
+/// among them) run their calls at once, also with `threads=1`.
+pub fn run_detached<R: Send>(
+    py: pyo3::Python<'_>,
+    threads: Option<usize>,
+    work_ns: f64,
+    f: impl FnOnce() -> R + Send,
+) -> PyResult<R> {
+    if work_ns <= SMALL_NS && runs_inline(threads, work_ns) {
+        Ok(inline(f))
+    } else {
+        py.detach(|| run_with(threads, work_ns, f))
+    }
+}
+
+/// Whether [`run_with`] runs on the calling thread.
+fn runs_inline(threads: Option<usize>, work_ns: f64) -> bool {
+    matches!(threads, Some(1)) || (threads.is_none() && work_ns <= SMALL_NS)
 }
 
 /// Workers of one pool on different CPUs. Why: a call from Python wakes

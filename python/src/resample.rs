@@ -8,9 +8,9 @@
 //! results (`out32`, each rounded once), or with `f32` float32 samples in
 //! float32 (the `compute="float32"` opt-in).
 
-use crate::error::{engine_error, value_error};
+use crate::error::engine_error;
 use crate::interp::{Coefficients, interpolant, options, work_ns};
-use crate::pool::run_with;
+use crate::scipy_mode::point_rule;
 use ndarray::ArrayViewD;
 use numpy::{Element, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2};
 use pyo3::prelude::*;
@@ -63,8 +63,7 @@ where
         }
         Ok(())
     };
-    py.detach(|| run_with(threads, work, run))?
-        .map_err(engine_error)?;
+    crate::pool::run_detached(py, threads, work, run)?.map_err(engine_error)?;
     drop(view);
     Ok(result.into_any())
 }
@@ -118,16 +117,6 @@ pub fn resample<'py>(
     let c = &coordinates;
     crate::dispatch_compute!(input, f32, out32, <T, O> a => {
         resample_generic::<T, _, O>(py, a, c, opts, how, &deriv, threads, cval_outside)
-    })
-}
-
-/// A point rule by the Python layer's name.
-pub(crate) fn point_rule(rule: &str) -> PyResult<PointRule> {
-    Ok(match rule {
-        "fold" => PointRule::Fold,
-        "cval-outside" => PointRule::CvalOutside,
-        "wrap" => PointRule::WrapPeriodNMinus1,
-        other => return Err(value_error(format!("unknown point rule {other:?}"))),
     })
 }
 
@@ -185,8 +174,7 @@ where
         let m = map;
         f.resample_affine_as(m.matrix, m.offset, &m.out_shape, m.shift, m.rule, out)
     };
-    py.detach(|| run_with(threads, work, run))?
-        .map_err(engine_error)?;
+    crate::pool::run_detached(py, threads, work, run)?.map_err(engine_error)?;
     drop(view);
     Ok(result.into_any())
 }

@@ -126,11 +126,16 @@ def _small_calls():
     x, x3 = rng.normal(size=(16, 16)), rng.normal(size=(8, 8, 8))
     pts = rng.uniform(0, 15, (2, 25))
     rot = np.array([[0.9, 0.3], [-0.3, 0.9]])
-    yield "map_coordinates", lambda o: splinelab.map_coordinates(x, pts, order=o), "map_coordinates"
-    yield "map_coordinates 1 point", lambda o: splinelab.map_coordinates(x[:8, :8], [[3.3], [4.6]], order=o), \
-        "map_coordinates"
+    yield "map_coordinates", lambda o: splinelab.map_coordinates(x, pts, order=o), "map_coordinates_common"
+    small = x[:8, :8].copy()
+    yield "map_coordinates 1 point", lambda o: splinelab.map_coordinates(small, np.array([[3.3], [4.6]]), order=o), \
+        "map_coordinates_common"
+    yield "map_coordinates view", lambda o: splinelab.map_coordinates(x[:8, 3:11], pts / 2, order=o), \
+        "map_coordinates_common"
+    yield "map_coordinates list", lambda o: splinelab.map_coordinates(small, [[3.3], [4.6]], order=o), \
+        "map_coordinates_common map_coordinates"
     yield "map_coordinates float32", lambda o: splinelab.map_coordinates(x.astype(np.float32), pts, order=o), \
-        "map_coordinates"
+        "map_coordinates_common"
     yield "affine_transform", lambda o: splinelab.affine_transform(x, rot, (0.7, -0.2), order=o), "affine"
     yield "rotate", lambda o: splinelab.rotate(x, 30, order=o), "affine"
     yield "shift", lambda o: splinelab.shift(x, 0.3, order=o), "resample"
@@ -145,7 +150,7 @@ def _small_calls():
 @pytest.mark.parametrize("name, call, engine", list(_small_calls()), ids=[c[0] for c in _small_calls()])
 def test_a_small_call_makes_one_engine_call_the_evaluation(engine_calls, name, call, engine, order):
     call(order)
-    assert engine_calls == [engine]
+    assert engine_calls == engine.split()
 
 
 @pytest.mark.parametrize("order", [0, 1])
@@ -210,3 +215,125 @@ def test_a_broadcast_view_at_few_points_reads_only_their_samples(order):
         # Degree 1 to rounding (scipy forms the weights otherwise).
         np.testing.assert_allclose(splinelab.map_coordinates(huge, c, order=order, mode=mode), theirs,
                                    rtol=0, atol=4e-16 * order * 40000)
+
+
+# scipy's interpolation modes as the engine evaluates them, written out from
+# scipy 1.17's ni_interpolation.c / _interpolation.py: 'constant' gives cval
+# outside [0, n - 1] and the mirror spline inside; 'wrap' moves points by
+# n - 1; 'nearest' and 'grid-constant' pad 12 samples at degrees 2..5 with
+# the prefilter (NI_GeometricTransform's npad); the rest fold.
+_SCIPY_MODES = {
+    "constant": ("mirror", "cval-outside"), "wrap": ("mirror", "wrap"), "mirror": ("mirror", "fold"),
+    "reflect": ("reflect", "fold"), "grid-mirror": ("reflect", "fold"), "grid-wrap": ("grid-wrap", "fold"),
+    "nearest": ("nearest", "fold"), "grid-constant": ("grid-constant", "fold"),
+}
+
+
+@pytest.mark.parametrize("mode", MODES)
+@pytest.mark.parametrize("d", [0, 1, 2, 3, 5, 6, 9])
+@pytest.mark.parametrize("prefilter", [True, False])
+@pytest.mark.parametrize("exact_edges", [True, False])
+def test_engine_args_are_scipys_modes(mode, d, prefilter, exact_edges):
+    padded = mode in ("nearest", "grid-constant") and prefilter and 2 <= d <= 5 and not exact_edges
+    assert _local.engine_args(mode, d, prefilter, exact_edges) == (*_SCIPY_MODES[mode], 12 if padded else 0)
+
+
+def test_engine_args_refuse_an_unknown_mode():
+    with pytest.raises(ValueError, match="unknown mode"):
+        _local.engine_args("edge", 3, True, False)
+
+
+def _outcome(call):
+    try:
+        v = call()
+    except Exception as e:  # noqa: BLE001 (the class and message are compared)
+        return type(e), str(e)
+    return v.dtype, v.shape, v.tobytes()
+
+
+_X = np.random.default_rng(11).normal(size=(9, 7))
+_PTS = np.random.default_rng(12).uniform(-2, 9, (2, 3, 4))
+_ODD_CALLS = {
+    "points (2, 3, 4)": lambda: splinelab.map_coordinates(_X, _PTS, order=1),
+    "one point (2,)": lambda: splinelab.map_coordinates(_X, np.array([2.5, 3.25]), order=3),
+    "float32": lambda: splinelab.map_coordinates(_X.astype(np.float32), _PTS, order=3, mode="reflect"),
+    "int cval": lambda: splinelab.map_coordinates(_X, _PTS, order=1, cval=2),
+    "huge int cval": lambda: splinelab.map_coordinates(_X, _PTS, order=1, cval=10**400),
+    "numpy cval": lambda: splinelab.map_coordinates(_X, _PTS, order=1, cval=np.float32(0.5)),
+    "bool cval": lambda: splinelab.map_coordinates(_X, _PTS, order=1, cval=True),
+    "complex cval": lambda: splinelab.map_coordinates(_X, _PTS, order=1, cval=0j),
+    "nan cval": lambda: splinelab.map_coordinates(_X, _PTS, order=0, cval=np.nan),
+    "float order": lambda: splinelab.map_coordinates(_X, _PTS, order=1.0),
+    "bool order": lambda: splinelab.map_coordinates(_X, _PTS, order=True),
+    "numpy order": lambda: splinelab.map_coordinates(_X, _PTS, order=np.int64(3)),
+    "order 6": lambda: splinelab.map_coordinates(_X, _PTS, order=6),
+    "order 200": lambda: splinelab.map_coordinates(_X, _PTS, order=200),
+    "order -1": lambda: splinelab.map_coordinates(_X, _PTS, order=-1),
+    "int prefilter": lambda: splinelab.map_coordinates(_X, _PTS, order=3, prefilter=1),
+    "no prefilter": lambda: splinelab.map_coordinates(_X, _PTS, order=3, prefilter=False),
+    "numpy prefilter": lambda: splinelab.map_coordinates(_X, _PTS, order=3, prefilter=np.True_),
+    "bad mode": lambda: splinelab.map_coordinates(_X, _PTS, order=1, mode="edge"),
+    "bytes mode": lambda: splinelab.map_coordinates(_X, _PTS, order=1, mode=b"mirror"),
+    "wrap": lambda: splinelab.map_coordinates(_X, _PTS, order=3, mode="wrap"),
+    "nearest cubic": lambda: splinelab.map_coordinates(_X, _PTS, order=3, mode="nearest"),
+    "grid-constant linear": lambda: splinelab.map_coordinates(_X, _PTS, order=1, mode="grid-constant", cval=3.0),
+    "threads 1": lambda: splinelab.map_coordinates(_X, _PTS, order=3, threads=1),
+    "threads 0": lambda: splinelab.map_coordinates(_X, _PTS, order=3, threads=0),
+    "threads True": lambda: splinelab.map_coordinates(_X, _PTS, order=3, threads=True),
+    "threads 10**6": lambda: splinelab.map_coordinates(_X, _PTS, order=3, threads=10**6),
+    "nan_policy raise": lambda: splinelab.map_coordinates(_X, _PTS, order=3, nan_policy="raise"),
+    "nan_policy bad": lambda: splinelab.map_coordinates(_X, _PTS, order=3, nan_policy="omit"),
+    "compute float32": lambda: splinelab.map_coordinates(_X.astype(np.float32), _PTS, order=3, compute="float32"),
+    "compute bad": lambda: splinelab.map_coordinates(_X, _PTS, order=3, compute="float16"),
+    "non-finite point": lambda: splinelab.map_coordinates(_X, np.array([[np.nan, 1.0], [2.0, 3.0]]), order=1),
+    "infinite point, cubic": lambda: splinelab.map_coordinates(_X, np.array([[np.inf], [2.0]]), order=3),
+    "nan sample": lambda: splinelab.map_coordinates(np.where(_X > 1, np.nan, _X), _PTS, order=1),
+    "wrong rows": lambda: splinelab.map_coordinates(_X, _PTS[:1], order=1),
+    "0-d coordinates": lambda: splinelab.map_coordinates(_X, np.array(1.0), order=1),
+    "float32 coordinates": lambda: splinelab.map_coordinates(_X, _PTS.astype(np.float32), order=1),
+    "big-endian coordinates": lambda: splinelab.map_coordinates(_X, _PTS.astype(">f8"), order=1),
+    "strided coordinates": lambda: splinelab.map_coordinates(_X, _PTS[:, ::2], order=1),
+    "strided input": lambda: splinelab.map_coordinates(_X[::2], _PTS / 2, order=1),
+    "Fortran input": lambda: splinelab.map_coordinates(np.asfortranarray(_X), _PTS, order=3),
+    "int input": lambda: splinelab.map_coordinates(_X.astype(np.int32), _PTS, order=1),
+    "matrix input": lambda: splinelab.map_coordinates(np.asmatrix(_X), _PTS, order=1),
+    "empty input": lambda: splinelab.map_coordinates(np.empty((0, 3)), _PTS, order=1),
+    "empty points": lambda: splinelab.map_coordinates(_X, np.empty((2, 0)), order=3),
+    "0-d input": lambda: splinelab.map_coordinates(np.array(1.0), np.empty((0, 2)), order=1),
+    "1-d input": lambda: splinelab.map_coordinates(_X[0], _PTS[:1], order=5, mode="grid-wrap"),
+}
+
+
+@pytest.mark.filterwarnings("ignore::PendingDeprecationWarning")  # np.asmatrix's
+@pytest.mark.parametrize("name", list(_ODD_CALLS))
+def test_the_one_step_path_answers_every_call_as_the_general_path(monkeypatch, name):
+    """Every call (common or not, good or bad) gets from map_coordinates
+    the general path's answer: the same bytes, dtype and shape, or the same
+    exception class and message; the one step only recognises exact types
+    and hands everything else on."""
+    ours = _outcome(_ODD_CALLS[name])
+    monkeypatch.setattr(ext, "map_coordinates_common", lambda *args: None)
+    assert ours == _outcome(_ODD_CALLS[name])
+
+
+@given(calls())
+@settings(max_examples=150, deadline=None)
+def test_the_one_step_path_leaves_to_python_exactly_the_calls_the_local_route_may_take(c):
+    """The one step declines (None) where ``may_be_local`` (the Python
+    layer's pricing, itself tested against the engine's above) says the
+    local route may read less, and evaluates everywhere else the settings
+    are common; degrees 0 and 1 read in place where ``in_place_pays``."""
+    mode, d, prefilter = c["mode"], c["d"], c["prefilter"]
+    if mode == "wrap" or (mode in ("nearest", "grid-constant") and prefilter and 2 <= d <= 5):
+        return  # not the one step's: scipy's moved or padded points
+    a = np.random.default_rng(1).normal(size=c["shape"])
+    flat = np.ascontiguousarray(c["flat"])
+    k = flat.shape[1]
+    local = not (d <= 1 and _local.in_place_pays(a.shape, k, d)) and _local.may_be_local(a.shape, k, d, prefilter,
+                                                                                             None)
+    got = ext.map_coordinates_common(a, flat, d, mode, 0.5, prefilter, None, "propagate", "float64")
+    assert (got is None) == local
+    if got is not None:
+        want = splinelab.map_coordinates(a, flat, order=d, mode=mode, cval=0.5, prefilter=prefilter,
+                                         output=np.float64)
+        np.testing.assert_array_equal(got, want)

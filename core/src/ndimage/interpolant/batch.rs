@@ -515,6 +515,10 @@ pub(super) fn check_points(
     ndim: usize,
     out: usize,
 ) -> Result<(), NdimageError> {
+    if ndim == 0 {
+        // A 0-d array has no axis to place a point on.
+        return Err(NdimageError::Axis { axis: 0, ndim: 0 });
+    }
     if points.ncols() != ndim {
         return Err(NdimageError::PointDimension {
             expected: ndim,
@@ -635,5 +639,32 @@ mod tests {
             }
         }
         assert!(outside > 50 && outside < 250, "{outside}");
+    }
+
+    /// A 0-d array (one sample, no axis) has no axis to place a point on:
+    /// both the batch evaluation and the in-place reading refuse its
+    /// points (they split the points into rows of `ndim`, none for 0).
+    #[test]
+    fn points_on_a_0d_array_are_refused() {
+        let data = ndarray::arr0(2.5).into_dyn();
+        let f = Interpolant::<f64>::new(&data, Options::new(1, Mode::Mirror)).unwrap();
+        let pts = ndarray::Array2::<f64>::zeros((2, 0));
+        let mut out = [0.0; 2];
+        let refused = |e| matches!(e, Err(NdimageError::Axis { axis: 0, ndim: 0 }));
+        assert!(refused(f.eval_many(pts.view(), &mut out)));
+        let o = super::super::InPlaceOptions {
+            order: super::super::SampleOrder::of_degree(1).unwrap(),
+            mode: Mode::Mirror,
+            cval: 0.0,
+            nan_policy: NanPolicy::Propagate,
+        };
+        let got = super::super::map_samples_in_place::<f64, f64, f64>(
+            &data.view(),
+            pts.view(),
+            &o,
+            PointRule::Fold,
+            &mut out,
+        );
+        assert!(refused(got));
     }
 }
