@@ -9,19 +9,12 @@ from . import _splinelab as _ext
 from ._validate import MAX_DEGREE, _mode
 from .errors import ModeError
 
+#: scipy.ndimage's mode names.
+MODE_NAMES = ("mirror", "constant", "grid-constant", "wrap", "reflect", "grid-mirror", "nearest", "grid-wrap")
 #: The filter scipy's spline_filter1d applies under each mode (ni_splines.c
 #: has three: the mirror rule, the reflect (half-sample) rule and the
-#: periodic one).
-SCIPY_FILTER_RULE = {
-    "mirror": "mirror",
-    "constant": "mirror",
-    "grid-constant": "mirror",
-    "wrap": "mirror",
-    "reflect": "reflect",
-    "grid-mirror": "reflect",
-    "nearest": "reflect",
-    "grid-wrap": "grid-wrap",
-}
+#: periodic one): the engine's mapping (``python/src/scipy_mode.rs``).
+SCIPY_FILTER_RULE = {m: _ext.filter_rule(m, False) for m in MODE_NAMES}
 #: The modes whose spline of the extended signal scipy approximates by
 #: padding 12 samples (``exact_edges`` evaluates it exactly).
 EXACT_EDGES = ("nearest", "grid-constant")
@@ -46,10 +39,9 @@ def filter_mode(mode, exact_edges):
 
 def filter_rule(mode, exact_edges):
     """The engine's filter for a known scipy ``mode`` (its rule), or with
-    ``exact_edges`` the exact extension for nearest / grid-constant (cval 0)."""
-    if exact_edges and mode in EXACT_EDGES:
-        return mode
-    return SCIPY_FILTER_RULE[mode]
+    ``exact_edges`` the exact extension for nearest / grid-constant (cval
+    0): the engine's mapping, asked once per setting at import."""
+    return _FILTER_RULE[mode, bool(exact_edges)]
 
 
 def engine_args(mode, d, prefilter, exact_edges):
@@ -71,6 +63,8 @@ def engine_args(mode, d, prefilter, exact_edges):
         raise ValueError(f"unknown mode {mode!r} or degree {d!r}") from None
 
 
+#: :func:`filter_rule` of every scipy mode and ``exact_edges``, from the engine.
+_FILTER_RULE = {(m, e): _ext.filter_rule(m, e) for m in MODE_NAMES for e in (False, True)}
 #: :func:`engine_args` of every scipy mode, degree, prefilter and
 #: ``exact_edges``, from the engine.
 _ENGINE_ARGS = {(m, d, p, e): _ext.engine_args(m, d, p, e)

@@ -179,6 +179,12 @@ def spline_filter1d(
     >>> bool(np.allclose((4 * c[0] + 2 * c[1]) / 6, [1, 0, 0]))
     True
     """
+    if tol is DEFAULT_TOL and type(order) is int and order >= 2:
+        # The common call in one step (map_coordinates'); degrees 0 and 1
+        # are scipy's copy (below), no engine call.
+        values = _ext.filter_common(input, order, axis, False, output, mode, threads, nan_policy, compute, exact_edges)
+        if values is not None:
+            return values
     common = _common(input, order, axis, output, mode, tol, threads, exact_edges, nan_policy, compute)
     if common is not None:
         return _common_filter(order, *common)
@@ -276,6 +282,11 @@ def spline_filter(input, order=3, output=np.float64, mode="mirror", *, tol=DEFAU
     >>> bool(np.allclose(splinelab.spline_filter(x, order=5), x))
     True
     """
+    if tol is DEFAULT_TOL and type(order) is int and order >= 2:
+        # The common call in one step (spline_filter1d's).
+        values = _ext.filter_common(input, order, None, True, output, mode, threads, nan_policy, compute, exact_edges)
+        if values is not None:
+            return values
     common = _common(input, order, _EVERY, output, mode, tol, threads, exact_edges, nan_policy, compute)
     if common is not None:
         return _common_filter(order, *common)
@@ -422,8 +433,8 @@ def map_coordinates(
     if output is None and derivative is None and tol is DEFAULT_TOL and exact_edges is False and _local.ROUTE == "auto":
         # The common call in one step: the engine recognises it from the
         # arguments as given (exact types) and evaluates it, or says None.
-        values = _ext.map_coordinates_common(input, coordinates, order, mode, cval, prefilter, threads, nan_policy,
-                                             compute)
+        values = _ext.map_coordinates_common(
+            input, coordinates, (order, mode, cval, prefilter, threads, nan_policy, compute))
         if values is not None:
             return values
     prefilter = _flag(prefilter, "prefilter")

@@ -22,6 +22,7 @@ import warnings
 import numpy as np
 
 from . import _dtypes as _dt
+from . import _splinelab as _ext
 from ._doc import fill
 from .errors import ArgumentTypeError, MappingError, MatrixShapeError, RankError, SequenceLengthError
 from ._engine import _Affine, _affine_points, _direct, _Grid, _interpolate, _map_real, _Points
@@ -169,6 +170,11 @@ def zoom(input, zoom, output=None, order=3, mode="constant", cval=0.0, prefilter
     >>> splinelab.zoom(np.array([0.0, 1.0, 2.0]), 5 / 3, order=1)
     array([0. , 0.5, 1. , 1.5, 2. ])
     """
+    if output is None and grid_mode is False and tol is DEFAULT_TOL and exact_edges is False:
+        # The common call in one step (splinelab._ndimage.map_coordinates').
+        values = _ext.zoom_common(input, zoom, (order, mode, cval, prefilter, threads, nan_policy, compute))
+        if values is not None:
+            return values
     a = np.asarray(input)
     if a.ndim < 1:
         raise RankError("input must have at least one dimension")
@@ -234,6 +240,11 @@ def shift(input, shift, output=None, order=3, mode="constant", cval=0.0, prefilt
     >>> splinelab.shift(np.array([0.0, 1.0, 4.0, 9.0]), 1, order=1, mode="nearest")
     array([0., 0., 1., 4.])
     """
+    if output is None and tol is DEFAULT_TOL and exact_edges is False:
+        # The common call in one step (splinelab._ndimage.map_coordinates').
+        values = _ext.shift_common(input, shift, (order, mode, cval, prefilter, threads, nan_policy, compute))
+        if values is not None:
+            return values
     a = np.asarray(input)
     if a.ndim < 1:
         raise RankError("input must have at least one dimension")
@@ -357,6 +368,12 @@ def affine_transform(input, matrix, offset=0.0, output_shape=None, output=None, 
     >>> splinelab.affine_transform(x, [[0, 1], [1, 0]], output_shape=(4, 3), order=1)[1]
     array([1., 5., 9.])
     """
+    if output is None and output_shape is None and tol is DEFAULT_TOL and exact_edges is False:
+        # The common call in one step (splinelab._ndimage.map_coordinates').
+        values = _ext.affine_common(input, matrix, offset,
+                                    (order, mode, cval, prefilter, threads, nan_policy, compute))
+        if values is not None:
+            return values
     a = np.asarray(input)
     if a.ndim < 1:
         raise RankError("input must have at least one dimension")

@@ -21,10 +21,13 @@
 //! (no separate copy); other layouts are copied and checked in one pass on
 //! the pool first.
 
+use crate::common;
 use crate::error::{engine_error, value_error};
+use crate::scipy_mode::filter_rule;
 use ndarray::{ArrayView1, ArrayViewD, ArrayViewMut1, ArrayViewMutD};
-use numpy::{Element, PyReadwriteArrayDyn};
+use numpy::{Element, PyArrayDescr, PyArrayDescrMethods, PyArrayMethods, PyReadwriteArrayDyn};
 use pyo3::prelude::*;
+use pyo3::types::{PyBool, PyFloat, PyInt};
 use splinelab::ndimage::NdimageError;
 use splinelab::ndimage::filter_cache;
 use splinelab::ndimage::local::route::global_ns;
@@ -329,4 +332,107 @@ pub fn filter_bound(degree: u32, tol: Option<f64>) -> PyResult<(Option<usize>, f
 #[pyo3(signature = (degree, tol))]
 pub fn nan_reach(degree: u32, tol: f64) -> PyResult<usize> {
     splinelab::prelude::nan_reach(degree, tol).map_err(value_error)
+}
+
+/// `splinelab.spline_filter1d`'s (and with `every`, `spline_filter`'s)
+/// common call in one step (issue 50): an exact int `order` of 2 or more
+/// the engine takes, a float64 or float32 array (exactly `numpy.ndarray`,
+/// not empty), an exact int `axis` it has (or `every` axis), `output`
+/// None (the input's dtype) or float64 / float32 (numpy's type or dtype,
+/// or Python's `float`), one of scipy's mode names, a bool
+/// `exact_edges`, `threads` None or an int in range and the engine's
+/// defaults (the caller checks `tol`); the coefficients in a new array,
+/// as the full call gives them (the same engine filter: scipy's rule for
+/// the mode, [`filter_rule`]). `None` for any other call: the Python layer's.
+#[pyfunction]
+#[allow(clippy::too_many_arguments)]
+pub fn filter_common<'py>(
+    py: Python<'py>,
+    input: &Bound<'py, PyAny>,
+    order: &Bound<'py, PyAny>,
+    axis: &Bound<'py, PyAny>,
+    every: bool,
+    output: &Bound<'py, PyAny>,
+    mode: &Bound<'py, PyAny>,
+    threads: &Bound<'py, PyAny>,
+    nan_policy: &Bound<'py, PyAny>,
+    compute: &Bound<'py, PyAny>,
+    exact_edges: &Bound<'py, PyAny>,
+) -> Option<Bound<'py, PyAny>> {
+    let degree = common::degree(order).filter(|&d| d >= 2)?;
+    let exact_edges = common::exact::<PyBool>(exact_edges)?.is_true();
+    let rule = filter_rule(common::name(mode)?, exact_edges)?;
+    let threads = common::common_threads(threads)?;
+    if !common::default_engine(nan_policy, compute) {
+        return None;
+    }
+    let spec = Spec {
+        degree,
+        mode: rule,
+        cval: 0.0,
+        route: Route::Exact,
+        nan_policy: NanPolicy::Propagate,
+    };
+    let out32 = writes_f32_dtype(py, output)?;
+    crate::common_samples!(input, <E, I> a => {
+        let ndim = a.ndim();
+        if a.is_empty() || ndim == 0 {
+            return None;
+        }
+        let axes: Vec<usize> = match every {
+            true => (0..ndim).collect(),
+            false => {
+                let k = common::exact::<PyInt>(axis)?.extract::<isize>().ok()?;
+                let n = ndim as isize;
+                vec![usize::try_from(if k < 0 { k + n } else { k }).ok().filter(|&k| k < ndim)?]
+            }
+        };
+        // The output's dtype: the input's (None) or the one named.
+        match out32.unwrap_or(std::any::TypeId::of::<I>() == std::any::TypeId::of::<f32>()) {
+            true => filter_new::<E, f32>(py, a, axes, spec, threads),
+            false => filter_new::<E, f64>(py, a, axes, spec, threads),
+        }
+    })
+}
+
+/// Whether `output` names float32 (`Some(true)`) or float64
+/// (`Some(false)`): numpy's scalar type, a native dtype or Python's
+/// `float`; `Some(None)` for None (the input's dtype); `None` otherwise.
+fn writes_f32_dtype(py: Python<'_>, output: &Bound<'_, PyAny>) -> Option<Option<bool>> {
+    if output.is_none() {
+        return Some(None);
+    }
+    let (f64_descr, f32_descr) = (numpy::dtype::<f64>(py), numpy::dtype::<f32>(py));
+    if let Ok(d) = output.cast::<PyArrayDescr>() {
+        return match (d.is_equiv_to(&f64_descr), d.is_equiv_to(&f32_descr)) {
+            (true, _) => Some(Some(false)),
+            (_, true) => Some(Some(true)),
+            _ => None,
+        };
+    }
+    if output.is(f64_descr.typeobj()) || output.is(py.get_type::<PyFloat>()) {
+        Some(Some(false))
+    } else if output.is(f32_descr.typeobj()) {
+        Some(Some(true))
+    } else {
+        None
+    }
+}
+
+/// The filter of `a` along `axes` into a new array of `O` (numpy's
+/// allocation), `None` where the engine refuses it.
+fn filter_new<'py, E, O>(
+    py: Python<'py>,
+    a: ArrayViewD<'_, E>,
+    axes: Vec<usize>,
+    spec: Spec,
+    threads: Option<usize>,
+) -> Option<Bound<'py, PyAny>>
+where
+    E: Sample<f64>,
+    O: Sample<f64> + Stored<f64> + Element,
+{
+    let out = crate::alloc::zeros::<O>(py, a.shape()).ok()?;
+    filter_generic::<f64, E, O>(py, Some(a), out.readwrite(), axes, spec, threads).ok()?;
+    Some(out.into_any())
 }

@@ -13,21 +13,17 @@
 //! With `deriv`, a partial derivative of the interpolant instead of its values;
 //! with `cval_outside`, `cval` at points outside the grid (scipy's 'constant').
 
+use crate::common::{CommonCall, exact, may_be_local};
 use crate::error::{engine_error, value_error};
-use crate::scipy_mode::{EngineArgs, engine_args};
 use ndarray::{ArrayView2, ArrayViewD};
 use numpy::{Element, PyArrayDyn, PyArrayMethods, PyReadonlyArray2, PyUntypedArray};
 use pyo3::prelude::*;
-use pyo3::type_object::{PyTypeCheck, PyTypeInfo};
-use pyo3::types::{PyBool, PyFloat, PyInt, PyString};
 use splinelab::ndimage::interpolant::{
     InPlaceOptions, PointRule, SampleOrder, map_samples_in_place,
 };
 use splinelab::ndimage::local::route::{self, global_ns};
 use splinelab::ndimage::samples::{Sample, Stored};
-use splinelab::ndimage::spline_order;
 use splinelab::prelude::*;
-use splinelab_reports::threads::MAX_THREADS;
 
 pub(crate) fn options(
     degree: u32,
@@ -222,154 +218,51 @@ pub fn in_place_pays(shape: Vec<usize>, points: usize, degree: u32) -> bool {
     degree <= 1 && route::in_place_pays(shape.iter().product(), points, taps)
 }
 
-/// The common call of `splinelab.map_coordinates`, recognised from its
-/// arguments as Python passed them: an int `order` the engine takes, one
-/// of scipy's mode names that needs no padding or moving of the points
-/// (not 'wrap'; not scipy's padded route for 'nearest' / 'grid-constant'),
-/// a float or int `cval`, a bool `prefilter`, `threads` None or an int in
-/// range, `nan_policy="propagate"`, `compute="float64"`. Exact types only:
-/// anything else is the Python layer's to check (its checks raise what
-/// scipy raises; here nothing is refused).
-struct CommonCall {
-    degree: u32,
-    args: EngineArgs,
-    cval: f64,
-    prefilter: bool,
-    threads: Option<usize>,
-}
-
-impl CommonCall {
-    #[allow(clippy::too_many_arguments)]
-    fn recognise(
-        order: &Bound<'_, PyAny>,
-        mode: &Bound<'_, PyAny>,
-        cval: &Bound<'_, PyAny>,
-        prefilter: &Bound<'_, PyAny>,
-        threads: &Bound<'_, PyAny>,
-        nan_policy: &Bound<'_, PyAny>,
-        compute: &Bound<'_, PyAny>,
-    ) -> Option<Self> {
-        let degree = exact::<PyInt>(order)?.extract::<u32>().ok()?;
-        spline_order(degree).ok()?;
-        let prefilter = exact::<PyBool>(prefilter)?.is_true();
-        let args = engine_args(
-            exact::<PyString>(mode)?.to_str().ok()?,
-            degree,
-            prefilter,
-            false,
-        )?;
-        if args.pad != 0 || args.rule == PointRule::WrapPeriodNMinus1 {
-            return None;
-        }
-        let cval = match exact::<PyFloat>(cval) {
-            Some(v) => v.value(),
-            None => exact::<PyInt>(cval)?.extract::<i64>().ok()? as f64,
-        };
-        let threads = match threads.is_none() {
-            true => None,
-            false => {
-                let n = exact::<PyInt>(threads)?.extract::<usize>().ok()?;
-                // Out of range: the Python layer's refusal.
-                Some(n).filter(|n| (1..=MAX_THREADS).contains(n))?;
-                Some(n)
-            }
-        };
-        let is = |s: &Bound<'_, PyAny>, value: &str| {
-            exact::<PyString>(s).is_some_and(|s| s.to_str().is_ok_and(|s| s == value))
-        };
-        if !is(nan_policy, "propagate") || !is(compute, "float64") {
-            return None;
-        }
-        Some(CommonCall {
-            degree,
-            args,
-            cval,
-            prefilter,
-            threads,
-        })
-    }
-
-    /// The values at the points `coordinates` (`(ndim, ...)`, C-ordered) of
-    /// the non-empty samples `data` (any strides: a strided view is read
-    /// in place by neither route, [`in_place`]), of `coordinates.shape[1:]`
-    /// in `O` (the samples' dtype); `None` where the local route may read
-    /// less ([`may_be_local`], the Python layer's to route) or where the
-    /// engine refuses the call (the Python layer's to answer as scipy).
-    fn run<'py, E, O>(
-        &self,
-        py: Python<'py>,
-        data: ArrayViewD<'_, E>,
-        coordinates: ArrayViewD<'_, f64>,
-    ) -> Option<Bound<'py, PyAny>>
-    where
-        E: Sample<f64>,
-        O: Stored<f64> + Element,
+/// The values at the points `coordinates` (`(ndim, ...)`, C-ordered) of
+/// the non-empty samples `data` (any strides: a strided view is read
+/// in place by neither route, [`in_place`]), of `coordinates.shape[1:]`
+/// in `O` (the samples' dtype); `None` where the local route may read
+/// less ([`may_be_local`], the Python layer's to route) or where the
+/// engine refuses the call (the Python layer's to answer as scipy).
+fn points_common<'py, E, O>(
+    call: &CommonCall,
+    py: Python<'py>,
+    data: ArrayViewD<'_, E>,
+    coordinates: ArrayViewD<'_, f64>,
+) -> Option<Bound<'py, PyAny>>
+where
+    E: Sample<f64>,
+    O: Stored<f64> + Element,
+{
+    let ndim = data.ndim();
+    if !coordinates.is_standard_layout()
+        || data.is_empty()
+        || coordinates.shape().first() != Some(&ndim)
     {
-        let ndim = data.ndim();
-        if !coordinates.is_standard_layout()
-            || data.is_empty()
-            || coordinates.shape().first() != Some(&ndim)
-        {
-            return None;
-        }
-        let out_shape = coordinates.shape().get(1..)?.to_vec();
-        let k: usize = out_shape.iter().product();
-        let at = coordinates.into_shape_with_order((ndim, k)).ok()?;
-        let mut opts = Options::new(self.degree, self.args.mode);
-        opts.cval = self.cval;
-        let filtered = self.prefilter && self.degree >= 2;
-        if in_place(&data, &opts, false, k).is_none()
-            && may_be_local(data.shape(), k, self.degree, filtered)
-        {
-            return None;
-        }
-        let how = Coefficients::new(self.prefilter, None).ok()?;
-        let outside = self.args.rule == PointRule::CvalOutside;
-        map_generic::<f64, E, O>(
-            py,
-            data,
-            at,
-            &out_shape,
-            opts,
-            how,
-            self.threads,
-            None,
-            outside,
-        )
-        .ok()
+        return None;
     }
-}
-
-/// `value` where its type is exactly `T` (not a subclass: numpy's scalars,
-/// bools for ints, str subclasses are the Python layer's to check).
-fn exact<'a, 'py, T: PyTypeCheck + PyTypeInfo>(
-    value: &'a Bound<'py, PyAny>,
-) -> Option<&'a Bound<'py, T>> {
-    value
-        .is_exact_instance_of::<T>()
-        .then(|| value.cast::<T>().ok())
-        .flatten()
-}
-
-/// Whether the local route may read less than the global one for `k`
-/// points on an array of `shape` at the default `tol`: the floor of its
-/// cost ([`floor_ns`]) below the global route's ([`global_ns`]), as
-/// `LocalPlan::new_if_local` decides first and `splinelab._local.may_be_local`
-/// decides in Python. True where the half-width is unknown (the Python
-/// layer then decides).
-fn may_be_local(shape: &[usize], k: usize, degree: u32, filtered: bool) -> bool {
-    let global = global_ns(shape.iter().product(), shape.len(), filtered);
-    if route::locate_ns(k) >= global {
-        return false;
+    let out_shape = coordinates.shape().get(1..)?.to_vec();
+    let k: usize = out_shape.iter().product();
+    let at = coordinates.into_shape_with_order((ndim, k)).ok()?;
+    let opts = call.options();
+    let filtered = call.prefilter && call.degree >= 2;
+    if in_place(&data, &opts, false, k).is_none()
+        && may_be_local(data.shape(), k, call.degree, filtered)
+    {
+        return None;
     }
-    let n = match filtered {
-        true => match crate::local::default_half_width(degree) {
-            Some(n) => Some(n),
-            None => return true,
-        },
-        false => None,
-    };
-    route::floor_ns(shape.len(), degree, n, k) < global
+    map_generic::<f64, E, O>(
+        py,
+        data,
+        at,
+        &out_shape,
+        opts,
+        call.how(),
+        call.threads,
+        None,
+        call.cval_outside(),
+    )
+    .ok()
 }
 
 /// `splinelab.map_coordinates`'s common call in one step (issue 50):
@@ -383,21 +276,13 @@ fn may_be_local(shape: &[usize], k: usize, degree: u32, filtered: bool) -> bool 
 /// caller has checked the arguments this does not take (`output`,
 /// `derivative`, `tol`, `exact_edges`, the forced route).
 #[pyfunction]
-#[allow(clippy::too_many_arguments)]
 pub fn map_coordinates_common<'py>(
     py: Python<'py>,
     input: &Bound<'py, PyAny>,
     coordinates: &Bound<'py, PyAny>,
-    order: &Bound<'py, PyAny>,
-    mode: &Bound<'py, PyAny>,
-    cval: &Bound<'py, PyAny>,
-    prefilter: &Bound<'py, PyAny>,
-    threads: &Bound<'py, PyAny>,
-    nan_policy: &Bound<'py, PyAny>,
-    compute: &Bound<'py, PyAny>,
+    settings: &Bound<'py, PyAny>,
 ) -> Option<Bound<'py, PyAny>> {
-    let call = CommonCall::recognise(order, mode, cval, prefilter, threads, nan_policy, compute)?;
-    exact::<PyUntypedArray>(input)?;
+    let call = CommonCall::recognise(settings)?;
     exact::<PyUntypedArray>(coordinates)?;
     let points = coordinates
         .cast::<PyArrayDyn<f64>>()
@@ -405,10 +290,5 @@ pub fn map_coordinates_common<'py>(
         .try_readonly()
         .ok()?;
     let at = points.as_array();
-    if let Ok(a) = input.cast::<PyArrayDyn<f64>>() {
-        call.run::<f64, f64>(py, a.try_readonly().ok()?.as_array(), at)
-    } else {
-        let a = input.cast::<PyArrayDyn<f32>>().ok()?.try_readonly().ok()?;
-        call.run::<f32, f32>(py, a.as_array(), at)
-    }
+    crate::common_samples!(input, <E, O> a => points_common::<E, O>(&call, py, a, at))
 }

@@ -21,6 +21,7 @@
 mod alloc;
 mod check;
 mod cli;
+mod common;
 mod error;
 mod filter;
 mod grid;
@@ -64,6 +65,8 @@ fn _splinelab(m: &Bound<'_, PyModule>) -> PyResult<()> {
     }
     m.add_function(wrap_pyfunction!(filter::nan_reach, m)?)?;
     m.add_function(wrap_pyfunction!(filter::filter, m)?)?;
+    m.add_function(wrap_pyfunction!(filter::filter_common, m)?)?;
+    m.add_function(wrap_pyfunction!(scipy_mode::filter_rule_py, m)?)?;
     m.add_function(wrap_pyfunction!(filter::filter_bound, m)?)?;
     m.add_function(wrap_pyfunction!(interp::map_coordinates, m)?)?;
     m.add_function(wrap_pyfunction!(interp::in_place_pays, m)?)?;
@@ -81,6 +84,9 @@ fn _splinelab(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(grid::grid_pchip, m)?)?;
     m.add_function(wrap_pyfunction!(resample::resample, m)?)?;
     m.add_function(wrap_pyfunction!(resample::affine, m)?)?;
+    m.add_function(wrap_pyfunction!(resample::shift_common, m)?)?;
+    m.add_function(wrap_pyfunction!(resample::zoom_common, m)?)?;
+    m.add_function(wrap_pyfunction!(resample::affine_common, m)?)?;
     m.add_function(wrap_pyfunction!(width::truncation_width, m)?)?;
     m.add_function(wrap_pyfunction!(width::coefficients_f64, m)?)?;
     m.add_function(wrap_pyfunction!(width::coefficients_decimal, m)?)?;

@@ -8,11 +8,14 @@
 //! results (`out32`, each rounded once), or with `f32` float32 samples in
 //! float32 (the `compute="float32"` opt-in).
 
+use crate::common::{CommonCall, exact, may_be_local, per_axis};
 use crate::error::engine_error;
 use crate::interp::{Coefficients, interpolant, options, work_ns};
 use crate::scipy_mode::point_rule;
 use ndarray::ArrayViewD;
-use numpy::{Element, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2};
+use numpy::{
+    Element, PyArray2, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2, PyUntypedArray,
+};
 use pyo3::prelude::*;
 use splinelab::ndimage::interpolant::PointRule;
 use splinelab::ndimage::samples::{Sample, Stored};
@@ -24,7 +27,7 @@ use splinelab::prelude::*;
 fn resample_generic<'py, T, E, O>(
     py: Python<'py>,
     data: ArrayViewD<'_, E>,
-    coordinates: &[PyReadonlyArray1<'py, f64>],
+    axes: &[&[f64]],
     opts: Options,
     how: Coefficients,
     deriv: &[u32],
@@ -36,10 +39,6 @@ where
     E: Sample<T>,
     O: Stored<T> + Element,
 {
-    let axes: Vec<&[f64]> = coordinates
-        .iter()
-        .map(|c| c.as_slice())
-        .collect::<Result<_, _>>()?;
     let shape: Vec<usize> = axes.iter().map(|x| x.len()).collect();
     // numpy's allocation (huge pages where it can); one it cannot
     // allocate is `MemoryError`, as scipy's.
@@ -51,7 +50,7 @@ where
     let work = work_ns(data.shape(), &opts, how, taps);
     let run = || {
         let f = interpolant::<T, E>(&data, opts, how)?;
-        f.resample_grid_as(&axes, deriv, out)?;
+        f.resample_grid_as(axes, deriv, out)?;
         if cval_outside {
             // 0 for a derivative, as the constant beyond the grid has.
             let fill = if deriv.iter().any(|&k| k > 0) {
@@ -59,7 +58,7 @@ where
             } else {
                 opts.cval
             };
-            fill_outside(out, &axes, data.shape(), O::store(&T::from_f64_exact(fill)));
+            fill_outside(out, axes, data.shape(), O::store(&T::from_f64_exact(fill)));
         }
         Ok(())
     };
@@ -114,7 +113,11 @@ pub fn resample<'py>(
 ) -> PyResult<Bound<'py, PyAny>> {
     let opts = options(degree, mode, cval, tol, nan_policy)?;
     let how = Coefficients::new(prefilter, filter_rule)?;
-    let c = &coordinates;
+    let axes: Vec<&[f64]> = coordinates
+        .iter()
+        .map(|c| c.as_slice())
+        .collect::<Result<_, _>>()?;
+    let c = &axes;
     crate::dispatch_compute!(input, f32, out32, <T, O> a => {
         resample_generic::<T, _, O>(py, a, c, opts, how, &deriv, threads, cval_outside)
     })
@@ -217,5 +220,158 @@ pub fn affine<'py>(
     )?;
     crate::dispatch_compute!(input, f32, out32, <T, O> a => {
         affine_generic::<T, _, O>(py, a, &map, opts, how, threads)
+    })
+}
+
+/// `splinelab.shift`'s common call in one step (issue 50): the settings
+/// of [`CommonCall`], a float64 or float32 array (exactly `numpy.ndarray`,
+/// not empty), `shift` one real or one per axis ([`per_axis`]); the
+/// shifted array in a new array of the input's dtype, as the full call
+/// gives it (scipy's `NI_ZoomShift` coordinates `k + (-shift)`, the same
+/// operation as numpy's in `_zoom_shift_coordinates`, then the separable
+/// resampling). `None` for any other call (the Python layer's).
+#[pyfunction]
+pub fn shift_common<'py>(
+    py: Python<'py>,
+    input: &Bound<'py, PyAny>,
+    shift: &Bound<'py, PyAny>,
+    settings: &Bound<'py, PyAny>,
+) -> Option<Bound<'py, PyAny>> {
+    grid_call(py, input, settings, &|_, shape| {
+        let shifts = per_axis(shift, shape.len())?;
+        let axes = shape.iter().zip(&shifts);
+        Some(
+            axes.map(|(&n, &s)| (0..n).map(|k| k as f64 + -s).collect())
+                .collect(),
+        )
+    })
+}
+
+/// Per-axis coordinate vectors of a grid call, from its settings and the
+/// samples' shape (`None`: not a common call).
+type AxesOf<'a> = dyn Fn(&CommonCall, &[usize]) -> Option<Vec<Vec<f64>>> + 'a;
+
+/// A common grid call (shift, zoom): the settings recognised, the samples
+/// (not empty, at least one axis) resampled on the per-axis coordinate
+/// vectors `axes_of` gives for the call and the samples' shape (`None`:
+/// not a common call).
+fn grid_call<'py>(
+    py: Python<'py>,
+    input: &Bound<'py, PyAny>,
+    settings: &Bound<'py, PyAny>,
+    axes_of: &AxesOf<'_>,
+) -> Option<Bound<'py, PyAny>> {
+    let call = CommonCall::recognise(settings)?;
+    crate::common_samples!(input, <E, O> a => {
+        if a.is_empty() || a.ndim() == 0 {
+            return None;
+        }
+        let axes = axes_of(&call, a.shape())?;
+        grid_common::<E, O>(&call, py, a, &axes)
+    })
+}
+
+/// The common call's values on the grid of per-axis coordinate vectors
+/// `axes` (the engine's separable resampling), `None` where the engine
+/// refuses it (the Python layer's to answer).
+fn grid_common<'py, E, O>(
+    call: &CommonCall,
+    py: Python<'py>,
+    data: ArrayViewD<'_, E>,
+    axes: &[Vec<f64>],
+) -> Option<Bound<'py, PyAny>>
+where
+    E: Sample<f64>,
+    O: Stored<f64> + Element,
+{
+    let axes: Vec<&[f64]> = axes.iter().map(Vec::as_slice).collect();
+    let deriv = vec![0; data.ndim()];
+    let (opts, how, outside) = (call.options(), call.how(), call.cval_outside());
+    resample_generic::<f64, E, O>(py, data, &axes, opts, how, &deriv, call.threads, outside).ok()
+}
+
+/// `splinelab.zoom`'s common call in one step (issue 50): the settings of
+/// [`CommonCall`], `grid_mode=False` (the caller's check), a float64 or
+/// float32 array (exactly `numpy.ndarray`, not empty), `zoom` one real or
+/// one per axis ([`per_axis`]) that changes the array; the zoomed array in
+/// a new array of the input's dtype, as the full call gives it: scipy's
+/// output shape `int(round(n * z))` (ties to even, as Python's `round`),
+/// its factors `(n - 1) / (m - 1)` (1 where `m = 1`) and `NI_ZoomShift`'s
+/// coordinates `k * factor`, then the separable resampling. `None` for any
+/// other call (an empty output, a zoom by 1 with the prefilter: scipy's
+/// copy) and where the engine refuses it: the Python layer's.
+#[pyfunction]
+pub fn zoom_common<'py>(
+    py: Python<'py>,
+    input: &Bound<'py, PyAny>,
+    zoom: &Bound<'py, PyAny>,
+    settings: &Bound<'py, PyAny>,
+) -> Option<Bound<'py, PyAny>> {
+    grid_call(py, input, settings, &|call, shape| {
+        let zooms = per_axis(zoom, shape.len())?;
+        if call.prefilter && zooms.iter().all(|&z| z == 1.0) {
+            return None;
+        }
+        let mut axes = Vec::with_capacity(shape.len());
+        for (&n, &z) in shape.iter().zip(&zooms) {
+            let m = (n as f64 * z).round_ties_even();
+            // Up to 2^31 samples an axis (no NaN, no negative, no empty
+            // axis); the rest is the Python layer's to refuse or allocate.
+            if !(1.0..=2_147_483_648.0).contains(&m) {
+                return None;
+            }
+            let m = m as usize;
+            let factor = match m {
+                1 => 1.0,
+                _ => (n - 1) as f64 / (m - 1) as f64,
+            };
+            axes.push((0..m).map(|k| k as f64 * factor).collect::<Vec<f64>>());
+        }
+        Some(axes)
+    })
+}
+
+/// `splinelab.affine_transform`'s common call in one step (issue 50): the
+/// settings of [`CommonCall`], a float64 or float32 array (exactly
+/// `numpy.ndarray`, not empty), a finite square float64 `matrix`
+/// (`(ndim, ndim)`, exactly `numpy.ndarray`), a finite `offset` (one real
+/// or one per axis, [`per_axis`]) and the output of the input's shape; the
+/// values at `matrix · o + offset` in a new array of the input's dtype, as
+/// the full call gives them (the engine's affine resampling). `None` for
+/// any other call, and where the local route may read less (the Python
+/// layer's).
+#[pyfunction]
+pub fn affine_common<'py>(
+    py: Python<'py>,
+    input: &Bound<'py, PyAny>,
+    matrix: &Bound<'py, PyAny>,
+    offset: &Bound<'py, PyAny>,
+    settings: &Bound<'py, PyAny>,
+) -> Option<Bound<'py, PyAny>> {
+    let call = CommonCall::recognise(settings)?;
+    exact::<PyUntypedArray>(matrix)?;
+    let m = matrix.cast::<PyArray2<f64>>().ok()?.try_readonly().ok()?;
+    crate::common_samples!(input, <E, O> a => {
+        let ndim = a.ndim();
+        let m = m.as_array();
+        if a.is_empty() || ndim == 0 || m.dim() != (ndim, ndim) {
+            return None;
+        }
+        let m = m.as_standard_layout();
+        let matrix = m.as_slice()?;
+        let offset = per_axis(offset, ndim)?;
+        if !matrix.iter().chain(&offset).all(|v| v.is_finite()) {
+            return None;
+        }
+        let filtered = call.prefilter && call.degree >= 2;
+        if may_be_local(a.shape(), a.len(), call.degree, filtered) {
+            return None;
+        }
+        let rule = match call.cval_outside() {
+            true => PointRule::CvalOutside,
+            false => PointRule::Fold,
+        };
+        let map = AffineMap { matrix, offset: &offset, out_shape: a.shape().to_vec(), shift: 0.0, rule };
+        affine_generic::<f64, E, O>(py, a, &map, call.options(), call.how(), call.threads).ok()
     })
 }

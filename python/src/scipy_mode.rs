@@ -54,6 +54,30 @@ pub(crate) fn engine_args(
     })
 }
 
+/// The filter scipy's `spline_filter1d` applies under its `mode`
+/// (`ni_splines.c` has three: the mirror rule, the reflect (half-sample)
+/// rule and the periodic one), or with `exact_edges` the exact extension
+/// for 'nearest' / 'grid-constant' (cval 0). `None`: not one of scipy's
+/// names.
+pub(crate) fn filter_rule(mode: &str, exact_edges: bool) -> Option<Mode> {
+    Some(match mode {
+        "nearest" if exact_edges => Mode::Nearest,
+        "grid-constant" if exact_edges => Mode::GridConstant,
+        "mirror" | "constant" | "grid-constant" | "wrap" => Mode::Mirror,
+        "reflect" | "grid-mirror" | "nearest" => Mode::Reflect,
+        "grid-wrap" => Mode::GridWrap,
+        _ => return None,
+    })
+}
+
+/// [`filter_rule`] for Python: the engine mode's name.
+#[pyfunction(name = "filter_rule")]
+pub fn filter_rule_py(mode: &str, exact_edges: bool) -> PyResult<&'static str> {
+    filter_rule(mode, exact_edges)
+        .map(Mode::name)
+        .ok_or_else(|| value_error(format!("unknown mode {mode:?}")))
+}
+
 /// A point rule by the Python layer's name.
 pub(crate) fn point_rule(rule: &str) -> PyResult<PointRule> {
     Ok(match rule {

@@ -12,7 +12,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import splinelab
-from splinelab import _local
+from splinelab import _local, _modes
 from splinelab import _splinelab as ext
 
 MODES = ["constant", "mirror", "reflect", "grid-mirror", "grid-wrap", "wrap", "nearest", "grid-constant"]
@@ -136,14 +136,14 @@ def _small_calls():
         "map_coordinates_common map_coordinates"
     yield "map_coordinates float32", lambda o: splinelab.map_coordinates(x.astype(np.float32), pts, order=o), \
         "map_coordinates_common"
-    yield "affine_transform", lambda o: splinelab.affine_transform(x, rot, (0.7, -0.2), order=o), "affine"
+    yield "affine_transform", lambda o: splinelab.affine_transform(x, rot, (0.7, -0.2), order=o), "affine_common"
     yield "rotate", lambda o: splinelab.rotate(x, 30, order=o), "affine"
-    yield "shift", lambda o: splinelab.shift(x, 0.3, order=o), "resample"
-    yield "zoom", lambda o: splinelab.zoom(x3, 2, order=o), "resample"
+    yield "shift", lambda o: splinelab.shift(x, 0.3, order=o), "shift_common"
+    yield "zoom", lambda o: splinelab.zoom(x3, 2, order=o), "zoom_common"
     yield "geometric_transform", lambda o: splinelab.geometric_transform(x, lambda c: (c[0] - 0.3, c[1]), order=o), \
         "map_coordinates"
-    yield "spline_filter", lambda o: splinelab.spline_filter(x, order=max(o, 2)), "filter"
-    yield "spline_filter1d", lambda o: splinelab.spline_filter1d(x, order=max(o, 2)), "filter"
+    yield "spline_filter", lambda o: splinelab.spline_filter(x, order=max(o, 2)), "filter_common"
+    yield "spline_filter1d", lambda o: splinelab.spline_filter1d(x, order=max(o, 2)), "filter_common"
 
 
 @pytest.mark.parametrize("order", [0, 1, 3, 5])
@@ -238,6 +238,21 @@ def test_engine_args_are_scipys_modes(mode, d, prefilter, exact_edges):
     assert _local.engine_args(mode, d, prefilter, exact_edges) == (*_SCIPY_MODES[mode], 12 if padded else 0)
 
 
+# The filter scipy 1.17's spline_filter1d runs under each mode (ni_splines.c:
+# the mirror rule, the reflect rule, the periodic rule), and with
+# exact_edges the exact extensions of 'nearest' and 'grid-constant'.
+_SCIPY_FILTERS = {"mirror": "mirror", "constant": "mirror", "grid-constant": "mirror", "wrap": "mirror",
+                  "reflect": "reflect", "grid-mirror": "reflect", "nearest": "reflect", "grid-wrap": "grid-wrap"}
+
+
+@pytest.mark.parametrize("mode", MODES)
+@pytest.mark.parametrize("exact_edges", [True, False])
+def test_filter_rules_are_scipys(mode, exact_edges):
+    want = mode if exact_edges and mode in ("nearest", "grid-constant") else _SCIPY_FILTERS[mode]
+    assert _modes.filter_rule(mode, exact_edges) == want
+    assert _modes.SCIPY_FILTER_RULE[mode] == _SCIPY_FILTERS[mode]
+
+
 def test_engine_args_refuse_an_unknown_mode():
     with pytest.raises(ValueError, match="unknown mode"):
         _local.engine_args("edge", 3, True, False)
@@ -304,16 +319,148 @@ _ODD_CALLS = {
 }
 
 
+_ROT = np.array([[0.9, 0.3], [-0.3, 0.9]])
+_ODD_SHIFTS = {
+    "shift": lambda: splinelab.shift(_X, 0.3, order=1),
+    "shift cubic": lambda: splinelab.shift(_X, 0.3, order=3, mode="grid-wrap"),
+    "shift int": lambda: splinelab.shift(_X, 2, order=0),
+    "shift huge int": lambda: splinelab.shift(_X, 10**400, order=0),
+    "shift tuple": lambda: splinelab.shift(_X, (0.5, -1.25), order=1, cval=-1.0),
+    "shift list of ints": lambda: splinelab.shift(_X, [1, -2], order=1),
+    "shift array": lambda: splinelab.shift(_X, np.array([0.5, 2.0]), order=1),
+    "shift int array": lambda: splinelab.shift(_X, np.array([1, 2]), order=1),
+    "shift short tuple": lambda: splinelab.shift(_X, (0.5,), order=1),
+    "shift nested": lambda: splinelab.shift(_X, [[0.5], [1.0]], order=1),
+    "shift bool": lambda: splinelab.shift(_X, True, order=1),
+    "shift complex": lambda: splinelab.shift(_X, 1j, order=1),
+    "shift nan": lambda: splinelab.shift(_X, np.nan, order=1),
+    "shift inf": lambda: splinelab.shift(_X, (np.inf, 0.0), order=3),
+    "shift -0.0": lambda: splinelab.shift(_X, -0.0, order=1),
+    "shift float32": lambda: splinelab.shift(_X.astype(np.float32), 0.25, order=3),
+    "shift 1-d": lambda: splinelab.shift(_X[0], 0.25, order=5, mode="reflect"),
+    "shift 0-d": lambda: splinelab.shift(np.array(1.0), 0.25, order=1),
+    "shift empty": lambda: splinelab.shift(np.empty((0, 4)), 0.25, order=1),
+    "shift view": lambda: splinelab.shift(_X[::2, 1:], 0.25, order=1),
+    "shift wrap": lambda: splinelab.shift(_X, 0.25, order=3, mode="wrap"),
+    "shift nearest cubic": lambda: splinelab.shift(_X, 0.25, order=3, mode="nearest"),
+    "shift bad mode": lambda: splinelab.shift(_X, 0.25, order=1, mode="edge"),
+    "shift threads 0": lambda: splinelab.shift(_X, 0.25, order=1, threads=0),
+    "shift list input": lambda: splinelab.shift(_X.tolist(), 0.25, order=1),
+    "shift int input": lambda: splinelab.shift(_X.astype(np.int16), 0.25, order=1),
+}
+_ODD_AFFINES = {
+    "affine": lambda: splinelab.affine_transform(_X, _ROT, order=1),
+    "affine offset": lambda: splinelab.affine_transform(_X, _ROT, 0.5, order=3, mode="mirror"),
+    "affine int offset": lambda: splinelab.affine_transform(_X, _ROT, 2, order=1),
+    "affine offset tuple": lambda: splinelab.affine_transform(_X, _ROT, (0.5, -1), order=0, cval=np.nan),
+    "affine offset array": lambda: splinelab.affine_transform(_X, _ROT, np.array([0.5, 1.5]), order=1),
+    "affine offset short": lambda: splinelab.affine_transform(_X, _ROT, (0.5,), order=1),
+    "affine offset nan": lambda: splinelab.affine_transform(_X, _ROT, np.nan, order=1),
+    "affine matrix nan": lambda: splinelab.affine_transform(_X, _ROT * np.nan, order=1),
+    "affine matrix inf": lambda: splinelab.affine_transform(_X, np.array([[np.inf, 0], [0, 1.0]]), order=3),
+    "affine list matrix": lambda: splinelab.affine_transform(_X, _ROT.tolist(), order=1),
+    "affine int matrix": lambda: splinelab.affine_transform(_X, np.eye(2, dtype=int), order=1),
+    "affine Fortran matrix": lambda: splinelab.affine_transform(_X, np.asfortranarray(_ROT), order=1),
+    "affine diagonal": lambda: splinelab.affine_transform(_X, np.array([0.5, 2.0]), order=1),
+    "affine homogeneous": lambda: splinelab.affine_transform(_X, np.eye(3), order=1),
+    "affine 3x2": lambda: splinelab.affine_transform(_X, np.ones((3, 2)), order=1),
+    "affine output_shape": lambda: splinelab.affine_transform(_X, _ROT, output_shape=(4, 5), order=1),
+    "affine float32": lambda: splinelab.affine_transform(_X.astype(np.float32), _ROT, order=3),
+    "affine 1-d": lambda: splinelab.affine_transform(_X[0], np.array([[0.7]]), order=3),
+    "affine 3-d": lambda: splinelab.affine_transform(np.ones((3, 4, 5)), np.eye(3) * 0.9, order=1),
+    "affine empty": lambda: splinelab.affine_transform(np.empty((0, 3)), _ROT, order=1),
+    "affine view": lambda: splinelab.affine_transform(_X[::2], _ROT, order=3),
+    "affine wrap": lambda: splinelab.affine_transform(_X, _ROT, order=1, mode="wrap"),
+    "affine grid-constant cubic": lambda: splinelab.affine_transform(_X, _ROT, order=3, mode="grid-constant"),
+    "affine order 7": lambda: splinelab.affine_transform(_X, _ROT, order=7),
+    "affine bad order": lambda: splinelab.affine_transform(_X, _ROT, order="3"),
+    "affine nan_policy": lambda: splinelab.affine_transform(_X, _ROT, order=3, nan_policy="raise"),
+}
+_ODD_ZOOMS = {
+    "zoom": lambda: splinelab.zoom(_X, 2, order=1),
+    "zoom float": lambda: splinelab.zoom(_X, 1.5, order=3, mode="mirror"),
+    "zoom tuple": lambda: splinelab.zoom(_X, (0.5, 1.75), order=1, cval=2.0),
+    "zoom ties": lambda: splinelab.zoom(_X, (0.5, 1.5), order=0),  # 4.5 and 10.5 round to even
+    "zoom to 1": lambda: splinelab.zoom(_X, 0.1, order=1),
+    "zoom to 0": lambda: splinelab.zoom(_X, 0.01, order=1),
+    "zoom by 1": lambda: splinelab.zoom(_X, 1, order=3),
+    "zoom by 1, no prefilter": lambda: splinelab.zoom(_X, 1.0, order=3, prefilter=False),
+    "zoom negative": lambda: splinelab.zoom(_X, -2, order=1),
+    "zoom nan": lambda: splinelab.zoom(_X, np.nan, order=1),
+    "zoom inf": lambda: splinelab.zoom(_X, np.inf, order=1),
+    "zoom huge": lambda: splinelab.zoom(_X, 1e300, order=1),
+    "zoom array": lambda: splinelab.zoom(_X, np.array([2.0, 0.5]), order=1),
+    "zoom short": lambda: splinelab.zoom(_X, [2.0], order=1),
+    "zoom grid_mode": lambda: splinelab.zoom(_X, 2, order=1, grid_mode=True, mode="grid-constant"),
+    "zoom float32": lambda: splinelab.zoom(_X.astype(np.float32), 2, order=3),
+    "zoom 1-d of 1": lambda: splinelab.zoom(np.array([2.5]), 3, order=1),
+    "zoom 3-d": lambda: splinelab.zoom(np.ones((2, 3, 4)), 1.7, order=5, mode="grid-wrap"),
+    "zoom view": lambda: splinelab.zoom(_X[:, ::3], 2, order=1),
+    "zoom wrap": lambda: splinelab.zoom(_X, 2, order=3, mode="wrap"),
+    "zoom empty": lambda: splinelab.zoom(np.empty((0, 3)), 2, order=1),
+}
+_X32 = _X.astype(np.float32)
+_ODD_FILTERS = {
+    "filter1d": lambda: splinelab.spline_filter1d(_X, 3),
+    "filter1d axis 0": lambda: splinelab.spline_filter1d(_X, 5, axis=0, mode="reflect"),
+    "filter1d axis -2": lambda: splinelab.spline_filter1d(_X, 2, axis=-2, mode="grid-wrap"),
+    "filter1d axis 2": lambda: splinelab.spline_filter1d(_X, 3, axis=2),
+    "filter1d axis -3": lambda: splinelab.spline_filter1d(_X, 3, axis=-3),
+    "filter1d axis None": lambda: splinelab.spline_filter1d(_X, 3, axis=None),
+    "filter1d axis 1.0": lambda: splinelab.spline_filter1d(_X, 3, axis=1.0),
+    "filter1d axis numpy": lambda: splinelab.spline_filter1d(_X, 3, axis=np.int64(0)),
+    "filter1d float32 in": lambda: splinelab.spline_filter1d(_X32, 3),
+    "filter1d float32 in, None out": lambda: splinelab.spline_filter1d(_X32, 3, output=None),
+    "filter1d float32 out": lambda: splinelab.spline_filter1d(_X, 3, output=np.float32),
+    "filter1d dtype out": lambda: splinelab.spline_filter1d(_X, 3, output=np.dtype("float32")),
+    "filter1d str out": lambda: splinelab.spline_filter1d(_X, 3, output="float32"),
+    "filter1d float out": lambda: splinelab.spline_filter1d(_X32, 3, output=float),
+    "filter1d big-endian out": lambda: splinelab.spline_filter1d(_X, 3, output=np.dtype(">f8")),
+    "filter1d int out": lambda: splinelab.spline_filter1d(_X, 3, output=np.int32),
+    "filter1d array out": lambda: splinelab.spline_filter1d(_X, 3, output=np.empty((9, 7))),
+    "filter1d nearest": lambda: splinelab.spline_filter1d(_X, 3, mode="nearest"),
+    "filter1d nearest exact": lambda: splinelab.spline_filter1d(_X, 3, mode="nearest", exact_edges=True),
+    "filter1d grid-constant exact": lambda: splinelab.spline_filter1d(_X, 4, mode="grid-constant", exact_edges=True),
+    "filter1d exact_edges 1": lambda: splinelab.spline_filter1d(_X, 3, exact_edges=1),
+    "filter1d wrap": lambda: splinelab.spline_filter1d(_X, 3, mode="wrap"),
+    "filter1d bad mode": lambda: splinelab.spline_filter1d(_X, 3, mode="edge"),
+    "filter1d order 1": lambda: splinelab.spline_filter1d(_X, 1),
+    "filter1d order 9": lambda: splinelab.spline_filter1d(_X, 9),
+    "filter1d order 200": lambda: splinelab.spline_filter1d(_X, 200),
+    "filter1d threads 0": lambda: splinelab.spline_filter1d(_X, 3, threads=0),
+    "filter1d nan_policy": lambda: splinelab.spline_filter1d(_X, 3, nan_policy="raise"),
+    "filter1d nan sample": lambda: splinelab.spline_filter1d(np.where(_X > 1, np.nan, _X), 3),
+    "filter1d view": lambda: splinelab.spline_filter1d(_X[::2, ::-1], 3),
+    "filter1d Fortran": lambda: splinelab.spline_filter1d(np.asfortranarray(_X), 3, axis=0),
+    "filter1d empty": lambda: splinelab.spline_filter1d(np.empty((0, 4)), 3),
+    "filter1d 0-d": lambda: splinelab.spline_filter1d(np.array(2.0), 3),
+    "filter1d int input": lambda: splinelab.spline_filter1d(_X.astype(np.int64), 3),
+    "filter1d complex": lambda: splinelab.spline_filter1d(_X + 1j, 3),
+    "filter": lambda: splinelab.spline_filter(_X, 3),
+    "filter float32": lambda: splinelab.spline_filter(_X32, 5, output=np.float32, mode="grid-mirror"),
+    "filter 3-d": lambda: splinelab.spline_filter(np.ones((3, 4, 5)), 2, mode="constant"),
+    "filter 1-d": lambda: splinelab.spline_filter(_X[0], 3),
+    "filter 0-d": lambda: splinelab.spline_filter(np.array(2.0), 3),
+    "filter order 0": lambda: splinelab.spline_filter(_X, 0),
+}
+_ODD = [("map_coordinates_common", n, f) for n, f in _ODD_CALLS.items()] + \
+       [("filter_common", n, f) for n, f in _ODD_FILTERS.items()] + \
+       [("zoom_common", n, f) for n, f in _ODD_ZOOMS.items()] + \
+       [("shift_common", n, f) for n, f in _ODD_SHIFTS.items()] + \
+       [("affine_common", n, f) for n, f in _ODD_AFFINES.items()]
+
+
 @pytest.mark.filterwarnings("ignore::PendingDeprecationWarning")  # np.asmatrix's
-@pytest.mark.parametrize("name", list(_ODD_CALLS))
-def test_the_one_step_path_answers_every_call_as_the_general_path(monkeypatch, name):
-    """Every call (common or not, good or bad) gets from map_coordinates
-    the general path's answer: the same bytes, dtype and shape, or the same
-    exception class and message; the one step only recognises exact types
-    and hands everything else on."""
-    ours = _outcome(_ODD_CALLS[name])
-    monkeypatch.setattr(ext, "map_coordinates_common", lambda *args: None)
-    assert ours == _outcome(_ODD_CALLS[name])
+@pytest.mark.filterwarnings("ignore:promoting specified output dtype to complex")  # scipy warns too
+@pytest.mark.parametrize("step, name, call", _ODD, ids=[n for _, n, _ in _ODD])
+def test_the_one_step_path_answers_every_call_as_the_general_path(monkeypatch, step, name, call):
+    """Every call (common or not, good or bad) gets from map_coordinates,
+    shift and affine_transform the general path's answer: the same bytes,
+    dtype and shape, or the same exception class and message; the one step
+    only recognises exact types and hands everything else on."""
+    ours = _outcome(call)
+    monkeypatch.setattr(ext, step, lambda *args: None)
+    assert ours == _outcome(call)
 
 
 @given(calls())
@@ -331,7 +478,7 @@ def test_the_one_step_path_leaves_to_python_exactly_the_calls_the_local_route_ma
     k = flat.shape[1]
     local = not (d <= 1 and _local.in_place_pays(a.shape, k, d)) and _local.may_be_local(a.shape, k, d, prefilter,
                                                                                              None)
-    got = ext.map_coordinates_common(a, flat, d, mode, 0.5, prefilter, None, "propagate", "float64")
+    got = ext.map_coordinates_common(a, flat, (d, mode, 0.5, prefilter, None, "propagate", "float64"))
     assert (got is None) == local
     if got is not None:
         want = splinelab.map_coordinates(a, flat, order=d, mode=mode, cval=0.5, prefilter=prefilter,
