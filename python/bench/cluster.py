@@ -10,6 +10,7 @@ and after), and the accuracy against an independent in-memory reference.
     .venv/bin/python python/bench/cluster.py affine            # 8000² cubic rotation, zarr to zarr
     .venv/bin/python python/bench/cluster.py timeaxis          # xarray #10130's case
     .venv/bin/python python/bench/cluster.py affine --quick    # small sizes (a minute)
+    .venv/bin/python python/bench/cluster.py affine --malloc-trim 1073741824   # workers' glibc trim raised
 
 Cases:
 
@@ -28,6 +29,15 @@ Cases:
   method="cubic")``, then xarray's own ``da.interp`` on the same cluster
   (under a timeout; restarts recorded). Accuracy: 16 (lat, lon) columns
   against scipy's not-a-knot ``make_interp_spline`` of the same column.
+
+Workers' allocator: distributed's nanny starts each worker with glibc's
+``MALLOC_TRIM_THRESHOLD_=65536``, under which every large array is a fresh
+``mmap`` whose pages the kernel faults in and zeroes, and unmaps on free.
+splinelab's output tasks keep their scratch arrays per worker thread (not
+subject to it); ``--malloc-trim BYTES`` raises the threshold for this
+benchmark's cluster only (dask config ``distributed.nanny.pre-spawn-environ``,
+set around the cluster's start) to measure what the remaining allocations
+(zarr's chunks, the results, the transfers) cost.
 
 Results: one JSON file per case under python/bench/cluster/ (``--out``).
 """
@@ -52,11 +62,24 @@ MEMORY_LIMIT = "1.5GB"
 # ----------------------------------------------------------------- the cluster
 
 
+#: The workers' ``MALLOC_TRIM_THRESHOLD_`` (``--malloc-trim``), or None:
+#: distributed's default (65536, its nanny's ``pre-spawn-environ``).
+MALLOC_TRIM = None
+
+
 def _cluster():
+    import dask
     import distributed
-    cluster = distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, memory_limit=MEMORY_LIMIT,
-                                       host="127.0.0.1", dashboard_address=None)
-    return cluster, distributed.Client(cluster)
+    environ = {} if MALLOC_TRIM is None else {"distributed.nanny.pre-spawn-environ.MALLOC_TRIM_THRESHOLD_": MALLOC_TRIM}
+    with dask.config.set(environ):
+        cluster = distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                                           memory_limit=MEMORY_LIMIT, host="127.0.0.1", dashboard_address=None)
+    client = distributed.Client(cluster)
+    return cluster, client
+
+
+def _worker_trim():
+    return os.environ.get("MALLOC_TRIM_THRESHOLD_")
 
 
 def _worker_reset():
@@ -178,6 +201,7 @@ def case_affine(quick):
     rows = []
     cluster, client = _cluster()
     try:
+        print("workers' MALLOC_TRIM_THRESHOLD_:", sorted(set(client.run(_worker_trim).values())), flush=True)
         _warm_up(client, m)
         for _ in range(1 if quick else 3):
             ref, row = _scipy_affine(img, m, off)
@@ -333,14 +357,22 @@ def main():
     ap.add_argument("--quick", action="store_true", help="small sizes")
     ap.add_argument("--xarray-timeout", type=float, default=300.0, help="seconds for xarray's interp (timeaxis)")
     ap.add_argument("--out", default=os.path.join(HERE, "cluster"), help="directory of the JSON results")
+    ap.add_argument("--malloc-trim", type=int, default=None,
+                    help="the workers' MALLOC_TRIM_THRESHOLD_ in bytes, set for this cluster through dask's config "
+                         "distributed.nanny.pre-spawn-environ (default: distributed's, 65536); the JSON is then "
+                         "<case>_malloc_trim.json")
     args = ap.parse_args()
+    global MALLOC_TRIM
+    MALLOC_TRIM = args.malloc_trim
     os.makedirs(TMP, exist_ok=True)
-    info = {"machine": _machine(), "versions": _versions(), "memory_limit": MEMORY_LIMIT, "quick": args.quick}
+    trim = MALLOC_TRIM if MALLOC_TRIM is not None else "distributed's default (65536)"
+    info = {"machine": _machine(), "versions": _versions(), "memory_limit": MEMORY_LIMIT, "quick": args.quick,
+            "workers_malloc_trim_threshold": trim}
     result = case_affine(args.quick) if args.case == "affine" else case_timeaxis(args.quick, args.xarray_timeout)
     with open("/proc/loadavg") as fh:
         info["machine"]["load_after"] = fh.read().split()[:3]
     os.makedirs(args.out, exist_ok=True)
-    name = f"{args.case}{'_quick' if args.quick else ''}.json"
+    name = f"{args.case}{'_quick' if args.quick else ''}{'_malloc_trim' if MALLOC_TRIM is not None else ''}.json"
     with open(os.path.join(args.out, name), "w") as fh:
         json.dump({**info, **result}, fh, indent=1)
     print("wrote", os.path.join(args.out, name))

@@ -46,6 +46,15 @@ def is_dask(data) -> bool:
     return type(data).__module__.split(".")[0] == "dask" and hasattr(data, "chunks")
 
 
+def array_module(data):
+    """``dask.array`` for a dask array, else numpy (the functions
+    elementwise conversions take from it)."""
+    if is_dask(data):
+        import dask.array as da
+        return da
+    return np
+
+
 def interp(data, grid, new_f, rdims, vdims, pdims, nb, opts, dims):
     """The lazy result, shape ``vshape + pshape + carried shape``."""
     import dask.array as da

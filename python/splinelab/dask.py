@@ -53,14 +53,17 @@ by a stated tolerance.
 
 from __future__ import annotations
 
+import bisect
 import functools
 import inspect
 import itertools
+import threading
 from typing import NamedTuple
 
 import dask
 import dask.array as da
 import numpy as np
+from dask.highlevelgraph import HighLevelGraph, MaterializedLayer
 
 import splinelab
 from splinelab import _dtypes as _dt
@@ -469,12 +472,15 @@ class _Rules:
         self.shape, self.extent = tuple(shape), tuple(extent)  # the input's, the coefficients' (padded)
         self.engine_mode, _, self.pad = engine_args(mode, order, bool(prefilter), False)
 
-    def prepared(self, flat, box=None):
+    def prepared(self, flat, box=None, own=False):
         """Global points (``(ndim, k)``) the way the engine reads them: the
         scipy rules applied, then folded into the grid (folding modes) or
         clamped where the spline is constant (padded ones); and the mask of
         'constant' points that take ``cval``. ``box``: bounds known to hold
-        the points (the output block's), or None: found here."""
+        the points (the output block's), or None: found here. ``own``: a
+        task's own points, used at once, whose region is its box's (the
+        mask is then made in the thread's scratch arrays, valid until its
+        next task, and 'constant' leaves the points outside unfolded)."""
         if box is not None and self.within(*box):
             return flat, None
         low, high = flat.min(axis=1, initial=np.inf), flat.max(axis=1, initial=-np.inf)
@@ -485,8 +491,14 @@ class _Rules:
         inside = (low >= 0) & (high <= np.array(self.shape, dtype=np.float64) - 1.0)
         mask = None
         if self.mode == "constant" and not inside.all():
-            limit = np.array(self.shape, dtype=np.float64)[:, None] - 1.0
-            mask = ((flat < 0) | (flat > limit)).any(axis=0)
+            mask = self._outside(flat, ~inside, own)
+            if own and not self.pad:
+                # A task's 'constant': the points outside take cval whatever
+                # the spline gives there, and the others lie in the grid,
+                # where the fold leaves them as they are: none is moved (the
+                # engine reads any coordinate within the coefficients given;
+                # the region is the box's, not found from these points).
+                return flat, mask
         if inside.all() and not self.pad:
             return flat, mask
         rows = []
@@ -504,6 +516,18 @@ class _Rules:
                 x = np.clip(x + self.pad, -reach, n - 1 + reach)
             rows.append(x)
         return np.stack(rows), mask
+
+    def _outside(self, flat, axes, own):
+        """Whether each point lies outside ``[0, n - 1]`` on one of the
+        ``axes`` (flags; the others hold every point)."""
+        k = flat.shape[1]
+        mask = _scratch.get("mask", (k,), bool) if own else np.empty(k, bool)
+        cmp = _scratch.get("compared", (k,), bool) if own else np.empty(k, bool)
+        mask[...] = False
+        for axis in np.flatnonzero(axes):
+            mask |= np.less(flat[axis], 0, out=cmp)
+            mask |= np.greater(flat[axis], self.shape[axis] - 1.0, out=cmp)
+        return mask
 
     def within(self, low, high):
         """Whether a box lies inside the grid on every axis with room for
@@ -590,6 +614,39 @@ _NOT_FINITE = ("a coordinate is not finite: non-finite coordinates are not taken
                "(splinelab.map_coordinates gives scipy's values there)")
 
 
+class _Scratch(threading.local):
+    """Per worker thread, the scratch arrays an output task works in (the
+    region's samples filtered in place, its points), kept from one task to
+    the next. A worker of dask.distributed runs with glibc's
+    ``MALLOC_TRIM_THRESHOLD_`` at 64 KiB (its nanny's default), under which
+    every large array is a fresh ``mmap`` whose pages are faulted in and
+    zeroed by the kernel, and returned on ``free``: tens of megabytes per
+    task, as much time as the interpolation itself on a 2-core machine
+    (issue 51). Nothing kept here is returned from a task (a task's result
+    is always a new array), and none larger than :data:`_SCRATCH_MAX` bytes
+    is kept (such a task pays one allocation among much more work)."""
+
+    def __init__(self):
+        self.arrays = {}
+
+    def get(self, name, shape, dtype):
+        """An uninitialised C-ordered array of ``shape`` and ``dtype``: a view
+        of the thread's buffer ``name`` (grown as needed), or a new array
+        where it would exceed :data:`_SCRATCH_MAX`."""
+        dtype = np.dtype(dtype)
+        nbytes = int(np.prod(shape, dtype=np.int64)) * dtype.itemsize
+        if nbytes > _SCRATCH_MAX:
+            return np.empty(shape, dtype)
+        buf = self.arrays.get(name)
+        if buf is None or buf.size < nbytes:
+            buf = self.arrays[name] = np.empty(max(nbytes, 1), np.uint8)
+        return buf[:nbytes].view(dtype).reshape(shape)
+
+
+_SCRATCH_MAX = 256 << 20
+_scratch = _Scratch()
+
+
 class _Plan:
     """The lazy side of a resampling: the coefficient array (or, fused, the
     samples each task prefilters itself) and the :class:`_Rules`."""
@@ -607,11 +664,14 @@ class _Plan:
             kind = {"mode": "edge"} if mode == "nearest" else {"mode": "constant", "constant_values": float(cval)}
             darr = da.pad(darr, pad, **kind)
         self.rules = _Rules(order, mode, cval, compute, shape, darr.shape, prefilter)
-        self.fused = None
+        self.fused, self.missing_flag = None, None
         if order > 1 and prefilter and fuse and _fusable(darr, mode, route, nan_policy, compute):
             # Each output task prefilters its own region (see _Fused).
             self.fused = _Fused(order, mode, depth(order, tol, route), threads, darr.shape)
-            self.missing = _one((~da.isfinite(darr)).any()) if darr.dtype.kind == "f" else False
+            # The flag: a 0-d dask array (output grids, :func:`_blocks_layer`)
+            # and one Delayed (scattered points, :func:`_lazy_block`).
+            self.missing_flag = _any_missing(darr) if darr.dtype.kind == "f" else None
+            self.missing = _one(self.missing_flag) if self.missing_flag is not None else False
         elif order > 1 and prefilter:
             smallest = min(darr.chunksize)
             need = depth(order, tol, route)
@@ -693,6 +753,131 @@ class _Fused:
             x = np.full(x.shape, np.nan)
         return x
 
+    def in_scratch(self, pieces, reach):
+        """:meth:`coefficients` of the samples given as ``pieces`` (the
+        region's dask chunks, nested lists, one level per axis), computed in
+        the thread's scratch arrays (:class:`_Scratch`): the pieces written
+        once into a float64 array with the array edges' padding (numpy's
+        pad, as :func:`_pad_ends`), filtered there in place (the same filter,
+        the same bits: it widens float32 samples exactly either way), then
+        the axes in one block under the mode itself. Valid until the
+        thread's next task; C-ordered."""
+        ndim = len(reach)
+        grid = _piece_grid(pieces, ndim)
+        carried = grid[(0,) * grid.ndim].shape[ndim:]
+        whole = [ax for ax, ((a, b), n) in enumerate(zip(reach, self.extent)) if a == 0 and b == n]
+        seamed = [ax for ax in range(ndim) if ax not in whole]
+        ends = [(a == 0, b == n) for (a, b), n in zip(reach, self.extent)]
+        pads = [(0, 0)] * (ndim + len(carried))
+        if self.settings.rule in _NUMPY_PAD:
+            for ax in seamed:
+                pads[ax] = (self.depth if ends[ax][0] else 0, self.depth if ends[ax][1] else 0)
+        inner = [b - a for a, b in reach] + list(carried)
+        x = _scratch.get("samples", [n + lo + hi for n, (lo, hi) in zip(inner, pads)], np.float64)
+        core = x[tuple(slice(lo, lo + n) for n, (lo, _) in zip(inner, pads))]
+        _place(grid, core)
+        _pad_in_place(x, pads, _NUMPY_PAD.get(self.settings.rule))
+        f64 = np.dtype(np.float64)
+        if seamed:
+            x = _filter_with(x, seamed, self.settings.seamed, f64, x)
+        if any(lo or hi for lo, hi in pads):
+            cropped = x[tuple(slice(lo, lo + n) for n, (lo, _) in zip(inner, pads))]
+            x = _scratch.get("coefficients", cropped.shape, f64)
+            np.copyto(x, cropped)
+        if whole:
+            x = _filter_with(x, whole, self.settings.whole, f64, x)
+        return x
+
+
+def _piece_grid(pieces, ndim):
+    """The nested lists of a region's chunks as an object array of the
+    block grid (an array: one block)."""
+    if isinstance(pieces, np.ndarray):
+        grid = np.empty((1,) * ndim, dtype=object)
+        grid[(0,) * ndim] = pieces
+        return grid
+    shape, level = [], pieces
+    for _ in range(ndim):  # walked, not np.shape (which would stack the chunks)
+        shape.append(len(level))
+        level = level[0]
+    grid = np.empty(shape, dtype=object)
+    for idx in np.ndindex(grid.shape):
+        p = pieces
+        for i in idx:
+            p = p[i]
+        grid[idx] = np.asarray(p)
+    return grid
+
+
+def _assembled(pieces, ndim):
+    """The pieces (nested lists, one level per axis) as one C-ordered array
+    in the thread's scratch array 'region' (valid until its next task), of
+    their common dtype."""
+    grid = _piece_grid(pieces, ndim)
+    blocks = list(grid.flat)
+    dtype = np.result_type(*blocks)
+    shape = [sum(grid[(0,) * ax + (i,) + (0,) * (grid.ndim - ax - 1)].shape[ax] for i in range(grid.shape[ax]))
+             for ax in range(ndim)] + list(blocks[0].shape[ndim:])
+    if len(blocks) == 1 and blocks[0].flags.c_contiguous:
+        return blocks[0]
+    out = _scratch.get("region", shape, dtype)
+    _place(grid, out)
+    return out
+
+
+def _place(grid, out):
+    """The blocks of ``grid`` written side by side into ``out`` (converted
+    as numpy converts: float32 and integers of up to 53 bits exactly)."""
+    starts = [np.cumsum([0] + [grid[(0,) * ax + (i,) + (0,) * (grid.ndim - ax - 1)].shape[ax]
+                               for i in range(grid.shape[ax])]) for ax in range(grid.ndim)]
+    for idx in np.ndindex(grid.shape):
+        block = grid[idx]
+        where = tuple(slice(int(starts[ax][i]), int(starts[ax][i]) + block.shape[ax]) for ax, i in enumerate(idx))
+        np.copyto(out[where], block, casting="unsafe")
+
+
+def _pad_in_place(x, pads, rule):
+    """``np.pad(core, pads, mode=rule)`` where ``x`` holds ``core`` in its
+    middle: the padding written around it, axis by axis as numpy pads (each
+    axis over the whole extent of the axes padded before it). The source of
+    each padded index is numpy's own pad of the index vector."""
+    for ax, (lo, hi) in enumerate(pads):
+        if not (lo or hi):
+            continue
+        n = x.shape[ax] - lo - hi
+        src = np.pad(np.arange(n), (lo, hi), mode=rule) + lo
+        for part in (np.arange(lo), np.arange(lo + n, lo + n + hi)):
+            if part.size:
+                np.copyto(_along(x, ax, part), np.take(x, src[part], axis=ax))
+
+
+def _along(x, ax, idx):
+    """The view of ``x`` at the contiguous indices ``idx`` along ``ax``."""
+    return x[(slice(None),) * ax + (slice(int(idx[0]), int(idx[-1]) + 1),)]
+
+
+def _any_missing(darr):
+    """Whether ``darr`` holds a non-finite sample (a lazy 0-d bool): one
+    task a chunk (:func:`_chunk_missing`), then ``any``."""
+    return da.reduction(darr, _chunk_missing, _aggregate_any, dtype=bool, name="any-non-finite")
+
+
+def _chunk_missing(x, axis, keepdims):
+    """Whether the chunk ``x`` holds a non-finite sample, shaped as a
+    reduction's chunk result. Decided by the sum where it is finite (a NaN
+    or infinity makes it NaN or infinite): one pass in the chunk's own
+    dtype, no mask the size of the chunk (a fresh mapping of pages in a
+    worker); a sum that is not finite (a missing sample, or an overflow of
+    finite ones) is decided by ``isfinite``."""
+    with np.errstate(over="ignore", invalid="ignore"):
+        total = np.add.reduce(x, axis=None) if x.size else 0.0
+    flag = not np.isfinite(total) and not np.isfinite(x).all()
+    return np.full((1,) * x.ndim if keepdims else (), flag)
+
+
+def _aggregate_any(x, axis, keepdims):
+    return np.any(x, axis=axis, keepdims=keepdims)
+
 
 def _refused_if_missing(x):
     """nan_policy='raise' where no prefilter runs (degrees 0 and 1)."""
@@ -709,17 +894,21 @@ def _evaluate_region(region_coeffs, lo, x, mask, rules, dtype):
     local = np.subtract(x, np.array(lo, dtype=np.float64)[:, None], out=x)
     coeffs = work.samples(np.ascontiguousarray(region_coeffs))
     values = _Points(local).evaluate(coeffs, rules.d, rules.engine_mode, rules.cval, None, False, 1, None, work=work)
-    if mask is not None:
-        values = np.where(mask, np.asarray(rules.cval, values.dtype), values)
+    if mask is not None:  # the engine's new array: written in place
+        np.copyto(values, np.asarray(rules.cval, values.dtype), where=mask)
     return values.astype(dtype, copy=False)
 
 
 def _task(read, bounds, rules, points, dtype, shape, fused=None, reach=None, box=None):
     """One output block, computed in a worker: its points made here (not
-    sent), the coefficients of its region (read, or prefiltered here)."""
-    x, mask = rules.prepared(points(), box)
-    if reach is not None:  # fused: `read` holds the samples of `reach` (the region and its overlap)
-        read, bounds = fused.coefficients(read, reach, False), reach
+    sent, in the thread's scratch array), the coefficients of its region
+    (read, or prefiltered here)."""
+    flat = points(out=_scratch.get("points", (len(bounds), int(np.prod(shape))), np.float64))
+    x, mask = rules.prepared(flat, box, own=True)
+    if reach is not None:  # fused: `read` holds the chunks of `reach` (the region and its overlap)
+        read, bounds = fused.in_scratch(read, reach), reach
+    elif isinstance(read, list):  # the chunks of the coefficients' region, written side by side
+        read = _assembled(read, len(bounds))
     return _evaluate_region(read, [a for a, _ in bounds], x, mask, rules, dtype).reshape(shape)
 
 
@@ -761,7 +950,13 @@ def _one(lazy):
 def _chunk(plan, flat, dtype):
     """One chunk of scattered points (``(ndim, k)``, given) as a lazy array."""
     bounds = plan.region(plan.prepared(flat)[0])
-    return _lazy_block(plan, bounds, functools.partial(np.array, flat, dtype=np.float64), dtype, (flat.shape[1],))
+    return _lazy_block(plan, bounds, functools.partial(_given, flat), dtype, (flat.shape[1],))
+
+
+def _given(flat, out=None):
+    """Scattered points as float64 (a new array: the task makes them local
+    in place; ``out`` is not used)."""
+    return np.array(flat, dtype=np.float64)
 
 
 def _work_dtype(darr, output):
@@ -776,21 +971,116 @@ def _on_output_grid(darr, out_shape, chunks, grid, order, mode, cval, tol, route
     """The output of ``out_shape`` in ``chunks``; ``grid`` gives the points
     of a block (``grid.points(slices)``, ``(ndim, k)``, scipy's arithmetic)
     and their box (``grid.box(slices)``). Each block is one task that makes
-    its points and reads its region; the graph holds no coordinate array."""
+    its points and reads its region; the graph holds no coordinate array.
+
+    The graph is written directly (:func:`_blocks_layer`): one layer of the
+    blocks and of the pieces of the input's chunks they read, on top of the
+    input's own layers and the missing-sample flag's."""
     darr = da.asarray(darr)
     dtype = _work_dtype(darr, output)
     plan = _Plan(darr, order, mode, cval, tol, route, threads, nan_policy, compute, prefilter, fuse=True)
     chunks = da.core.normalize_chunks(chunks if chunks is not None else darr.chunksize[: len(out_shape)] if
                                       len(out_shape) == darr.ndim else "auto", out_shape, dtype=dtype)
     starts = [np.concatenate([[0], np.cumsum(c)[:-1]]).astype(int) for c in chunks]
-    blocks = np.empty([len(c) for c in chunks], dtype=object)
+    jobs = {}
     for idx in itertools.product(*[range(len(c)) for c in chunks]):
         slices = tuple(slice(int(starts[a][i]), int(starts[a][i] + chunks[a][i])) for a, i in enumerate(idx))
         shape = tuple(s.stop - s.start for s in slices)
         box = grid.box(slices) if all(shape) else None
         bounds = plan.rules.box_region(*box) if box else [(0, 0)] * darr.ndim
-        blocks[idx] = _lazy_block(plan, bounds, functools.partial(grid.points, slices), dtype, shape, box)
-    return da.block(blocks.tolist())
+        reach = plan.fused.reach(bounds) if plan.fused is not None else None
+        jobs[idx] = _Job(bounds, plan.rules, functools.partial(grid.points, slices), dtype, shape, plan.fused, reach,
+                         box)
+    missing = plan.missing_flag
+    name = "splinelab-resample-" + dask.base.tokenize(plan.coeffs.name, plan.rules, plan.fused, grid, chunks, dtype,
+                                                      None if missing is None else missing.name)
+    graph = _blocks_layer(name, jobs, plan.coeffs, missing)
+    return da.Array(graph, name, chunks, dtype=dtype, meta=np.empty((0,) * len(out_shape), dtype))
+
+
+class _Job:
+    """What one output block's task needs besides the chunks it reads
+    (pickled into the task): :func:`_task`'s arguments."""
+
+    __slots__ = ("bounds", "rules", "points", "dtype", "shape", "fused", "reach", "box")
+
+    def __init__(self, bounds, rules, points, dtype, shape, fused, reach, box):
+        self.bounds, self.rules, self.points, self.dtype = bounds, rules, points, dtype
+        self.shape, self.fused, self.reach, self.box = shape, fused, reach, box
+
+    def __getstate__(self):
+        return tuple(getattr(self, k) for k in self.__slots__)
+
+    def __setstate__(self, state):
+        for k, v in zip(self.__slots__, state):
+            setattr(self, k, v)
+
+
+def _run_job(job, pieces):
+    """A block's task: :func:`_task` on the pieces of the chunks it reads."""
+    return _task(pieces, job.bounds, job.rules, job.points, job.dtype, job.shape, job.fused, job.reach, job.box)
+
+
+def _finish_job(values, missing, job):
+    """:func:`_with_missing` of a block's values."""
+    return _with_missing(values, missing, job.rules, job.points, job.box)
+
+
+def _cut(chunk, lo, hi):
+    """The piece ``[lo, hi)`` (per axis) of a chunk (a view)."""
+    return chunk[tuple(slice(a, b) for a, b in zip(lo, hi))]
+
+
+def _blocks_layer(name, jobs, source, missing):
+    """The graph of the blocks ``jobs`` (index -> :class:`_Job`) reading the
+    chunks of the dask array ``source`` (the coefficients, or fused the
+    samples), with the 0-d flag ``missing`` (or None): ``source``'s and
+    ``missing``'s layers, and one layer ``name`` holding per block its
+    task, the pieces of the chunks it reads (a chunk it reads whole: the
+    chunk's own key) and, with a flag, the task that applies it, under the
+    key ``(name, *index)``. Written directly, not through dask.delayed
+    (which makes one layer per block and per piece, each with a copy of the
+    tasks it reads and no dependency named, so that the optimizer fuses the
+    input's reads into the flag's reduction and every chunk is read twice)."""
+    edges = [np.cumsum((0,) + tuple(c)) for c in source.chunks]
+    tasks = {}
+    for idx, job in jobs.items():
+        span = job.reach if job.reach is not None else job.bounds
+        per_axis = []  # per axis, the chunks read: (index, start, stop within the chunk)
+        for ax, (a, b) in enumerate(span):
+            e = [int(v) for v in edges[ax]]
+            if b <= a:  # nothing read: an empty piece of one chunk (the task's array keeps its axes)
+                i = min(max(bisect.bisect_right(e, a) - 1, 0), len(e) - 2)
+                per_axis.append([(i, 0, 0)])
+                continue
+            first, last = bisect.bisect_right(e, a) - 1, bisect.bisect_left(e, b)
+            per_axis.append([(i, max(a, e[i]) - e[i], min(b, e[i + 1]) - e[i]) for i in range(first, last)])
+        grid = np.empty([len(p) for p in per_axis], dtype=object)
+        for pos in np.ndindex(grid.shape):
+            parts = [per_axis[ax][k] for ax, k in enumerate(pos)]
+            chunk = (source.name,) + tuple(i for i, _, _ in parts)
+            lo, hi = tuple(a for _, a, _ in parts), tuple(b for _, _, b in parts)
+            full = tuple(int(edges[ax][i + 1] - edges[ax][i]) for ax, (i, _, _) in enumerate(parts))
+            if lo == (0,) * len(lo) and hi == full:
+                grid[pos] = chunk
+            else:
+                key = ("splinelab-piece-" + name[len("splinelab-resample-"):],) + idx + pos
+                tasks[key] = (_cut, chunk, lo, hi)
+                grid[pos] = key
+        if missing is None:
+            tasks[(name,) + idx] = (_run_job, job, grid.tolist())
+        else:
+            values = ("splinelab-block-" + name[len("splinelab-resample-"):],) + idx
+            tasks[values] = (_run_job, job, grid.tolist())
+            tasks[(name,) + idx] = (_finish_job, values, (missing.name,), job)
+    inputs = [source] + ([missing] if missing is not None else [])
+    layers, deps = {}, {}
+    for x in inputs:
+        layers.update(x.__dask_graph__().layers)
+        deps.update(x.__dask_graph__().dependencies)
+    layers[name] = MaterializedLayer(tasks)
+    deps[name] = {n for x in inputs for n in x.__dask_layers__()}
+    return HighLevelGraph(layers, deps)
 
 
 class _GridPoints:
@@ -799,9 +1089,9 @@ class _GridPoints:
     def __init__(self, axes):
         self.axes = axes
 
-    def points(self, slices):
+    def points(self, slices, out=None):
         mesh = np.meshgrid(*[x[s] for x, s in zip(self.axes, slices)], indexing="ij")
-        return np.stack([m.reshape(-1) for m in mesh])
+        return np.stack([m.reshape(-1) for m in mesh], out=out)
 
     def box(self, slices):
         parts = [x[s] for x, s in zip(self.axes, slices)]
@@ -814,19 +1104,23 @@ class _AffinePoints:
     def __init__(self, m, offsets):
         self.m, self.offsets = m, offsets
 
-    def points(self, slices):
+    def points(self, slices, out=None):
         """Per output axis ``h``: ``offset[h]``, then ``+= o_l m[h, l]`` for
         each index axis ``l`` in turn (the same operations, so the same bits,
         as adding whole index grids), the partial sums broadcast: one pass
-        over the block per added axis, no index grids."""
+        over the block per added axis, no index grids; the last sum written
+        into ``out`` (``(ndim, k)``) where given."""
         idx = [np.arange(s.start, s.stop, dtype=np.float64) for s in slices]
         k = len(slices)
-        points = np.empty((self.m.shape[0],) + tuple(len(i) for i in idx))
+        grid = (self.m.shape[0],) + tuple(len(i) for i in idx)
+        points = np.empty(grid) if out is None else out.reshape(grid)
         for h in range(self.m.shape[0]):
             t = np.full((1,) * k, self.offsets[h])
             for ll in range(k):
-                t = t + (idx[ll] * self.m[h, ll]).reshape((1,) * ll + (-1,) + (1,) * (k - ll - 1))
-            points[h] = t
+                step = (idx[ll] * self.m[h, ll]).reshape((1,) * ll + (-1,) + (1,) * (k - ll - 1))
+                t = np.add(t, step, out=points[h] if ll == k - 1 else None)
+            if k == 0:
+                points[h] = t
         return points.reshape(self.m.shape[0], -1)
 
     def box(self, slices):

@@ -486,14 +486,20 @@ def _broadcast_dims(var, news):
 
 
 def _interp_datetime(var, mine, method, kwargs, mode, tol):
-    """Datetime values interpolated as float64 nanoseconds (NaT as NaN),
-    rounded back, as xarray."""
-    ints = var.values.view(np.int64)
+    """datetime64 and timedelta64 values interpolated as xarray's interp
+    converts them: the integers of their own unit as float64 (NaT as NaN),
+    interpolated, rounded back (NaN as NaT); with or without ``mode=`` (its
+    'constant' and 'grid-constant' give NaT where they give cval: the cval
+    is NaN). Lazy where the data is (dask), as xarray keeps it."""
+    from . import _xarray_dask
     nat = np.iinfo(np.int64).min
-    floats = xr.Variable(var.dims, np.where(ints != nat, ints.astype(np.float64), np.nan), attrs=var.attrs)
+    xp = _xarray_dask.array_module(var.data)
+    ints = var.data.view(np.int64)
+    floats = xr.Variable(var.dims, xp.where(ints != nat, ints.astype(np.float64), np.nan), attrs=var.attrs)
     res = _interp_variable(floats, mine, method, kwargs, mode, tol)
-    vals = np.asarray(res.values)
-    back = np.where(np.isnan(vals), nat, np.round(np.nan_to_num(vals)).astype(np.int64))
+    vals = res.data
+    xp = _xarray_dask.array_module(vals)
+    back = xp.where(xp.isnan(vals), nat, xp.round(xp.nan_to_num(vals)).astype(np.int64))
     return xr.Variable(res.dims, back.view(var.dtype), attrs=res.attrs)
 
 
