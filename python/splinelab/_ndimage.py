@@ -179,9 +179,9 @@ def spline_filter1d(
     >>> bool(np.allclose((4 * c[0] + 2 * c[1]) / 6, [1, 0, 0]))
     True
     """
-    if tol is DEFAULT_TOL and type(order) is int and order >= 2:
-        # The common call in one step (map_coordinates'); degrees 0 and 1
-        # are scipy's copy (below), no engine call.
+    if tol is DEFAULT_TOL:
+        # The common call in one step (map_coordinates'; degrees 0 and 1
+        # scipy's copy).
         values = _ext.filter_common(input, order, axis, False, output, mode, threads, nan_policy, compute, exact_edges)
         if values is not None:
             return values
@@ -282,7 +282,7 @@ def spline_filter(input, order=3, output=np.float64, mode="mirror", *, tol=DEFAU
     >>> bool(np.allclose(splinelab.spline_filter(x, order=5), x))
     True
     """
-    if tol is DEFAULT_TOL and type(order) is int and order >= 2:
+    if tol is DEFAULT_TOL:
         # The common call in one step (spline_filter1d's).
         values = _ext.filter_common(input, order, None, True, output, mode, threads, nan_policy, compute, exact_edges)
         if values is not None:

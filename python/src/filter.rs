@@ -335,8 +335,8 @@ pub fn nan_reach(degree: u32, tol: f64) -> PyResult<usize> {
 }
 
 /// `splinelab.spline_filter1d`'s (and with `every`, `spline_filter`'s)
-/// common call in one step (issue 50): an exact int `order` of 2 or more
-/// the engine takes, a float64 or float32 array (exactly `numpy.ndarray`,
+/// common call in one step (issue 50): an exact int `order` the engine
+/// takes (degrees 0 and 1: scipy's copy, converted as numpy converts), a float64 or float32 array (exactly `numpy.ndarray`,
 /// not empty), an exact int `axis` it has (or `every` axis), `output`
 /// None (the input's dtype) or float64 / float32 (numpy's type or dtype,
 /// or Python's `float`), one of scipy's mode names, a bool
@@ -359,7 +359,7 @@ pub fn filter_common<'py>(
     compute: &Bound<'py, PyAny>,
     exact_edges: &Bound<'py, PyAny>,
 ) -> Option<Bound<'py, PyAny>> {
-    let degree = common::degree(order).filter(|&d| d >= 2)?;
+    let degree = common::degree(order)?;
     let exact_edges = common::exact::<PyBool>(exact_edges)?.is_true();
     let rule = filter_rule(common::name(mode)?, exact_edges)?;
     let threads = common::common_threads(threads)?;
@@ -433,6 +433,14 @@ where
     O: Sample<f64> + Stored<f64> + Element,
 {
     let out = crate::alloc::zeros::<O>(py, a.shape()).ok()?;
-    filter_generic::<f64, E, O>(py, Some(a), out.readwrite(), axes, spec, threads).ok()?;
+    if spec.degree < 2 {
+        // scipy's `output[...] = input`: float32 from float64 rounded to
+        // nearest (overflow to ±inf), as numpy's unsafe cast.
+        let mut rw = out.readwrite();
+        rw.as_array_mut()
+            .zip_mut_with(&a, |o, s| *o = O::store(&s.widen()));
+    } else {
+        filter_generic::<f64, E, O>(py, Some(a), out.readwrite(), axes, spec, threads).ok()?;
+    }
     Some(out.into_any())
 }
