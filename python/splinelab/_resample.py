@@ -502,6 +502,12 @@ def rotate(input, angle, axes=(1, 0), reshape=True, output=None, order=3, mode="
     a = np.asarray(input)
     ndim = a.ndim
     axes, rot, offset, out_plane, out_shape = _rotation(angle, axes, a.shape, reshape)
+    if output is None and tol is DEFAULT_TOL and exact_edges is False:
+        # The common call in one step per plane (affine_transform's).
+        values = _rotate_common(a, axes, rot, offset, out_plane.tolist(), out_shape,
+                                (order, mode, cval, prefilter, threads, nan_policy, compute))
+        if values is not None:
+            return values
     if ndim == 2:
         # affine_transform's checks of the matrix, offset and shape cannot
         # fail on the rotation's own: the settings are the first that can.
@@ -521,6 +527,25 @@ def rotate(input, angle, axes=(1, 0), reshape=True, output=None, order=3, mode="
     plane_shape = tuple(int(n) for n in out_plane)
     for index in itertools.product(*[[slice(None)] if ax in axes else range(a.shape[ax]) for ax in range(ndim)]):
         affine_transform(a[index], rot, offset, plane_shape, full[index], **kwargs)
+    return full
+
+
+def _rotate_common(a, axes, rot, offset, plane, out_shape, settings):
+    """:func:`rotate`'s common call: each plane of ``a`` (the array
+    itself in 2-D) through affine_transform's one step
+    (``_ext.affine_common``) into its slice of the result; None where the
+    step declines (on the first plane: every plane has the same shape and
+    settings)."""
+    if a.ndim == 2:
+        return _ext.affine_common(a, rot, offset, settings, plane)
+    full = None
+    for index in itertools.product(*[[slice(None)] if ax in axes else range(n) for ax, n in enumerate(a.shape)]):
+        values = _ext.affine_common(a[index], rot, offset, settings, plane)
+        if values is None:
+            return None
+        if full is None:
+            full = np.empty(out_shape, values.dtype)
+        full[index] = values
     return full
 
 

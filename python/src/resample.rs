@@ -335,18 +335,21 @@ pub fn zoom_common<'py>(
 /// settings of [`CommonCall`], a float64 or float32 array (exactly
 /// `numpy.ndarray`, not empty), a finite square float64 `matrix`
 /// (`(ndim, ndim)`, exactly `numpy.ndarray`), a finite `offset` (one real
-/// or one per axis, [`per_axis`]) and the output of the input's shape; the
-/// values at `matrix · o + offset` in a new array of the input's dtype, as
-/// the full call gives them (the engine's affine resampling). `None` for
-/// any other call, and where the local route may read less (the Python
-/// layer's).
+/// or one per axis, [`per_axis`]) and an output of `out_shape` (None: the
+/// input's; no empty axis); the values at `matrix · o + offset` in a new
+/// array of the input's dtype, as the full call gives them (the engine's
+/// affine resampling). `None` for any other call, and where the local
+/// route may read less (the Python layer's). `rotate` calls it plane by
+/// plane.
 #[pyfunction]
+#[pyo3(signature = (input, matrix, offset, settings, out_shape=None))]
 pub fn affine_common<'py>(
     py: Python<'py>,
     input: &Bound<'py, PyAny>,
     matrix: &Bound<'py, PyAny>,
     offset: &Bound<'py, PyAny>,
     settings: &Bound<'py, PyAny>,
+    out_shape: Option<Vec<usize>>,
 ) -> Option<Bound<'py, PyAny>> {
     let call = CommonCall::recognise(settings)?;
     exact::<PyUntypedArray>(matrix)?;
@@ -363,15 +366,17 @@ pub fn affine_common<'py>(
         if !matrix.iter().chain(&offset).all(|v| v.is_finite()) {
             return None;
         }
+        let out_shape = out_shape.clone().unwrap_or_else(|| a.shape().to_vec());
+        let count = out_shape.iter().product();
         let filtered = call.prefilter && call.degree >= 2;
-        if may_be_local(a.shape(), a.len(), call.degree, filtered) {
+        if count == 0 || out_shape.len() != ndim || may_be_local(a.shape(), count, call.degree, filtered) {
             return None;
         }
         let rule = match call.cval_outside() {
             true => PointRule::CvalOutside,
             false => PointRule::Fold,
         };
-        let map = AffineMap { matrix, offset: &offset, out_shape: a.shape().to_vec(), shift: 0.0, rule };
+        let map = AffineMap { matrix, offset: &offset, out_shape, shift: 0.0, rule };
         affine_generic::<f64, E, O>(py, a, &map, call.options(), call.how(), call.threads).ok()
     })
 }

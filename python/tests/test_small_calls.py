@@ -137,7 +137,7 @@ def _small_calls():
     yield "map_coordinates float32", lambda o: splinelab.map_coordinates(x.astype(np.float32), pts, order=o), \
         "map_coordinates_common"
     yield "affine_transform", lambda o: splinelab.affine_transform(x, rot, (0.7, -0.2), order=o), "affine_common"
-    yield "rotate", lambda o: splinelab.rotate(x, 30, order=o), "affine"
+    yield "rotate", lambda o: splinelab.rotate(x, 30, order=o), "affine_common"
     yield "shift", lambda o: splinelab.shift(x, 0.3, order=o), "shift_common"
     yield "zoom", lambda o: splinelab.zoom(x3, 2, order=o), "zoom_common"
     yield "geometric_transform", lambda o: splinelab.geometric_transform(x, lambda c: (c[0] - 0.3, c[1]), order=o), \
@@ -324,6 +324,7 @@ _ODD_CALLS = {
 
 
 _ROT = np.array([[0.9, 0.3], [-0.3, 0.9]])
+_X32 = _X.astype(np.float32)
 _ODD_SHIFTS = {
     "shift": lambda: splinelab.shift(_X, 0.3, order=1),
     "shift cubic": lambda: splinelab.shift(_X, 0.3, order=3, mode="grid-wrap"),
@@ -379,6 +380,21 @@ _ODD_AFFINES = {
     "affine order 7": lambda: splinelab.affine_transform(_X, _ROT, order=7),
     "affine bad order": lambda: splinelab.affine_transform(_X, _ROT, order="3"),
     "affine nan_policy": lambda: splinelab.affine_transform(_X, _ROT, order=3, nan_policy="raise"),
+    "rotate": lambda: splinelab.rotate(_X, 30, order=1),
+    "rotate cubic no reshape": lambda: splinelab.rotate(_X, -75.5, order=3, reshape=False, mode="reflect"),
+    "rotate 90": lambda: splinelab.rotate(_X, 90, order=0),
+    "rotate float32": lambda: splinelab.rotate(_X32, 30, order=3),
+    "rotate 3-d": lambda: splinelab.rotate(_PTS, 30, order=1, cval=np.nan),
+    "rotate 3-d axes (0, 2)": lambda: splinelab.rotate(_PTS, 12, axes=(0, 2), order=3, mode="grid-wrap"),
+    "rotate 3-d view": lambda: splinelab.rotate(_PTS[:, ::-1], 12, axes=(2, 1), order=0),
+    "rotate 4-d": lambda: splinelab.rotate(np.ones((2, 3, 4, 5)), 40, axes=(1, 3), order=1),
+    "rotate wrap": lambda: splinelab.rotate(_X, 30, order=3, mode="wrap"),
+    "rotate nan angle": lambda: splinelab.rotate(_X, np.nan, order=1),
+    "rotate bad axes": lambda: splinelab.rotate(_X, 30, axes=(0, 0), order=1),
+    "rotate 1-d": lambda: splinelab.rotate(_X[0], 30, order=1),
+    "rotate to empty": lambda: splinelab.rotate(np.ones((1, 0)), 30, order=1),
+    "rotate list": lambda: splinelab.rotate(_X.tolist(), 30, order=1),
+    "rotate int": lambda: splinelab.rotate(_X.astype(np.uint8), 30, order=1),
 }
 _ODD_ZOOMS = {
     "zoom": lambda: splinelab.zoom(_X, 2, order=1),
@@ -403,7 +419,6 @@ _ODD_ZOOMS = {
     "zoom wrap": lambda: splinelab.zoom(_X, 2, order=3, mode="wrap"),
     "zoom empty": lambda: splinelab.zoom(np.empty((0, 3)), 2, order=1),
 }
-_X32 = _X.astype(np.float32)
 _ODD_FILTERS = {
     "filter1d": lambda: splinelab.spline_filter1d(_X, 3),
     "filter1d axis 0": lambda: splinelab.spline_filter1d(_X, 5, axis=0, mode="reflect"),
