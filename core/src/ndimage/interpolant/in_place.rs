@@ -196,7 +196,7 @@ impl<'a, E> Reader<'a, E> {
             .zip(&copies)
             .map(|(v, c)| c.as_deref().or(v.to_slice()).unwrap_or_default())
             .collect();
-        for (j, o) in out.iter_mut().enumerate() {
+        let mut general = |j: usize| -> Result<T, NdimageError> {
             for (xa, col) in x.iter_mut().zip(&columns) {
                 let p = col[j];
                 if !p.is_finite() {
@@ -204,7 +204,7 @@ impl<'a, E> Reader<'a, E> {
                 }
                 *xa = p;
             }
-            *o = if rule.apply(&mut x, shape) {
+            Ok(if rule.apply(&mut x, shape) {
                 T::from_f64_exact(self.cval)
             } else if self.locate(&x, &mut taps, &mut w) {
                 match self.sum_inside(&taps, &w) {
@@ -213,9 +213,116 @@ impl<'a, E> Reader<'a, E> {
                 }
             } else {
                 self.sum(&taps, &w, 0, 0, true)
+            })
+        };
+        match ndim {
+            1 => self.eval_fixed::<1, T>(&columns, out, general),
+            2 => self.eval_fixed::<2, T>(&columns, out, general),
+            3 => self.eval_fixed::<3, T>(&columns, out, general),
+            _ => out
+                .iter_mut()
+                .enumerate()
+                .try_for_each(|(j, o)| general(j).map(|v| *o = v)),
+        }
+    }
+
+    /// Whether point `j` lies where [`Self::eval_fixed`] evaluates it: on
+    /// every axis inside `[0, n − 1]` (degree 0) or `[0, n − 1)` (degree 1),
+    /// where no point rule or mode moves it and every tap has its sample
+    /// (a NaN coordinate is not: the general loop refuses it).
+    #[inline(always)]
+    fn is_inside_point(&self, columns: &[&[f64]], j: usize) -> bool {
+        columns.iter().zip(self.shape).all(|(col, &n)| {
+            let (x, top) = (col[j], (n - 1) as f64);
+            x >= 0.0 && (x < top || (x == top && self.order == SampleOrder::Nearest))
+        })
+    }
+
+    /// The points of `D` axes: those that lie inside
+    /// ([`Self::is_inside_point`]) with the axes known at compile time (the
+    /// loops of [`Self::locate`] and [`Self::sum_inside`] unrolled: the same
+    /// cells, weights and sums from zero in the same order, so the same
+    /// bits), the others by `general`.
+    fn eval_fixed<const D: usize, T: Real>(
+        &self,
+        columns: &[&[f64]],
+        out: &mut [T],
+        mut general: impl FnMut(usize) -> Result<T, NdimageError>,
+    ) -> Result<(), NdimageError>
+    where
+        E: Sample<T>,
+    {
+        let mut stride = [0usize; D];
+        stride.copy_from_slice(&self.strides[..D]);
+        for (j, o) in out.iter_mut().enumerate() {
+            if !self.is_inside_point(columns, j) {
+                *o = general(j)?;
+                continue;
+            }
+            let mut x = [0.0; D];
+            for (xa, col) in x.iter_mut().zip(columns) {
+                *xa = col[j];
+            }
+            *o = match self.order {
+                SampleOrder::Nearest => {
+                    // `Mode::nearest_index` of a point it does not move;
+                    // the sums from zero of `sum_inside` (−0 becomes +0).
+                    let at = (0..D).fold(0, |at, a| {
+                        let t = x[a] as usize;
+                        at + (t + usize::from(x[a] - t as f64 >= 0.5)) * stride[a]
+                    });
+                    T::zero() + self.read(at)
+                }
+                SampleOrder::Linear => self.linear_inside::<D, T>(&x, &stride),
             };
         }
         Ok(())
+    }
+
+    /// Degree 1 at a point inside `[0, n − 1)` on every axis: the cell
+    /// `⌊x⌋` and its weights per axis, the products summed from zero from
+    /// the first axis in ([`Self::sum_inside`]'s order).
+    #[inline(always)]
+    fn linear_inside<const D: usize, T: Real>(&self, x: &[f64; D], stride: &[usize; D]) -> T
+    where
+        E: Sample<T>,
+    {
+        let mut base = [0usize; D];
+        let mut w: [[T; 2]; D] = std::array::from_fn(|_| [T::zero(), T::zero()]);
+        for a in 0..D {
+            let t = x[a] as usize;
+            cell_weights_into(2, 0, x[a] - t as f64, &mut w[a]);
+            base[a] = t * stride[a];
+        }
+        let dot = |at: usize| {
+            let mut sum = T::zero();
+            for (l, wl) in w[D - 1].iter().enumerate() {
+                sum += wl.clone() * self.read(at + base[D - 1] + l * stride[D - 1]);
+            }
+            sum
+        };
+        match D {
+            1 => dot(0),
+            2 => {
+                let mut sum = T::zero();
+                for (l, w0) in w[0].iter().enumerate() {
+                    sum += w0.clone() * dot(base[0] + l * stride[0]);
+                }
+                sum
+            }
+            _ => {
+                let mut sum = T::zero();
+                for (l0, w0) in w[0].iter().enumerate() {
+                    let mut plane = T::zero();
+                    for (l1, w1) in w[1].iter().enumerate() {
+                        plane +=
+                            w1.clone() * dot(base[0] + l0 * stride[0] + base[1] + l1 * stride[1]);
+                    }
+                    sum += w0.clone() * plane;
+                }
+                sum
+            }
+        }
     }
 
     fn new(src: &'a [E], shape: &'a [usize], opts: &InPlaceOptions) -> Self {

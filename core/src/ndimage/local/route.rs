@@ -58,11 +58,13 @@ pub const C_COPY: f64 = 1.5;
 /// Nanoseconds per sample read by a point of degree 0 or 1 evaluated in
 /// place ([`map_samples_in_place`](crate::ndimage::interpolant::map_samples_in_place)),
 /// beyond what the padded route's kernels spend on it. Measured (issue 50,
-/// `threads=1`, the loaded 2-core machine, both routes alternated): 16.5
-/// against 1.5 ns a point of degree 0 on 128², 29 against 2.6 ns a point of
-/// degree 1; 38 ns a point of degree 0 on 512², whose reads miss the caches
-/// (the padded route prefetches them).
-pub const C_IN_PLACE_TAP: f64 = 8.0;
+/// sixth session, `threads=1`, the 2-core machine, random points inside,
+/// the slope between two counts): in place 7.8 / 20.7 ns a point of degree
+/// 0 / 1 on 128² against 5.0 / 6.0 through the padded copy, 10.8 / 29.5
+/// on 16³–64³ against 6.5 / 9.2: 2.6–4.4 ns a sample read (the in-place
+/// loop of points inside at compile-time axes; it was 16.5 ns a point of
+/// degree 0 before, when this was 8).
+pub const C_IN_PLACE_TAP: f64 = 4.0;
 /// Nanoseconds per point of the local route's bookkeeping (cell, grouping).
 /// Measured (issue 42, `LocalPlan::new` alone, random points on a 2048²
 /// array, the loaded 2-core machine): 0.5 µs a point at 10⁴ points, 0.63
@@ -183,7 +185,7 @@ pub fn floor_ns(ndim: usize, degree: u32, half_width: Option<usize>, points: usi
 /// ```
 /// use splinelab::ndimage::local::route::in_place_pays;
 /// assert!(in_place_pays(32 * 32 * 32, 25, 8.0));
-/// assert!(!in_place_pays(128 * 128, 4096, 1.0));
+/// assert!(!in_place_pays(128 * 128, 8192, 1.0));
 /// ```
 pub fn in_place_pays(samples: usize, points: usize, taps: f64) -> bool {
     points as f64 * taps * C_IN_PLACE_TAP < samples as f64 * C_COPY
