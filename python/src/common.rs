@@ -6,7 +6,7 @@
 //! return `None` and the Python layer checks, routes and answers the call
 //! as scipy does; nothing here refuses anything.
 
-use crate::interp::Coefficients;
+use crate::coefficients::Coefficients;
 use crate::scipy_mode::{EngineArgs, engine_args};
 use numpy::{PyArrayMethods, PyUntypedArray};
 use pyo3::prelude::*;

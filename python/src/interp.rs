@@ -13,6 +13,7 @@
 //! With `deriv`, a partial derivative of the interpolant instead of its values;
 //! with `cval_outside`, `cval` at points outside the grid (scipy's 'constant').
 
+use crate::coefficients::Coefficients;
 use crate::common::{CommonCall, exact, may_be_local};
 use crate::error::{engine_error, value_error};
 use ndarray::{ArrayView2, ArrayViewD};
@@ -39,28 +40,6 @@ pub(crate) fn options(
         opts.route = Route::Truncated { tol };
     }
     Ok(opts)
-}
-
-/// How the interpolant's coefficients are made: from samples (the engine
-/// prefilters them under the mode), from samples prefiltered under another
-/// rule and then taken as given (scipy's `nearest`/`grid-constant`), or
-/// taken as given (scipy's `prefilter=False`).
-#[derive(Debug, Clone, Copy)]
-pub(crate) enum Coefficients {
-    Prefilter,
-    FilteredAs(Mode),
-    Given,
-}
-
-impl Coefficients {
-    /// From `prefilter` and the optional filter rule's name.
-    pub(crate) fn new(prefilter: bool, filter_rule: Option<&str>) -> PyResult<Self> {
-        Ok(match (prefilter, filter_rule) {
-            (false, _) => Coefficients::Given,
-            (true, None) => Coefficients::Prefilter,
-            (true, Some(rule)) => Coefficients::FilteredAs(rule.parse().map_err(value_error)?),
-        })
-    }
 }
 
 /// Estimated nanoseconds on one thread of a call that builds the

@@ -21,6 +21,7 @@
 mod alloc;
 mod check;
 mod cli;
+mod coefficients;
 mod common;
 mod error;
 mod filter;

@@ -8,9 +8,10 @@
 //! results (`out32`, each rounded once), or with `f32` float32 samples in
 //! float32 (the `compute="float32"` opt-in).
 
+use crate::coefficients::Coefficients;
 use crate::common::{CommonCall, exact, may_be_local, per_axis};
 use crate::error::engine_error;
-use crate::interp::{Coefficients, interpolant, options, work_ns};
+use crate::interp::{interpolant, options, work_ns};
 use crate::scipy_mode::point_rule;
 use ndarray::ArrayViewD;
 use numpy::{
