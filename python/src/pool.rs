@@ -37,14 +37,21 @@ use splinelab_reports::threads::MAX_THREADS;
 const KEPT_POOLS: usize = 4;
 
 /// Estimated work (nanoseconds on one thread) up to which a call with
-/// `threads=None` runs on the calling thread: twice the hand-off it saves
-/// (a parallel run of `t` ns on two cores takes `t / 2` plus the hand-off,
-/// 10–50 µs measured by `python/bench/small_calls.py` on the loaded 2-core
-/// machine, `threads=None` against `threads=1`). The estimates are the
-/// local route's pricing constants
+/// `threads=None` runs on the calling thread. A parallel run of `t` ns on
+/// two cores takes `t / 2` plus the hand-off (10–50 µs measured by
+/// `python/bench/small_calls.py` on the loaded 2-core machine,
+/// `threads=None` against `threads=1`), but it also costs CPU: the woken
+/// workers' wake-up and spinning. At 60 µs (twice the hand-off, issue 50's
+/// first choice) reproject's suite, whose calls are many and mid-sized,
+/// took 4.4 % more CPU swapped than with scipy (50.08 against 47.97 s,
+/// three alternated pairs), and the same with the pool at one thread; at
+/// 200 µs the same (51.80 against 51.89 s, `python/bench/reproject_cpu.md`),
+/// while calls of 60–200 µs of work run up to 1.8× longer in wall time than
+/// on two threads (still 0.03–0.6 of scipy's time in `small_calls`). The
+/// estimates are the local route's pricing constants
 /// ([`splinelab::ndimage::local::C_GLOBAL`] per sample and axis of the
 /// prefilter, a nanosecond per multiply-add of the evaluation).
-pub const SMALL_NS: f64 = 60_000.0;
+pub const SMALL_NS: f64 = 200_000.0;
 
 fn pool(threads: usize) -> PyResult<Arc<ThreadPool>> {
     if !(1..=MAX_THREADS).contains(&threads) {
