@@ -9,16 +9,15 @@ from . import _splinelab as _ext
 from ._validate import MAX_DEGREE, _mode
 from .errors import ModeError
 
-#: scipy.ndimage's mode names.
-MODE_NAMES = ("mirror", "constant", "grid-constant", "wrap", "reflect", "grid-mirror", "nearest", "grid-wrap")
+#: scipy.ndimage's mode names, as its messages list them.
+MODES = "mirror, reflect, grid-mirror, grid-wrap, wrap, nearest, grid-constant, constant"
+MODE_NAMES = tuple(MODES.split(", "))
 #: The filter scipy's spline_filter1d applies under each mode (ni_splines.c
 #: has three: the mirror rule, the reflect (half-sample) rule and the
 #: periodic one): the engine's mapping (``python/src/scipy_mode.rs``).
 SCIPY_FILTER_RULE = {m: _ext.filter_rule(m, False) for m in MODE_NAMES}
-#: The modes whose spline of the extended signal scipy approximates by
-#: padding 12 samples (``exact_edges`` evaluates it exactly).
-EXACT_EDGES = ("nearest", "grid-constant")
-MODES = "mirror, reflect, grid-mirror, grid-wrap, wrap, nearest, grid-constant, constant"
+#: :func:`filter_rule` of every scipy mode and ``exact_edges``, from the engine.
+_FILTER_RULE = {(m, e): _ext.filter_rule(m, e) for m in MODE_NAMES for e in (False, True)}
 #: The modes whose points are folded by whole periods.
 PERIODIC = ("grid-wrap", "wrap")
 
@@ -63,10 +62,8 @@ def engine_args(mode, d, prefilter, exact_edges):
         raise ValueError(f"unknown mode {mode!r} or degree {d!r}") from None
 
 
-#: :func:`filter_rule` of every scipy mode and ``exact_edges``, from the engine.
-_FILTER_RULE = {(m, e): _ext.filter_rule(m, e) for m in MODE_NAMES for e in (False, True)}
 #: :func:`engine_args` of every scipy mode, degree, prefilter and
 #: ``exact_edges``, from the engine.
 _ENGINE_ARGS = {(m, d, p, e): _ext.engine_args(m, d, p, e)
-                for m in SCIPY_FILTER_RULE for d in range(MAX_DEGREE + 1) for p in (False, True)
+                for m in MODE_NAMES for d in range(MAX_DEGREE + 1) for p in (False, True)
                 for e in (False, True)}

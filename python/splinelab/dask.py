@@ -279,14 +279,22 @@ def _pad_ends(x, seamed, rule, d, ends):
     (``ends[axis]``: at the start, at the end; there map_overlap adds no
     halo; ``grid-wrap`` has its periodic halo already), and the slices that
     take the padding off again."""
-    pads = [(0, 0)] * x.ndim
-    if rule in _NUMPY_PAD:
-        for ax in seamed:
-            pads[ax] = (d if ends[ax][0] else 0, d if ends[ax][1] else 0)
+    pads = _end_pads(x.ndim, seamed, rule, d, ends)
     if not any(lo or hi for lo, hi in pads):
         return x, ()
     crop = tuple(slice(lo, lo + n) for (lo, _), n in zip(pads, x.shape))
     return np.pad(x, pads, mode=_NUMPY_PAD[rule]), crop
+
+
+def _end_pads(ndim, seamed, rule, d, ends):
+    """:func:`_pad_ends`'s padding, ``(before, after)`` per axis of
+    ``ndim``: ``d`` on each side of a seamed axis where the block meets the
+    array's edge, under a ``rule`` numpy pads."""
+    pads = [(0, 0)] * ndim
+    if rule in _NUMPY_PAD:
+        for ax in seamed:
+            pads[ax] = (d if ends[ax][0] else 0, d if ends[ax][1] else 0)
+    return pads
 
 
 def _dask_image_names(**aliases):
@@ -739,15 +747,22 @@ class _Fused:
         (arrays or numbers)."""
         return np.maximum(np.subtract(lo, self.depth), 0), np.minimum(np.add(hi, self.depth), self.extent[axis])
 
+    def axes_of(self, reach):
+        """The axes of a region ``reach`` filtered in one block (it spans
+        the array: ``whole``), those filtered with seams, and per axis
+        whether the region starts and ends at the array's edges."""
+        whole = [ax for ax, ((a, b), n) in enumerate(zip(reach, self.extent)) if a == 0 and b == n]
+        seamed = [ax for ax in range(len(reach)) if ax not in whole]
+        ends = [(a == 0, b == n) for (a, b), n in zip(reach, self.extent)]
+        return whole, seamed, ends
+
     def coefficients(self, samples, reach, missing):
         """The coefficients over ``reach`` from its samples: true within the
         bound on the region inside it (those at least the half-width from
         an edge that is not the array's), which is all the windows read:
         not cropped (no copy), the region's windows never reach the rest."""
         x = np.asarray(samples)  # the filtered axes first (``reach``'s), any others carried
-        whole = [ax for ax, ((a, b), n) in enumerate(zip(reach, self.extent)) if a == 0 and b == n]
-        seamed = [ax for ax in range(len(reach)) if ax not in whole]
-        ends = [(a == 0, b == n) for (a, b), n in zip(reach, self.extent)]
+        whole, seamed, ends = self.axes_of(reach)
         x = _filter_block(x, seamed, whole, self.depth, ends, np.dtype(np.float64), self.settings)
         if missing:  # scipy's pattern: every coefficient NaN (the chunked filter's global mask)
             x = np.full(x.shape, np.nan)
@@ -765,13 +780,8 @@ class _Fused:
         ndim = len(reach)
         grid = _piece_grid(pieces, ndim)
         carried = grid[(0,) * grid.ndim].shape[ndim:]
-        whole = [ax for ax, ((a, b), n) in enumerate(zip(reach, self.extent)) if a == 0 and b == n]
-        seamed = [ax for ax in range(ndim) if ax not in whole]
-        ends = [(a == 0, b == n) for (a, b), n in zip(reach, self.extent)]
-        pads = [(0, 0)] * (ndim + len(carried))
-        if self.settings.rule in _NUMPY_PAD:
-            for ax in seamed:
-                pads[ax] = (self.depth if ends[ax][0] else 0, self.depth if ends[ax][1] else 0)
+        whole, seamed, ends = self.axes_of(reach)
+        pads = _end_pads(ndim + len(carried), seamed, self.settings.rule, self.depth, ends)
         inner = [b - a for a, b in reach] + list(carried)
         x = _scratch.get("samples", [n + lo + hi for n, (lo, hi) in zip(inner, pads)], np.float64)
         core = x[tuple(slice(lo, lo + n) for n, (lo, _) in zip(inner, pads))]

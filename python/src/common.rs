@@ -13,7 +13,7 @@ use pyo3::prelude::*;
 use pyo3::type_object::{PyTypeCheck, PyTypeInfo};
 use pyo3::types::{PyBool, PyFloat, PyInt, PyList, PyString, PyTuple};
 use splinelab::ndimage::interpolant::PointRule;
-use splinelab::ndimage::local::route::{self, global_ns};
+use splinelab::ndimage::local::route;
 use splinelab::ndimage::spline_order;
 use splinelab::prelude::*;
 use splinelab_reports::threads::MAX_THREADS;
@@ -97,24 +97,20 @@ pub(crate) fn exact<'a, 'py, T: PyTypeCheck + PyTypeInfo>(
 }
 
 /// Whether the local route may read less than the global one for `k`
-/// points on an array of `shape` at the default `tol`: the floor of its
-/// cost ([`floor_ns`]) below the global route's ([`global_ns`]), as
-/// `LocalPlan::new_if_local` decides first and `splinelab._local.may_be_local`
-/// decides in Python. True where the half-width is unknown (the Python
-/// layer then decides).
+/// points on an array of `shape` at the default `tol`
+/// ([`route::may_be_local`], as `splinelab._local.may_be_local` decides in
+/// Python); true where the half-width is unknown (the Python layer then
+/// decides).
 pub(crate) fn may_be_local(shape: &[usize], k: usize, degree: u32, filtered: bool) -> bool {
-    let global = global_ns(shape.iter().product(), shape.len(), filtered);
-    if route::locate_ns(k) >= global {
-        return false;
-    }
-    let n = match filtered {
-        true => match crate::local::default_half_width(degree) {
-            Some(n) => Some(n),
-            None => return true,
-        },
-        false => None,
-    };
-    route::floor_ns(shape.len(), degree, n, k) < global
+    let half_width = || crate::local::default_half_width(degree);
+    route::may_be_local(
+        shape.iter().product(),
+        shape.len(),
+        degree,
+        k,
+        filtered,
+        half_width,
+    )
 }
 
 /// A degree given as an exact Python int the engine takes.

@@ -90,8 +90,7 @@ fn in_place<E>(
     }
     let shape = data.shape();
     let local_cval = opts.nan_policy == NanPolicy::Local && !opts.cval.is_finite();
-    let taps = f64::from(opts.degree + 1).powi(shape.len() as i32);
-    let pays = route::in_place_pays(shape.iter().product(), points, taps);
+    let pays = pays_in_place(shape, points, opts.degree);
     (!deriv && !local_cval && pays).then_some(InPlaceOptions {
         order,
         mode: opts.mode,
@@ -193,6 +192,12 @@ pub fn map_coordinates<'py>(
 /// `splinelab._local.in_place_pays` decides in Python before any call.
 #[pyfunction]
 pub fn in_place_pays(shape: Vec<usize>, points: usize, degree: u32) -> bool {
+    pays_in_place(&shape, points, degree)
+}
+
+/// [`route::in_place_pays`] for `points` points of `degree` (0 or 1; false
+/// above) on an array of `shape`: `(degree + 1)^ndim` samples a point.
+fn pays_in_place(shape: &[usize], points: usize, degree: u32) -> bool {
     let taps = f64::from(degree.saturating_add(1)).powi(shape.len() as i32);
     degree <= 1 && route::in_place_pays(shape.iter().product(), points, taps)
 }

@@ -10,7 +10,7 @@
 
 use super::axis_map::AxisMap;
 use super::coef_box::{CoefBox, Work, first_index};
-use super::route::{C_POINT, C_READ, RouteCost, floor_ns, global_ns, locate_ns, tile_ns};
+use super::route::{C_POINT, C_READ, RouteCost, global_ns, locate_ns, may_be_local, tile_ns};
 use super::spec::LocalSpec;
 use crate::ndimage::NdimageError;
 use crate::ndimage::interpolant::PointRule;
@@ -88,16 +88,20 @@ impl LocalPlan {
         points: ArrayView2<'_, f64>,
         rule: PointRule,
     ) -> Result<Option<Self>, NdimageError> {
-        let global = global_ns(
-            spec.shape().iter().product(),
+        let (samples, filtered) = (spec.shape().iter().product(), spec.filter.is_some());
+        let half_width = || Some(spec.half_width());
+        if !may_be_local(
+            samples,
             spec.ndim(),
-            spec.filter.is_some(),
-        );
-        let n = spec.filter.is_some().then(|| spec.half_width());
-        if floor_ns(spec.ndim(), spec.degree(), n, points.nrows()) >= global {
+            spec.degree(),
+            points.nrows(),
+            filtered,
+            half_width,
+        ) {
             // The count alone says the local route cannot win.
             return Ok(None);
         }
+        let global = global_ns(samples, spec.ndim(), filtered);
         let mut plan = Self::located(spec, points, rule)?;
         if plan.local_floor_ns(spec) >= global {
             return Ok(None);
@@ -109,7 +113,7 @@ impl LocalPlan {
     /// A lower bound of [`group`](Self::group)'s local cost at every tile
     /// edge: every point located (`locate_ns`), `C_POINT` per evaluated
     /// point and one tile of edge 1 (a tile's cost grows with its edge;
-    /// one tile at least where there is a point, [`floor_ns`]); without a
+    /// one tile at least where there is a point, [`floor_ns`](super::route::floor_ns)); without a
     /// prefilter, the cost itself.
     fn local_floor_ns<T: Real>(&self, spec: &LocalSpec<T>) -> f64 {
         let live = self.priced_points();
@@ -127,7 +131,7 @@ impl LocalPlan {
     }
 
     /// The points the local route prices as evaluated: those that do not
-    /// take `cval`, and one at least where there is a point ([`floor_ns`]).
+    /// take `cval`, and one at least where there is a point ([`floor_ns`](super::route::floor_ns)).
     fn priced_points(&self) -> usize {
         let live = self.cval_at.iter().filter(|&&c| !c).count();
         live.max(usize::from(!self.is_empty()))

@@ -175,6 +175,42 @@ pub fn floor_ns(ndim: usize, degree: u32, half_width: Option<usize>, points: usi
     locate_ns(points) + C_POINT + first_box
 }
 
+/// Whether the local route may cost less than the global one for `points`
+/// points on `samples` samples of `ndim` axes, from the count alone: its
+/// floor ([`floor_ns`]; `filtered`: with a prefilter, whose certified
+/// half-width `half_width` gives, asked only where locating the points
+/// alone does not already reach the global cost) below the global route's
+/// ([`global_ns`]). A `half_width` of `None` (unknown) counts as "may".
+/// The first test of `LocalPlan::new_if_local`, and the one-step common
+/// call's route decision in the Python bindings.
+///
+/// ```
+/// use splinelab::ndimage::local::route::may_be_local;
+/// assert!(!may_be_local(64, 2, 3, 1, true, || unreachable!()));
+/// assert!(may_be_local(4096 * 4096, 2, 3, 10, true, || Some(29)));
+/// ```
+pub fn may_be_local(
+    samples: usize,
+    ndim: usize,
+    degree: u32,
+    points: usize,
+    filtered: bool,
+    half_width: impl FnOnce() -> Option<usize>,
+) -> bool {
+    let global = global_ns(samples, ndim, filtered);
+    if locate_ns(points) >= global {
+        return false;
+    }
+    let n = match filtered {
+        true => match half_width() {
+            Some(n) => Some(n),
+            None => return true,
+        },
+        false => None,
+    };
+    floor_ns(ndim, degree, n, points) < global
+}
+
 /// Whether `points` points of degree 0 or 1 (`taps = (d + 1)^ndim` samples
 /// each) on `samples` samples cost less read in place than through the
 /// padded copy: `points · taps · C_IN_PLACE_TAP < samples · C_COPY`. A
