@@ -25,7 +25,7 @@ use crate::common;
 use crate::error::{engine_error, value_error};
 use crate::scipy_mode::filter_rule;
 use ndarray::{ArrayView1, ArrayViewD, ArrayViewMut1, ArrayViewMutD};
-use numpy::{Element, PyArrayDescr, PyArrayDescrMethods, PyArrayMethods, PyReadwriteArrayDyn};
+use numpy::{Element, PyArrayDescr, PyArrayDescrMethods, PyReadwriteArrayDyn};
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyFloat, PyInt};
 use splinelab::ndimage::NdimageError;
@@ -227,7 +227,7 @@ where
 fn filter_generic<'py, T, E, O>(
     py: Python<'py>,
     src: Option<ArrayViewD<'_, E>>,
-    mut output: PyReadwriteArrayDyn<'py, O>,
+    mut out: ArrayViewMutD<'_, O>,
     axes: Vec<usize>,
     spec: Spec,
     threads: Option<usize>,
@@ -237,7 +237,6 @@ where
     E: Sample<T>,
     O: Sample<T> + Stored<T> + Element,
 {
-    let mut out = output.as_array_mut();
     // The engine's strided-axis kernels assume C order (a Fortran-ordered
     // array would take the per-lane path, whose rounding differs by ulps).
     if !out.is_standard_layout() {
@@ -307,8 +306,8 @@ pub fn filter<'py>(
     // extraction checks).
     let out32 = f32 || writes_f32(&output)?;
     crate::dispatch_compute!(optional input.as_ref(), f32, out32, <T, O> src => {
-        let out = output.extract::<PyReadwriteArrayDyn<'py, O>>()?;
-        filter_generic::<T, _, O>(py, src, out, axes, spec, threads)
+        let mut out = output.extract::<PyReadwriteArrayDyn<'py, O>>()?;
+        filter_generic::<T, _, O>(py, src, out.as_array_mut(), axes, spec, threads)
     })
 }
 
@@ -432,15 +431,14 @@ where
     E: Sample<f64>,
     O: Sample<f64> + Stored<f64> + Element,
 {
-    let out = crate::alloc::zeros::<O>(py, a.shape()).ok()?;
+    let mut out = crate::alloc::zeros::<O>(py, a.shape()).ok()?;
     if spec.degree < 2 {
         // scipy's `output[...] = input`: float32 from float64 rounded to
         // nearest (overflow to ±inf), as numpy's unsafe cast.
-        let mut rw = out.readwrite();
-        rw.as_array_mut()
+        out.view_mut()
             .zip_mut_with(&a, |o, s| *o = O::store(&s.widen()));
     } else {
-        filter_generic::<f64, E, O>(py, Some(a), out.readwrite(), axes, spec, threads).ok()?;
+        filter_generic::<f64, E, O>(py, Some(a), out.view_mut(), axes, spec, threads).ok()?;
     }
     Some(out.into_any())
 }

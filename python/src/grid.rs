@@ -10,8 +10,7 @@ use crate::error::{engine_error, value_error};
 use crate::pool::run_with;
 use numpy::ndarray::{ArrayViewD, CowArray, IxDyn};
 use numpy::{
-    PyArray1, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2, PyReadonlyArrayDyn,
-    PyUntypedArrayMethods,
+    PyArray1, PyReadonlyArray1, PyReadonlyArray2, PyReadonlyArrayDyn, PyUntypedArrayMethods,
 };
 use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
@@ -62,11 +61,9 @@ fn results<'py>(
     work: f64,
     fill: impl FnOnce(&mut [f64]) -> Result<(), GriddedError> + Send,
 ) -> PyResult<Bound<'py, PyAny>> {
-    let out = crate::alloc::zeros::<f64>(py, &[n, m])?;
-    let mut view = out.readwrite();
-    let slice = view.as_slice_mut()?;
+    let mut out = crate::alloc::zeros::<f64>(py, &[n, m])?;
+    let slice = out.slice_mut();
     crate::pool::run_detached(py, threads, work, || fill(slice))?.map_err(grid_error)?;
-    drop(view);
     Ok(out.into_any())
 }
 
@@ -195,10 +192,8 @@ impl GridSpline {
     fn coefficients<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         let mut shape: Vec<usize> = self.inner.axes().iter().map(GridAxis::len).collect();
         shape.push(self.inner.batch());
-        let out = crate::alloc::zeros::<f64>(py, &shape)?;
-        out.readwrite()
-            .as_slice_mut()?
-            .copy_from_slice(self.inner.coefficients());
+        let mut out = crate::alloc::zeros::<f64>(py, &shape)?;
+        out.slice_mut().copy_from_slice(self.inner.coefficients());
         Ok(out.into_any())
     }
 
@@ -343,10 +338,9 @@ pub fn grid_cardinal_weights<'py>(
     let axis = gridded::CardinalAxis::new(x.as_array().to_vec(), degree, 0).map_err(grid_error)?;
     let q = q.as_array();
     let n = axis.axis().len();
-    let out = crate::alloc::zeros::<f64>(py, &[q.len(), n])?;
+    let mut out = crate::alloc::zeros::<f64>(py, &[q.len(), n])?;
     {
-        let mut view = out.readwrite();
-        let rows = view.as_slice_mut()?;
+        let rows = out.slice_mut();
         let q: Vec<f64> = q.to_vec();
         py.detach(|| {
             run_with(threads, work_ns(q.len() * n * 8), || {

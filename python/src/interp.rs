@@ -127,9 +127,8 @@ where
         PointRule::Fold
     };
     // numpy's allocation: a result it cannot allocate is `MemoryError`.
-    let result = crate::alloc::zeros::<O>(py, out_shape)?;
-    let mut view = result.readwrite();
-    let out = view.as_slice_mut()?;
+    let mut result = crate::alloc::zeros::<O>(py, out_shape)?;
+    let out = result.slice_mut();
     let deriv = deriv.filter(|d| d.iter().any(|&k| k > 0));
     let in_place = in_place(&data, &opts, deriv.is_some(), at.ncols());
     let run = || {
@@ -150,7 +149,6 @@ where
         None => work_ns(data.shape(), &opts, how, taps),
     };
     crate::pool::run_detached(py, threads, work, run)?.map_err(engine_error)?;
-    drop(view);
     Ok(result.into_any())
 }
 

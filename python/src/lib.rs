@@ -28,6 +28,7 @@ mod filter;
 mod grid;
 mod interp;
 mod local;
+mod mapping;
 mod pages;
 mod pool;
 mod resample;
@@ -88,6 +89,7 @@ fn _splinelab(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(resample::shift_common, m)?)?;
     m.add_function(wrap_pyfunction!(resample::zoom_common, m)?)?;
     m.add_function(wrap_pyfunction!(resample::affine_common, m)?)?;
+    m.add_function(wrap_pyfunction!(mapping::mapped_points, m)?)?;
     m.add_function(wrap_pyfunction!(width::truncation_width, m)?)?;
     m.add_function(wrap_pyfunction!(width::coefficients_f64, m)?)?;
     m.add_function(wrap_pyfunction!(width::coefficients_decimal, m)?)?;

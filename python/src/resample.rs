@@ -43,9 +43,8 @@ where
     let shape: Vec<usize> = axes.iter().map(|x| x.len()).collect();
     // numpy's allocation (huge pages where it can); one it cannot
     // allocate is `MemoryError`, as scipy's.
-    let result = crate::alloc::zeros::<O>(py, &shape)?;
-    let mut view = result.readwrite();
-    let out = view.as_slice_mut()?;
+    let mut result = crate::alloc::zeros::<O>(py, &shape)?;
+    let out = result.slice_mut();
     // Separable: `degree + 1` multiply-adds per output sample and axis.
     let taps = (out.len() * axes.len()) as f64 * (f64::from(opts.degree) + 1.0);
     let work = work_ns(data.shape(), &opts, how, taps);
@@ -64,7 +63,6 @@ where
         Ok(())
     };
     crate::pool::run_detached(py, threads, work, run)?.map_err(engine_error)?;
-    drop(view);
     Ok(result.into_any())
 }
 
@@ -168,9 +166,8 @@ where
     E: Sample<T>,
     O: Stored<T> + Element,
 {
-    let result = crate::alloc::zeros::<O>(py, &map.out_shape)?;
-    let mut view = result.readwrite();
-    let out = view.as_slice_mut()?;
+    let mut result = crate::alloc::zeros::<O>(py, &map.out_shape)?;
+    let out = result.slice_mut();
     let taps = out.len() as f64 * (f64::from(opts.degree) + 1.0).powi(data.ndim() as i32);
     let work = work_ns(data.shape(), &opts, how, taps);
     let run = || {
@@ -179,7 +176,6 @@ where
         f.resample_affine_as(m.matrix, m.offset, &m.out_shape, m.shift, m.rule, out)
     };
     crate::pool::run_detached(py, threads, work, run)?.map_err(engine_error)?;
-    drop(view);
     Ok(result.into_any())
 }
 

@@ -140,8 +140,9 @@ def _small_calls():
     yield "rotate", lambda o: splinelab.rotate(x, 30, order=o), "affine_common"
     yield "shift", lambda o: splinelab.shift(x, 0.3, order=o), "shift_common"
     yield "zoom", lambda o: splinelab.zoom(x3, 2, order=o), "zoom_common"
+    # The mapping's returns read into points by the engine, then one evaluation.
     yield "geometric_transform", lambda o: splinelab.geometric_transform(x, lambda c: (c[0] - 0.3, c[1]), order=o), \
-        "map_coordinates"
+        "mapped_points map_coordinates"
     yield "spline_filter", lambda o: splinelab.spline_filter(x, order=max(o, 2)), "filter_common"
     yield "spline_filter1d", lambda o: splinelab.spline_filter1d(x, order=max(o, 2)), "filter_common"
 
@@ -462,11 +463,62 @@ _ODD_FILTERS = {
     "filter 0-d": lambda: splinelab.spline_filter(np.array(2.0), 3),
     "filter order 0": lambda: splinelab.spline_filter(_X, 0),
 }
+
+
+def _mapped(row, **kw):
+    """geometric_transform of _X with a mapping returning ``row(index)``."""
+    return lambda: splinelab.geometric_transform(_X, lambda o: row(o), order=1, **kw)
+
+
+# The rows a mapping may return: the engine reads exact tuples and lists of
+# Python floats and ints, and hands every other row to the Python loop.
+_ODD_MAPPINGS = {
+    "mapping floats": _mapped(lambda o: (o[0] - 0.3, o[1] + 0.25)),
+    "mapping ints": _mapped(lambda o: (o[1], o[0])),
+    "mapping list": _mapped(lambda o: [o[0] * 0.5, o[1] * 1.5]),
+    "mapping big ints": _mapped(lambda o: (2**53 + 1 + o[0], -(2**62) - 1)),
+    "mapping huge int": _mapped(lambda o: (2**70, 1.0)),
+    "mapping nan inf": _mapped(lambda o: (float("nan") if o[0] == 3 else o[0], float("inf") if o[1] == 2 else 0.5)),
+    "mapping nan raise": _mapped(lambda o: (float("nan"), 0.0), nan_policy="raise"),
+    "mapping bools": _mapped(lambda o: (True, False)),
+    "mapping numpy float64": _mapped(lambda o: (np.float64(o[0]) / 3, o[1])),
+    "mapping numpy float32": _mapped(lambda o: (np.float32(o[0]) / 3, o[1])),
+    "mapping array": _mapped(lambda o: np.array(o) * 0.5),
+    "mapping float subclass": _mapped(lambda o: (type("F", (float,), {})(o[0] / 3), 1.0)),
+    "mapping mixed": _mapped(lambda o: (o[0], 0.5) if o[0] % 2 else [o[0] / 7, 2]),
+    "mapping short": _mapped(lambda o: (o[0],)),
+    "mapping long at one index": _mapped(lambda o: (1.0, 2.0, 3.0) if o == (4, 5) else (1.0, 2.0)),
+    "mapping not a sequence": _mapped(lambda o: 1.0),
+    "mapping string": _mapped(lambda o: "ab"),
+    "mapping text items": _mapped(lambda o: ("1.5", 2.0)),
+    "mapping complex": _mapped(lambda o: (1j, 2.0)),
+    "mapping None": _mapped(lambda o: None),
+    "mapping raises": _mapped(lambda o: 1 / 0),
+    "mapping extra": lambda: splinelab.geometric_transform(_X, lambda o, a, b=0: (o[0] + a, o[1] - b), order=3,
+                                                           extra_arguments=(0.5,), extra_keywords={"b": 2}),
+    "mapping empty output": lambda: splinelab.geometric_transform(_X, lambda o: o, output_shape=(0, 3)),
+    "mapping 3-d": lambda: splinelab.geometric_transform(np.ones((2, 3, 4)), lambda o: (o[0], o[1] * 0.5, o[2])),
+}
 _ODD = [("map_coordinates_common", n, f) for n, f in _ODD_CALLS.items()] + \
+       [("mapped_points", n, f) for n, f in _ODD_MAPPINGS.items()] + \
        [("filter_common", n, f) for n, f in _ODD_FILTERS.items()] + \
        [("zoom_common", n, f) for n, f in _ODD_ZOOMS.items()] + \
        [("shift_common", n, f) for n, f in _ODD_SHIFTS.items()] + \
        [("affine_common", n, f) for n, f in _ODD_AFFINES.items()]
+
+
+def test_the_engine_reads_a_mappings_rows_as_numpy_does():
+    """mapped_points reads exact tuples and lists of Python floats and
+    ints as numpy's float64 conversion does (column k = row k), and
+    declines (None) anything else, which the Python loop then reads."""
+    rows = [(0.5, -1), [2**53 + 1, float("nan")], (1e308, -0.0), (-(2**63), float("-inf"))]
+    got = ext.mapped_points(rows, 2)
+    assert got.dtype == np.float64 and got.shape == (2, 4) and got.flags.c_contiguous
+    np.testing.assert_array_equal(got, np.array(rows, dtype=np.float64).T)
+    assert ext.mapped_points([], 3).shape == (3, 0)
+    for bad in ([(1.0,)], [(1.0, 2.0, 3.0)], [(1.0, np.float32(2))], [(1.0, np.float64(2))], [(1.0, True)],
+                ((1.0, 2.0),), [np.array([1.0, 2.0])], [(1.0, 2**64)], [(1.0, "2")], [None]):
+        assert ext.mapped_points(bad, 2) is None, bad
 
 
 @pytest.mark.filterwarnings("ignore::PendingDeprecationWarning")  # np.asmatrix's

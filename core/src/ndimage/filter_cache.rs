@@ -16,6 +16,7 @@ use super::nan_policy::NanPolicy;
 use crate::scalar::Real;
 use crate::sspline::SplineFamily;
 use std::any::{Any, TypeId};
+use std::cell::RefCell;
 use std::collections::HashMap;
 use std::sync::{Arc, Mutex, OnceLock};
 
@@ -27,6 +28,12 @@ type Key = (TypeId, u32, Mode, u64, Option<(bool, u64)>, NanPolicy);
 type Filters = HashMap<Key, Arc<dyn Any + Send + Sync>>;
 
 static FILTERS: OnceLock<Mutex<Filters>> = OnceLock::new();
+
+thread_local! {
+    /// The filter this thread was given last (a kept one: the same filter
+    /// as the map's for its key, which a clearing of the map leaves valid).
+    static LAST: RefCell<Option<(Key, Arc<dyn Any + Send + Sync>)>> = const { RefCell::new(None) };
+}
 
 /// The filter of B-spline degree `degree` under `mode` (`cval` for
 /// `grid-constant`), by `route`, with `nan_policy`
@@ -61,14 +68,28 @@ pub fn line_filter<T: Real>(
         tol,
         nan_policy,
     );
+    // The thread's last filter first: a loop of small calls asks for the
+    // same one each time, and the lock and the hash were a few per cent of
+    // such a call (issue 50).
+    let last = LAST.with_borrow(|l| {
+        l.as_ref()
+            .filter(|(k, _)| *k == key)
+            .map(|(_, f)| f.clone())
+    });
+    if let Some(f) = last.and_then(|f| f.downcast::<LineFilter<T>>().ok()) {
+        return Ok(f);
+    }
     let filters = FILTERS.get_or_init(|| Mutex::new(HashMap::new()));
     let hit = filters
         .lock()
         .unwrap_or_else(|p| p.into_inner())
         .get(&key)
         .cloned();
-    if let Some(f) = hit.and_then(|f| f.downcast::<LineFilter<T>>().ok()) {
-        return Ok(f);
+    if let Some(f) = hit {
+        LAST.set(Some((key, f.clone())));
+        if let Ok(f) = f.downcast::<LineFilter<T>>() {
+            return Ok(f);
+        }
     }
     // Degree → order and its limit in their one home (`spline_order`).
     let family = SplineFamily::order(super::spline_order(degree)?)?;
@@ -78,5 +99,6 @@ pub fn line_filter<T: Real>(
         map.clear();
     }
     map.insert(key, f.clone());
+    LAST.set(Some((key, f.clone())));
     Ok(f)
 }

@@ -521,6 +521,13 @@ impl<T: Send> On<'_, T> {
     /// `task` on every item, the scans merged.
     fn each<I: Send>(self, items: Vec<I>, task: impl Fn(I, &mut Work<T>) -> Scan + Sync) -> Scan {
         match self {
+            // One task (a small array's one group): no parallel iterator
+            // to set up around it.
+            On::Pool(stash) if items.len() == 1 => {
+                items.into_iter().fold(Scan::default(), |scan, item| {
+                    scan.merge(stash.with(|work| task(item, work)))
+                })
+            }
             On::Pool(stash) => items
                 .into_par_iter()
                 .map(|item| stash.with(|work| task(item, work)))
@@ -893,27 +900,26 @@ fn last_group<T: Real, const G: usize>(
     // where it starts with it (× 1 otherwise: exact).
     let one = T::one();
     let gain = filter.load_gain(n);
-    match src {
-        Some(s) => {
-            scan.add(s);
-            lanes::load_strip(
-                buf,
-                0,
-                &s.chunks(n).collect::<Vec<_>>(),
-                gain.unwrap_or(&one),
-            );
-        }
-        None => {
-            let srcs: Vec<&[T]> = lines.chunks(n).collect();
-            lanes::load_strip(buf, 0, &srcs, gain.unwrap_or(&one));
-        }
+    // The group's lines in arrays of `G` (no allocation: a small array is
+    // one group, and a call's few allocations are much of its time).
+    let mut srcs: [&[T]; G] = [&[]; G];
+    let read = src.unwrap_or(&*lines);
+    if let Some(s) = src {
+        scan.add(s);
     }
+    for (r, line) in srcs.iter_mut().zip(read.chunks(n)) {
+        *r = line;
+    }
+    lanes::load_strip(buf, 0, &srcs[..count], gain.unwrap_or(&one));
     match gain {
         Some(_) => filter.apply_lines_scaled(buf.as_flattened_mut(), G),
         None => filter.apply_lines(buf.as_flattened_mut(), G, scratch),
     }
-    let mut outs: Vec<&mut [T]> = lines.chunks_mut(n).collect();
-    lanes::store_strip(&mut outs, buf, 0);
+    let mut outs: [&mut [T]; G] = std::array::from_fn(|_| <&mut [T]>::default());
+    for (o, line) in outs.iter_mut().zip(lines.chunks_mut(n)) {
+        *o = line;
+    }
+    lanes::store_strip(&mut outs[..count], buf, 0);
     scan
 }
 

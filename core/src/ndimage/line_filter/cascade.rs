@@ -7,6 +7,7 @@
 //! the rows and the blocks both run.
 
 use super::LineFilter;
+use super::recursion::causal_order;
 use super::row_kernels::{DownStep, RowCheck, UpStep, load_down, prefetch_starts};
 use crate::ndimage::lanes;
 use crate::ndimage::mode::Mode;
@@ -134,10 +135,8 @@ impl<T: Real> Cascade<T> {
     ) {
         y.fill(T::zero());
         w0.fill(T::zero());
-        for k in (0..self.reach).rev() {
-            let i = mode.fold(-(k as i64), rows.len()).unwrap_or(0);
-            horner2_row(y, w0, &self.z, rows[i].as_ref(), gain);
-        }
+        let order = causal_order(self.reach, mode, rows.len());
+        horner2_start(y, w0, &self.z, order, |i| rows[i].as_ref(), gain);
     }
 
     /// The anti-causal starts `u_{n−1}` and `c_{n−1}` of every column of
@@ -161,9 +160,8 @@ impl<T: Real> Cascade<T> {
                 }
             }
             None => {
-                for m in (0..self.reach).rev() {
-                    horner2_row(u, last, &self.z, row((n - 1 + m) % n), None);
-                }
+                let order = (0..self.reach).rev().map(|m| (n - 1 + m) % n);
+                horner2_start(u, last, &self.z, order, row, None);
                 let (mz, p) = (-self.z[0].clone(), &self.p);
                 for (u, c) in u.iter_mut().zip(last.iter_mut()) {
                     *u = mz.clone() * &*u;
@@ -249,19 +247,34 @@ fn add_scaled<T: Real>(acc: &mut [T], f: &T, row: &[T]) {
     }
 }
 
-/// One Horner step of both starts of a [`Cascade`]: `y = row + ξ₁ y`,
+/// Both starts of a [`Cascade`] by Horner's rule over the rows `row(i)`
+/// in the order `order` gives them, from zero: `y = row + ξ₁ y`,
 /// `w = y + ξ₂ w` (the row times a gain `g` first, if given, as
-/// [`lanes::scale`] does).
+/// [`lanes::scale`] does). One call into the vector clone for the whole
+/// sum, as `recursion`'s single-pole starts.
 #[multiversion(targets("x86_64+avx512f+avx512vl+avx2+fma", "x86_64+avx2+fma", "aarch64+neon"))]
-fn horner2_row<T: Real>(y: &mut [T], w: &mut [T], z: &[T; 2], row: &[T], gain: Option<&T>) {
+fn horner2_start<'a, T, I, F>(
+    y: &mut [T],
+    w: &mut [T],
+    z: &[T; 2],
+    order: I,
+    row: F,
+    gain: Option<&T>,
+) where
+    T: Real + 'a,
+    I: Iterator<Item = usize>,
+    F: Fn(usize) -> &'a [T],
+{
     let [z1, z2] = z;
-    for ((y, w), x) in y.iter_mut().zip(w.iter_mut()).zip(row) {
-        let x = match gain {
-            Some(g) => g.clone() * x,
-            None => x.clone(),
-        };
-        *y = x + z1.clone() * &*y;
-        *w = y.clone() + z2.clone() * &*w;
+    for i in order {
+        for ((y, w), x) in y.iter_mut().zip(w.iter_mut()).zip(row(i)) {
+            let x = match gain {
+                Some(g) => g.clone() * x,
+                None => x.clone(),
+            };
+            *y = x + z1.clone() * &*y;
+            *w = y.clone() + z2.clone() * &*w;
+        }
     }
 }
 

@@ -9,14 +9,15 @@
 //! column starts begin the strided passes (`rows`, `blocks`). Apart because
 //! they are the filter's mathematics, shared by every way of running it.
 
-use crate::ndimage::mode::Mode;
+use crate::ndimage::mode::{Folds, Mode};
 use crate::scalar::Real;
 use multiversion::multiversion;
 
 /// One Horner step of a start, `acc = row + ξ · acc` for a row of `w`
 /// values, or `acc = g · row + ξ · acc` with a gain `g` (the row scaled
 /// first, as [`lanes::scale`](crate::ndimage::lanes::scale) does).
-#[multiversion(targets("x86_64+avx512f+avx512vl+avx2+fma", "x86_64+avx2+fma", "aarch64+neon"))]
+/// Inlined into [`horner_start`]'s vector clones.
+#[inline(always)]
 fn horner_row<T: Real>(acc: &mut [T], z: &T, row: &[T], gain: Option<&T>) {
     match gain {
         Some(g) => {
@@ -32,6 +33,69 @@ fn horner_row<T: Real>(acc: &mut [T], z: &T, row: &[T], gain: Option<&T>) {
     }
 }
 
+/// `acc = Σ row(i_m) ξ^{m}` over the rows `row(i)` in the order `order`
+/// gives them, by Horner's rule (`acc ← row(i) + ξ acc`, from zero), as
+/// one call into the vector clone (a short line's causal start folds
+/// through ~28 rows). The columns go [`CHUNK`] at a time through the
+/// whole sum, held in registers rather than stored and reloaded after
+/// every row: each column gets the same operations in the same order.
+#[multiversion(targets("x86_64+avx512f+avx512vl+avx2+fma", "x86_64+avx2+fma", "aarch64+neon"))]
+fn horner_start<'a, T, I, F>(acc: &mut [T], z: &T, order: I, row: F, gain: Option<&T>)
+where
+    T: Real + 'a,
+    I: Iterator<Item = usize> + Clone,
+    F: Fn(usize) -> &'a [T],
+{
+    let mut chunks = acc.chunks_exact_mut(CHUNK);
+    let mut at = 0;
+    for out in &mut chunks {
+        let mut a: [T; CHUNK] = std::array::from_fn(|_| T::zero());
+        for i in order.clone() {
+            let x = &row(i)[at..at + CHUNK];
+            horner_row(&mut a, z, x, gain);
+        }
+        out.clone_from_slice(&a);
+        at += CHUNK;
+    }
+    let rest = chunks.into_remainder();
+    rest.fill(T::zero());
+    for i in order {
+        horner_row(rest, z, &row(i)[at..], gain);
+    }
+}
+
+/// Columns of [`horner_start`] carried in registers at once: two AVX-512
+/// vectors of `f64` (two independent chains hide the multiply-add's latency).
+const CHUNK: usize = 16;
+
+/// The rows a causal start sums, `fold(−j)` for `j = K − 1, …, 0`
+/// ([`causal_start`]'s order), walked by [`Mode::folds`] (no division per row).
+pub(super) fn causal_order(horizon: usize, mode: Mode, len: usize) -> CausalOrder {
+    let k = horizon.max(1);
+    CausalOrder {
+        folds: mode.folds(1 - k as i64, len),
+        left: k,
+    }
+}
+
+/// The iterator of [`causal_order`] (its own type so that it inlines into
+/// the starts' vector clones).
+#[derive(Clone)]
+pub(super) struct CausalOrder {
+    folds: Folds,
+    left: usize,
+}
+
+impl Iterator for CausalOrder {
+    type Item = usize;
+
+    #[inline(always)]
+    fn next(&mut self) -> Option<usize> {
+        self.left = self.left.checked_sub(1)?;
+        self.folds.next().map(|i| i.unwrap_or(0))
+    }
+}
+
 /// [`causal_start`] of every column of `rows` (times `gain` first, if
 /// given), into `acc`.
 pub(super) fn causal_start_of<T: Real, R: AsRef<[T]>>(
@@ -42,11 +106,26 @@ pub(super) fn causal_start_of<T: Real, R: AsRef<[T]>>(
     mode: Mode,
     acc: &mut [T],
 ) {
-    acc.fill(T::zero());
-    for j in (0..horizon.max(1)).rev() {
-        let i = mode.fold(-(j as i64), rows.len()).unwrap_or(0);
-        horner_row(acc, z, rows[i].as_ref(), gain);
-    }
+    horner_start(
+        acc,
+        z,
+        causal_order(horizon, mode, rows.len()),
+        |i| rows[i].as_ref(),
+        gain,
+    );
+}
+
+/// [`causal_start`] of every column of `c` (`L × w`), into `acc`.
+pub(super) fn causal_start_rows<T: Real>(
+    c: &[T],
+    w: usize,
+    z: &T,
+    horizon: usize,
+    mode: Mode,
+    acc: &mut [T],
+) {
+    let row = |i: usize| &c[i * w..(i + 1) * w];
+    horner_start(acc, z, causal_order(horizon, mode, c.len() / w), row, None);
 }
 
 /// [`anticausal_start`] of every column, into `acc`.
@@ -68,11 +147,8 @@ pub(super) fn anticausal_start_rows<T: Real>(
             }
         }
         Mode::GridWrap => {
-            acc.fill(T::zero());
-            for j in (0..horizon.max(1)).rev() {
-                let i = (n - 1 + j) % n;
-                horner_row(acc, z, &c[i * w..(i + 1) * w], None);
-            }
+            let order = (0..horizon.max(1)).rev().map(|j| (n - 1 + j) % n);
+            horner_start(acc, z, order, |i| &c[i * w..(i + 1) * w], None);
             let mz = -z.clone();
             for a in acc.iter_mut() {
                 *a = mz.clone() * a.clone();
@@ -146,13 +222,7 @@ pub(super) fn anticausal<T: Real>(c: &mut [T], z: T) {
 /// folded back and forth, that was the largest error of the filter after
 /// the gain's; `verify/tests/it/prefilter_rounding.rs` pins it.)
 pub(super) fn causal_start<T: Real>(c: &[T], z: &T, horizon: usize, mode: Mode) -> T {
-    let n = c.len();
-    let mut sum = T::zero();
-    for j in (0..horizon.max(1)).rev() {
-        let i = mode.fold(-(j as i64), n).unwrap_or(0);
-        sum = c[i].clone() + z.clone() * sum;
-    }
-    sum
+    causal_order(horizon, mode, c.len()).fold(T::zero(), |sum, i| c[i].clone() + z.clone() * sum)
 }
 
 /// `c⁻_{ν−1}` of the mode (module documentation); grid-wrap's periodic sum

@@ -10,7 +10,7 @@
 
 use super::LineFilter;
 use super::cascade::Anticausal2;
-use super::recursion::{anticausal_start_rows, causal_start_of};
+use super::recursion::{anticausal_start_rows, causal_start_of, causal_start_rows};
 use super::row_kernels::{Anticausal, Causal, RowCheck, load_down, store_up};
 use crate::ndimage::lanes;
 use crate::ndimage::mode::Mode;
@@ -241,11 +241,4 @@ enum Loaded<T> {
     /// Both causal passes of a [`Cascade`](super::cascade::Cascade); the value is the first pole's
     /// anti-causal start `u_{n−1}` of each line.
     Cascade(Vec<T>),
-}
-
-/// [`causal_start`](super::recursion::causal_start) of every column of
-/// `c` (`L × w`), into `acc`.
-fn causal_start_rows<T: Real>(c: &[T], w: usize, z: &T, horizon: usize, mode: Mode, acc: &mut [T]) {
-    let rows: Vec<&[T]> = c.chunks(w).collect();
-    causal_start_of(&rows, None, z, horizon, mode, acc);
 }
