@@ -36,9 +36,12 @@ fn horner_row<T: Real>(acc: &mut [T], z: &T, row: &[T], gain: Option<&T>) {
 /// `acc = Σ row(i_m) ξ^{m}` over the rows `row(i)` in the order `order`
 /// gives them, by Horner's rule (`acc ← row(i) + ξ acc`, from zero), as
 /// one call into the vector clone (a short line's causal start folds
-/// through ~28 rows). The columns go [`CHUNK`] at a time through the
-/// whole sum, held in registers rather than stored and reloaded after
-/// every row: each column gets the same operations in the same order.
+/// through ~28 rows). A group's few columns (at most [`IN_REGISTERS`]) go
+/// [`CHUNK`] at a time through the whole sum, held in registers rather
+/// than stored and reloaded after every row; wider strips, whose rows are
+/// runs far apart in a large array, are read row after row as the
+/// prefetcher streams them. Either way each column gets the same
+/// operations in the same order.
 #[multiversion(targets("x86_64+avx512f+avx512vl+avx2+fma", "x86_64+avx2+fma", "aarch64+neon"))]
 fn horner_start<'a, T, I, F>(acc: &mut [T], z: &T, order: I, row: F, gain: Option<&T>)
 where
@@ -46,6 +49,13 @@ where
     I: Iterator<Item = usize> + Clone,
     F: Fn(usize) -> &'a [T],
 {
+    if acc.len() > IN_REGISTERS {
+        acc.fill(T::zero());
+        for i in order {
+            horner_row(acc, z, row(i), gain);
+        }
+        return;
+    }
     let mut chunks = acc.chunks_exact_mut(CHUNK);
     let mut at = 0;
     for out in &mut chunks {
@@ -67,6 +77,10 @@ where
 /// Columns of [`horner_start`] carried in registers at once: two AVX-512
 /// vectors of `f64` (two independent chains hide the multiply-add's latency).
 const CHUNK: usize = 16;
+
+/// Columns of [`horner_start`] at most summed [`CHUNK`] at a time: a
+/// last-axis group of lines (16 of `f64`, 32 of `f32`).
+const IN_REGISTERS: usize = 32;
 
 /// The rows a causal start sums, `fold(−j)` for `j = K − 1, …, 0`
 /// ([`causal_start`]'s order), walked by [`Mode::folds`] (no division per row).
