@@ -82,23 +82,13 @@ where
                 .collect()
         })
         .collect();
-    let mut src_strides = vec![1; nd];
-    for k in (0..nd.saturating_sub(1)).rev() {
-        src_strides[k] = src_strides[k + 1] * shape[k + 1];
-    }
+    let sources = row_sources(&maps[..nd - 1], shape)?;
     let (n_last, row_len) = (shape[nd - 1], padded[nd - 1]);
     let finite = out
         .par_chunks_mut(row_len.max(1))
-        .enumerate()
-        .map(|(r, row)| {
-            // The source row: the fold of the row's leading indices.
-            let (mut rest, mut base) = (r, Some(0));
-            for k in (0..nd - 1).rev() {
-                let j = rest % padded[k];
-                rest /= padded[k];
-                base = base.zip(maps[k][j]).map(|(b, i)| b + i * src_strides[k]);
-            }
-            let Some(base) = base else {
+        .zip(sources.par_iter())
+        .map(|(row, base)| {
+            let Some(base) = *base else {
                 row.fill(cval.clone());
                 return true;
             };
@@ -115,6 +105,35 @@ where
     let out = ArrayD::from_shape_vec(IxDyn(&padded), out)
         .map_err(|_| NdimageError::BufferLength { expected, got: 0 })?;
     Ok((out, finite))
+}
+
+/// The source offset (in the C-ordered source of `shape`) of every padded
+/// row, in C order over the padded leading axes (`maps`, one per axis but
+/// the last: each padded index's source index, `None` for `cval`); `None`
+/// where a leading index is `cval`'s. Built axis by axis, one addition per
+/// row, where each row on its own took a division and a remainder per
+/// axis. Allocated fallibly.
+fn row_sources(
+    maps: &[Vec<Option<usize>>],
+    shape: &[usize],
+) -> Result<Vec<Option<usize>>, NdimageError> {
+    let rows = maps.iter().map(Vec::len).product::<usize>();
+    let mut sources = try_with_capacity(rows, "the padded rows' sources")?;
+    sources.push(Some(0));
+    let mut next = try_with_capacity(rows, "the padded rows' sources")?;
+    for (k, map) in maps.iter().enumerate() {
+        // The source stride of axis `k`: the product of the later extents.
+        let stride = shape[k + 1..].iter().product::<usize>();
+        next.clear();
+        for base in &sources {
+            next.extend(
+                map.iter()
+                    .map(|i| base.zip(*i).map(|(b, i)| b + i * stride)),
+            );
+        }
+        std::mem::swap(&mut sources, &mut next);
+    }
+    Ok(sources)
 }
 
 /// The padded layout of `shape`: the padded shape and its C-order strides.
