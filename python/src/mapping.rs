@@ -25,22 +25,30 @@ pub fn mapped_points<'py>(
     let mut out = crate::alloc::zeros::<f64>(py, &[ndim, k]).ok()?;
     let points = out.slice_mut();
     for (j, row) in rows.iter().enumerate() {
-        let mut put = |d: usize, x: &Bound<'py, PyAny>| -> Option<()> {
-            *points.get_mut(d * k + j)? = real(x)?;
-            Some(())
-        };
-        if let Some(t) = exact::<PyTuple>(&row) {
-            (t.len() == ndim).then_some(())?;
-            for (d, x) in t.iter_borrowed().enumerate() {
-                put(d, &x)?;
+        match exact::<PyTuple>(&row) {
+            Some(t) => read_row(points, k, j, ndim, t.len(), t.iter()),
+            None => {
+                let l = exact::<PyList>(&row)?;
+                read_row(points, k, j, ndim, l.len(), l.iter())
             }
-        } else {
-            let l = exact::<PyList>(&row)?;
-            (l.len() == ndim).then_some(())?;
-            for (d, x) in l.iter().enumerate() {
-                put(d, &x)?;
-            }
-        }
+        }?;
     }
     Some(out.into_any())
+}
+
+/// Column `j` of the `(ndim, k)` points from one row of `len` items:
+/// `None` unless it has `ndim` of them, each a [`real`].
+fn read_row<'py>(
+    points: &mut [f64],
+    k: usize,
+    j: usize,
+    ndim: usize,
+    len: usize,
+    items: impl Iterator<Item = Bound<'py, PyAny>>,
+) -> Option<()> {
+    (len == ndim).then_some(())?;
+    for (d, x) in items.enumerate() {
+        *points.get_mut(d * k + j)? = real(&x)?;
+    }
+    Some(())
 }

@@ -524,9 +524,7 @@ impl<T: Send> On<'_, T> {
             // One task (a small array's one group): no parallel iterator
             // to set up around it.
             On::Pool(stash) if items.len() == 1 => {
-                items.into_iter().fold(Scan::default(), |scan, item| {
-                    scan.merge(stash.with(|work| task(item, work)))
-                })
+                stash.with(|work| On::Here(work).each(items, task))
             }
             On::Pool(stash) => items
                 .into_par_iter()

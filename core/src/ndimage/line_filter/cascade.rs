@@ -7,7 +7,7 @@
 //! the rows and the blocks both run.
 
 use super::LineFilter;
-use super::recursion::causal_order;
+use super::recursion::{causal_order, periodic_end_order};
 use super::row_kernels::{DownStep, RowCheck, UpStep, load_down, prefetch_starts};
 use crate::ndimage::lanes;
 use crate::ndimage::mode::Mode;
@@ -160,7 +160,7 @@ impl<T: Real> Cascade<T> {
                 }
             }
             None => {
-                let order = (0..self.reach).rev().map(|m| (n - 1 + m) % n);
+                let order = periodic_end_order(self.reach, n);
                 horner2_start(u, last, &self.z, order, row, None);
                 let (mz, p) = (-self.z[0].clone(), &self.p);
                 for (u, c) in u.iter_mut().zip(last.iter_mut()) {

@@ -49,28 +49,24 @@ where
     I: Iterator<Item = usize> + Clone,
     F: Fn(usize) -> &'a [T],
 {
-    if acc.len() > IN_REGISTERS {
-        acc.fill(T::zero());
-        for i in order {
-            horner_row(acc, z, row(i), gain);
-        }
-        return;
-    }
-    let mut chunks = acc.chunks_exact_mut(CHUNK);
-    let mut at = 0;
-    for out in &mut chunks {
+    // The columns summed in registers, a multiple of `CHUNK`; the rest row
+    // after row.
+    let held = match acc.len() <= IN_REGISTERS {
+        true => acc.len() / CHUNK * CHUNK,
+        false => 0,
+    };
+    let (chunked, rest) = acc.split_at_mut(held);
+    for (c, out) in chunked.chunks_exact_mut(CHUNK).enumerate() {
+        let at = c * CHUNK;
         let mut a: [T; CHUNK] = std::array::from_fn(|_| T::zero());
         for i in order.clone() {
-            let x = &row(i)[at..at + CHUNK];
-            horner_row(&mut a, z, x, gain);
+            horner_row(&mut a, z, &row(i)[at..at + CHUNK], gain);
         }
         out.clone_from_slice(&a);
-        at += CHUNK;
     }
-    let rest = chunks.into_remainder();
     rest.fill(T::zero());
     for i in order {
-        horner_row(rest, z, &row(i)[at..], gain);
+        horner_row(rest, z, &row(i)[held..], gain);
     }
 }
 
@@ -90,6 +86,13 @@ pub(super) fn causal_order(horizon: usize, mode: Mode, len: usize) -> CausalOrde
         folds: mode.folds(1 - k as i64, len),
         left: k,
     }
+}
+
+/// The rows grid-wrap's anti-causal start sums, `(ν − 1 + j) mod ν` for
+/// `j = K − 1, …, 0` of `n = ν` rows: the periodic sum of
+/// [`anticausal_start`], for one pole and for a [`Cascade`](super::cascade::Cascade)'s pair.
+pub(super) fn periodic_end_order(horizon: usize, n: usize) -> impl Iterator<Item = usize> + Clone {
+    (0..horizon.max(1)).rev().map(move |j| (n - 1 + j) % n)
 }
 
 /// The iterator of [`causal_order`] (its own type so that it inlines into
@@ -161,7 +164,7 @@ pub(super) fn anticausal_start_rows<T: Real>(
             }
         }
         Mode::GridWrap => {
-            let order = (0..horizon.max(1)).rev().map(|j| (n - 1 + j) % n);
+            let order = periodic_end_order(horizon, n);
             horner_start(acc, z, order, |i| &c[i * w..(i + 1) * w], None);
             let mz = -z.clone();
             for a in acc.iter_mut() {
@@ -247,10 +250,8 @@ pub(super) fn anticausal_start<T: Real>(c: &[T], z: &T, horizon: usize, mode: Mo
     match mode {
         Mode::Reflect => z.clone() / (z - T::one()) * c[n - 1].clone(),
         Mode::GridWrap => {
-            let mut sum = T::zero();
-            for j in (0..horizon.max(1)).rev() {
-                sum = c[(n - 1 + j) % n].clone() + z.clone() * sum;
-            }
+            let sum = periodic_end_order(horizon, n)
+                .fold(T::zero(), |sum, i| c[i].clone() + z.clone() * sum);
             -z * sum
         }
         _ => z.clone() / (z.clone() * &z - T::one()) * (c[n - 1].clone() + z * c[n - 2].clone()),
