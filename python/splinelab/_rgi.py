@@ -142,12 +142,23 @@ def _ndim_coords_from_arrays(points, ndim):
     return points
 
 
+def _scan_points(grid, xi, bounds_error):
+    """The points' NaN and out-of-bounds masks (None where no point is
+    flagged), in one pass by the engine; with ``bounds_error``, scipy's
+    ``ValueError`` for the first axis with a coordinate outside
+    ``[grid[0], grid[-1]]`` (NaN included: it compares false). ``xi`` is
+    ``(n, ndim)`` C-contiguous float64."""
+    if any(len(g) == 0 for g in grid):
+        raise IndexError("index 0 is out of bounds for axis 0 with size 0")  # scipy's, reading grid[i][0]
+    nans, outside, first_out = _ext.grid_points_scan(list(grid), xi)
+    if bounds_error and first_out is not None:
+        raise ValueError(f"One of the requested xi is out of bounds in dimension {first_out}")
+    return nans, None if bounds_error else outside
+
+
 def _bounds_check(grid, xi):
-    """scipy's ValueError for a coordinate outside ``[grid[0], grid[-1]]``
-    (NaN included: it compares false)."""
-    for i, p in enumerate(xi.T):
-        if not np.logical_and(np.all(grid[i][0] <= p), np.all(p <= grid[i][-1])):
-            raise ValueError(f"One of the requested xi is out of bounds in dimension {i}")
+    """scipy's ValueError for a coordinate outside ``[grid[0], grid[-1]]``."""
+    _scan_points(grid, np.ascontiguousarray(xi, dtype=float), True)
 
 
 # ---------------------------------------------------------------- data for the engine
@@ -181,10 +192,11 @@ def _stacked(grid_shape, values):
 
 
 def _samples(grid_shape, values):
-    """:func:`_stacked` for ``grid_linear`` and ``grid_pchip``, which read
-    samples in place wherever they fill one block of memory (any strides: a
-    descending axis flipped by numpy included); a broadcast or sliced view
-    is copied once by the extension (``MemoryError`` where it cannot be)."""
+    """:func:`_stacked` for ``grid_linear``, ``grid_nearest`` and
+    ``grid_pchip``, which read samples in place wherever they fill one block
+    of memory (any strides: a descending axis flipped by numpy included) and
+    a broadcast axis as its one sample; a sliced view is copied once by the
+    extension (``MemoryError`` where it cannot be)."""
     return _stacked(grid_shape, values)
 
 
@@ -203,10 +215,27 @@ class _Spline:
     def __init__(self, grid, values, degree, threads):
         stacked, self.cdtype = _stacked([len(g) for g in grid], values)
         self.spline = _ext.GridSpline(list(grid), stacked, degree, threads)
+        self._args = (tuple(grid), stacked, degree, threads)
+
+    def __reduce__(self):
+        # The engine's spline is rebuilt from its samples: the solve is
+        # deterministic (one banded LU per grid line, the same operations
+        # in any thread), so the copy's coefficients are the same bits.
+        grid, stacked, degree, threads = self._args
+        return _rebuilt_spline, (grid, stacked, self.cdtype, degree, threads)
 
     def __call__(self, xi, nu=None, threads=None):
         out = self.spline.eval(np.ascontiguousarray(xi, dtype=np.float64), nu, threads)
         return _from_columns(out, self.cdtype)
+
+
+def _rebuilt_spline(grid, stacked, cdtype, degree, threads):
+    """An unpickled :class:`_Spline`."""
+    spline = _Spline.__new__(_Spline)
+    spline.cdtype = cdtype
+    spline.spline = _ext.GridSpline(list(grid), stacked, degree, threads)
+    spline._args = (grid, stacked, degree, threads)
+    return spline
 
 
 def _nu(nu, ndim):
@@ -221,11 +250,20 @@ def _nu(nu, ndim):
     return [int(v) for v in nu]
 
 
+def _distinct(v):
+    """``v`` with each broadcast axis (stride 0) cut to its one sample: the
+    values a scan must read (a broadcast grid of 10^12 points has as many
+    distinct values as its base)."""
+    if not isinstance(v, np.ndarray) or 0 not in v.strides:
+        return v
+    return v[tuple(slice(0, 1) if s == 0 else slice(None) for s in v.strides)]
+
+
 def _require_finite(values, message):
     """scipy's refusal of NaN or infinity in the values of a spline method
-    (checked a block of about 4 Mi elements at a time: no array of the
-    values' size)."""
-    v = np.asarray(values)
+    (each distinct value read once, about 4 Mi elements at a time: no array
+    of the values' size)."""
+    v = _distinct(np.asarray(values))
     if v.ndim == 0 or v.size == 0:
         finite = bool(np.all(np.isfinite(v)))
     else:
@@ -469,9 +507,9 @@ class RegularGridInterpolator:
                 result = self._construct_spline(method)(xi, None, self._threads)
                 result = result.astype(self._values.dtype, copy=False)
 
-        if not self.bounds_error and self.fill_value is not None:
+        if out_of_bounds is not None and self.fill_value is not None:
             result[out_of_bounds] = self.fill_value
-        if np.any(nans):
+        if nans is not None:
             result[nans] = np.nan
         return result.reshape(xi_shape[:-1] + self._values.shape[ndim:])
 
@@ -482,16 +520,8 @@ class RegularGridInterpolator:
             raise ValueError(f"The requested sample points xi have dimension {xi.shape[-1]} but this "
                              f"RegularGridInterpolator has dimension {ndim}")
         xi_shape = xi.shape
-        xi = np.asarray(xi.reshape(-1, xi_shape[-1]), dtype=float)
-        nans = np.any(np.isnan(xi), axis=-1)
-        if self.bounds_error:
-            _bounds_check(self._grid, xi)
-            out_of_bounds = None
-        else:
-            out_of_bounds = np.zeros(xi.shape[0], dtype=bool)
-            for x, g in zip(xi.T, self._grid):
-                out_of_bounds |= x < g[0]
-                out_of_bounds |= x > g[-1]
+        xi = np.ascontiguousarray(xi.reshape(-1, xi_shape[-1]), dtype=float)
+        nans, out_of_bounds = _scan_points(self._grid, xi, self.bounds_error)
         return xi, xi_shape, ndim, nans, out_of_bounds
 
     def _array_values(self):
@@ -505,23 +535,48 @@ class RegularGridInterpolator:
         return v
 
     def _linear(self, xi):
-        """scipy's multilinear interpolation (linear extrapolation); an axis
-        of one point is constant along it."""
+        """scipy's multilinear interpolation (linear extrapolation), in
+        scipy's floating-point operations (the node values are the samples,
+        bit for bit); an axis of one point is constant along it."""
         values = self._array_values()
-        keep = [i for i, g in enumerate(self._grid) if len(g) > 1]
-        if len(keep) < len(self._grid):
-            values = values[tuple(slice(None) if len(g) > 1 else 0 for g in self._grid)]
+        keep, values = self._long_axes(values)
         grid = [self._grid[i] for i in keep]
         stacked, cdtype = _samples([len(g) for g in grid], values)
         if not grid:
             out = np.broadcast_to(stacked.astype(np.float64), (xi.shape[0],) + stacked.shape).copy()
         else:
-            out = _ext.grid_linear(grid, stacked, np.ascontiguousarray(xi[:, keep]), self._threads)
+            out = _ext.grid_linear(grid, stacked, _columns(xi, keep), self._threads, self._value_first())
         return _from_columns(out, cdtype)
+
+    def _value_first(self):
+        """Whether scipy evaluates this grid with its 2-D kernel (float64 or
+        complex128 values of exactly two axes, native and writeable), which
+        forms each corner's term as ``(v * w0) * w1``; its general route
+        forms ``v * (w0 * w1)``."""
+        v = self._values
+        return (len(self._grid) == 2 and isinstance(v, np.ndarray) and v.ndim == 2 and v.flags.writeable
+                and v.dtype in (np.float64, np.complex128) and v.dtype.byteorder == "=")
+
+    def _long_axes(self, values):
+        """The axes of more than one point, and the values with the others
+        (of one point: constant along them) taken away."""
+        keep = [i for i, g in enumerate(self._grid) if len(g) > 1]
+        if len(keep) < len(self._grid):
+            values = values[tuple(slice(None) if len(g) > 1 else 0 for g in self._grid)]
+        return keep, values
 
     def _nearest(self, xi):
         """The nearest node, ties to the lower one (scipy's ``yi <= .5`` on
-        scipy's normalised distance, the same floating-point operations)."""
+        scipy's normalised distance, the same floating-point operations):
+        float32, float64 and complex values gathered by the engine in their
+        dtype, any other through numpy's indexing."""
+        values = self._values
+        keep, values = self._long_axes(values) if isinstance(values, np.ndarray) else ([], None)
+        if values is not None and keep and values.dtype.isnative and values.dtype in _GATHERED:
+            grid = [self._grid[i] for i in keep]
+            stacked, cdtype = _stacked([len(g) for g in grid], values)
+            out = _ext.grid_nearest(grid, stacked, _columns(xi, keep), self._threads)
+            return out if cdtype is None else np.ascontiguousarray(out).view(values.dtype)
         index = []
         for x, g in zip(xi.T, self._grid):
             if len(g) == 1:
@@ -532,6 +587,16 @@ class RegularGridInterpolator:
                 y = (x - g[i]) / (g[i + 1] - g[i])
                 index.append(np.where(y <= 0.5, i, i + 1))
         return np.asarray(self._values[tuple(index)])
+
+
+def _columns(xi, keep):
+    """The coordinates of the axes ``keep`` (``xi`` itself when they are all)."""
+    return xi if len(keep) == xi.shape[1] else np.ascontiguousarray(xi[:, keep])
+
+
+#: The dtypes whose "nearest" values the engine gathers (complex ones as
+#: pairs of reals).
+_GATHERED = (np.float32, np.float64, np.complex64, np.complex128)
 
 
 # ---------------------------------------------------------------- interpn

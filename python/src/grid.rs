@@ -1,19 +1,21 @@
 //! scipy.interpolate's gridded splines: `GridSpline` (the exact not-a-knot
 //! tensor-product spline of odd degree, for `RegularGridInterpolator` and
-//! `interpn`'s `slinear`, `cubic` and `quintic`), `grid_linear` (the
-//! multilinear interpolant on the samples themselves) and `grid_pchip`.
+//! `interpn`'s `slinear`, `cubic` and `quintic`), `grid_linear` and
+//! `grid_nearest` (scipy's `linear` and `nearest`, in its operations) and
+//! `grid_pchip`.
 //! The Python layer (`splinelab._rgi`) has done scipy's argument handling:
 //! ascending float64 nodes, values of shape grid × m (float64 or float32;
 //! complex values as pairs), points `(n, d)` float64 C-contiguous.
 
 use crate::error::{engine_error, value_error};
 use crate::pool::run_with;
-use numpy::ndarray::{ArrayViewD, CowArray, IxDyn};
+use numpy::ndarray::{ArrayViewD, Axis, CowArray, IxDyn};
 use numpy::{
     PyArray1, PyReadonlyArray1, PyReadonlyArray2, PyReadonlyArrayDyn, PyUntypedArrayMethods,
 };
 use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
+use splinelab::gridded::multilinear::{self, CornerProduct};
 use splinelab::gridded::{self, GridAxis, GriddedError, Layout};
 use splinelab::ndimage::alloc::try_standard_layout;
 use splinelab::ndimage::samples::Sample;
@@ -98,8 +100,9 @@ fn linear_axes(grid: Vec<Vec<f64>>) -> Result<Vec<GridAxis<f64>>, GriddedError> 
 
 /// Checks `values` against the grid and evaluates `f` on its samples, read
 /// in place where they fill one block of memory (any order: a flipped
-/// descending axis included), else copied once (fallibly: a huge broadcast
-/// view is MemoryError, not an abort).
+/// descending axis included) once broadcast axes are read as one sample,
+/// else copied once (fallibly: a view too large is MemoryError, not an
+/// abort).
 fn on_samples<S: Sample<f64> + numpy::Element>(
     values: ArrayViewD<'_, S>,
     axes: &[GridAxis<f64>],
@@ -115,15 +118,31 @@ fn on_samples<S: Sample<f64> + numpy::Element>(
             });
         }
     };
-    if let Some((data, layout)) = Layout::of_view(&values) {
-        return f(data, &layout, m);
+    // A broadcast axis (stride 0) holds one distinct sample along it: that
+    // one is read, and the layout steps 0 along the axis (a broadcast grid
+    // is never copied or scanned whole).
+    let broadcast: Vec<usize> = (0..values.ndim())
+        .filter(|&a| values.strides()[a] == 0 && values.shape()[a] > 1)
+        .collect();
+    let mut distinct = values.clone();
+    for &a in &broadcast {
+        distinct.collapse_axis(Axis(a), 0);
     }
-    let c: CowArray<'_, S, IxDyn> = try_standard_layout(&values, "gridded samples")?;
+    let steps_zero = |mut layout: Layout| {
+        for &a in &broadcast {
+            layout.strides[a] = 0;
+        }
+        layout
+    };
+    if let Some((data, layout)) = Layout::of_view(&distinct) {
+        return f(data, &steps_zero(layout), m);
+    }
+    let c: CowArray<'_, S, IxDyn> = try_standard_layout(&distinct, "gridded samples")?;
     let slice = c.as_slice().ok_or(GriddedError::Shape {
         grid,
         got: values.shape().to_vec(),
     })?;
-    f(slice, &Layout::c_order(values.shape()), m)
+    f(slice, &steps_zero(Layout::c_order(distinct.shape())), m)
 }
 
 /// The exact not-a-knot tensor-product spline of odd `degree` through
@@ -240,7 +259,7 @@ impl GridSpline {
 /// Which evaluation a gridded call of samples wants.
 #[derive(Clone, Copy)]
 enum OnSamples {
-    Linear,
+    Linear(CornerProduct),
     Pchip,
 }
 
@@ -263,7 +282,9 @@ fn eval_samples<'py>(
     ) -> Result<(), GriddedError> {
         on_samples(v, axes, |s, layout, m| {
             match how {
-                OnSamples::Linear => gridded::tensor_eval(axes, s, layout, m, x, &[], out),
+                OnSamples::Linear(order) => {
+                    multilinear::multilinear_eval(axes, s, layout, m, x, order, out)
+                }
                 OnSamples::Pchip => gridded::pchip_eval(axes, s, layout, m, x, out),
             }
             Ok(())
@@ -272,7 +293,7 @@ fn eval_samples<'py>(
     let m = |shape: &[usize]| shape.last().copied().unwrap_or(0);
     // Multiply-adds a point: 2^d (linear), about 8 · 4^d (PCHIP).
     let (taps, ops): (usize, usize) = match how {
-        OnSamples::Linear => (2, 1),
+        OnSamples::Linear(_) => (2, 1),
         OnSamples::Pchip => (4, 8),
     };
     let per_point = |m: usize| taps.saturating_pow(axes.len() as u32) * ops * m.max(1);
@@ -294,17 +315,129 @@ fn eval_samples<'py>(
 }
 
 /// The multilinear interpolant of `values` (grid × m, float64 or float32)
-/// at `xi` (`n × d`), extrapolating linearly: scipy's `linear`.
+/// at `xi` (`n × d`), extrapolating linearly: scipy's `linear`, in scipy's
+/// operations (`gridded::multilinear`). `value_first`: each corner's term
+/// as scipy's 2-D kernel forms it, `(v · w_0) · w_1` (scipy takes it for
+/// 2-D float64 and complex128 values without trailing axes), else
+/// `v · (w_0 · w_1 ⋯)` (its general route).
 #[pyfunction]
-#[pyo3(signature = (grid, values, xi, threads=None))]
+#[pyo3(signature = (grid, values, xi, threads=None, value_first=false))]
 pub fn grid_linear<'py>(
     py: Python<'py>,
     grid: Vec<PyReadonlyArray1<'py, f64>>,
     values: &Bound<'py, PyAny>,
     xi: PyReadonlyArray2<'py, f64>,
     threads: Option<usize>,
+    value_first: bool,
 ) -> PyResult<Bound<'py, PyAny>> {
-    eval_samples(py, grid, values, xi, threads, OnSamples::Linear)
+    let order = if value_first {
+        CornerProduct::ValueFirst
+    } else {
+        CornerProduct::WeightsFirst
+    };
+    eval_samples(py, grid, values, xi, threads, OnSamples::Linear(order))
+}
+
+/// One pass over the points `xi` (`n × d`) against the grid's ends
+/// `[grid[a][0], grid[a][-1]]`: `(nans, outside, first_axis_out)` where
+/// `nans[p]` says point `p` has a NaN coordinate, `outside[p]` that a
+/// coordinate lies beyond an end, and `first_axis_out` is the first axis
+/// with a coordinate not inside its closed range (NaN included: scipy's
+/// `_bounds_check` reports that axis). The masks are None when no point is
+/// flagged (the common call allocates nothing).
+#[pyfunction]
+#[allow(clippy::type_complexity)]
+pub fn grid_points_scan<'py>(
+    py: Python<'py>,
+    grid: Vec<PyReadonlyArray1<'py, f64>>,
+    xi: PyReadonlyArray2<'py, f64>,
+) -> PyResult<(
+    Option<Bound<'py, PyAny>>,
+    Option<Bound<'py, PyAny>>,
+    Option<usize>,
+)> {
+    let ends: Vec<(f64, f64)> = grid
+        .iter()
+        .map(|g| {
+            let g = g.as_array();
+            (g.first().copied(), g.last().copied())
+        })
+        .map(|(lo, hi)| (lo.unwrap_or(f64::NAN), hi.unwrap_or(f64::NAN)))
+        .collect();
+    let d = ends.len();
+    let (x, n) = points(&xi, d)?;
+    let (mut any_nan, mut any_out, mut first) = (false, false, d);
+    for p in x.chunks_exact(d.max(1)) {
+        for (a, (v, (lo, hi))) in p.iter().zip(&ends).enumerate() {
+            if !(lo <= v && v <= hi) {
+                first = first.min(a);
+                any_nan |= v.is_nan();
+                any_out |= v < lo || v > hi;
+            }
+        }
+    }
+    let mask = |flag: &dyn Fn(&[f64]) -> bool| -> PyResult<Bound<'py, PyAny>> {
+        let mut out = crate::alloc::zeros::<bool>(py, &[n])?;
+        for (o, p) in out.slice_mut().iter_mut().zip(x.chunks_exact(d.max(1))) {
+            *o = flag(p);
+        }
+        Ok(out.into_any())
+    };
+    let nans = if any_nan {
+        Some(mask(&|p| p.iter().any(|v| v.is_nan()))?)
+    } else {
+        None
+    };
+    let outside = if any_out {
+        Some(mask(&|p| {
+            p.iter().zip(&ends).any(|(v, (lo, hi))| v < lo || v > hi)
+        })?)
+    } else {
+        None
+    };
+    Ok((nans, outside, (first < d).then_some(first)))
+}
+
+/// The samples of `values` (grid × m, float64 or float32) at scipy's
+/// nearest node of each point of `xi` (`n × d`): `n × m` in the values'
+/// dtype, ties to the lower node (`gridded::multilinear::nearest_node`).
+#[pyfunction]
+#[pyo3(signature = (grid, values, xi, threads=None))]
+pub fn grid_nearest<'py>(
+    py: Python<'py>,
+    grid: Vec<PyReadonlyArray1<'py, f64>>,
+    values: &Bound<'py, PyAny>,
+    xi: PyReadonlyArray2<'py, f64>,
+    threads: Option<usize>,
+) -> PyResult<Bound<'py, PyAny>> {
+    let axes = linear_axes(nodes(&grid)).map_err(grid_error)?;
+    let (x, n) = points(&xi, axes.len())?;
+    fn gather<'py, S: Sample<f64> + numpy::Element + Copy>(
+        py: Python<'py>,
+        axes: &[GridAxis<f64>],
+        v: ArrayViewD<'_, S>,
+        x: &[f64],
+        n: usize,
+        threads: Option<usize>,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let m = v.shape().last().copied().unwrap_or(0);
+        let mut out = crate::alloc::zeros::<S>(py, &[n, m])?;
+        let slice = out.slice_mut();
+        // A binary search per axis and m copies a point.
+        let work = work_ns(n.saturating_mul(8 * axes.len() + m));
+        crate::pool::run_detached(py, threads, work, || {
+            on_samples(v, axes, |s, layout, m| {
+                multilinear::nearest_gather(axes, s, layout, m, x, slice);
+                Ok(())
+            })
+        })?
+        .map_err(grid_error)?;
+        Ok(out.into_any())
+    }
+    match Values::extract(values)? {
+        Values::F64(v) => gather(py, &axes, v.as_array(), x, n, threads),
+        Values::F32(v) => gather(py, &axes, v.as_array(), x, n, threads),
+    }
 }
 
 /// scipy's recursive PCHIP of `values` (grid × m) at `xi` (`n × d`),

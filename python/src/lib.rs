@@ -83,6 +83,8 @@ fn _splinelab(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<grid::GridSpline>()?;
     m.add_function(wrap_pyfunction!(grid::grid_cardinal_weights, m)?)?;
     m.add_function(wrap_pyfunction!(grid::grid_linear, m)?)?;
+    m.add_function(wrap_pyfunction!(grid::grid_nearest, m)?)?;
+    m.add_function(wrap_pyfunction!(grid::grid_points_scan, m)?)?;
     m.add_function(wrap_pyfunction!(grid::grid_pchip, m)?)?;
     m.add_function(wrap_pyfunction!(resample::resample, m)?)?;
     m.add_function(wrap_pyfunction!(resample::affine, m)?)?;

@@ -54,13 +54,13 @@ pub fn tensor_eval<T: Real, S: Sample<T>>(
 /// `work(points, out)` over the points (`d` coordinates each) and their
 /// `batch` outputs: on the calling thread up to `per_task` points (a small
 /// call pays no thread-pool hand-off), else in parallel tasks of `per_task`.
-pub(crate) fn over_points<T: Real>(
+pub(crate) fn over_points<T: Real, U: Send>(
     points: &[T],
     d: usize,
-    out: &mut [T],
+    out: &mut [U],
     batch: usize,
     per_task: usize,
-    work: impl Fn(&[T], &mut [T]) + Sync + Send,
+    work: impl Fn(&[T], &mut [U]) + Sync + Send,
 ) {
     if points.len() / d <= per_task {
         work(points, out);

@@ -13,7 +13,8 @@
 //!
 //! The objects, one per module: [`axis`] (nodes, not-a-knot knots, cells
 //! and B-spline weights), [`banded_lu`] (the 1-D solves), [`grid_spline`]
-//! (the coefficients and their error bound), [`cardinal`] (certified
+//! (the coefficients and their error bound), [`multilinear`] (scipy's
+//! `linear` and `nearest`, in scipy's operations), [`cardinal`] (certified
 //! windows: the samples a value needs, for chunked data), [`evaluate`] (the tensor
 //! product at points), [`pchip`], [`error`].
 //!
@@ -29,6 +30,7 @@ pub mod error;
 pub mod evaluate;
 pub mod grid_spline;
 pub mod layout;
+pub mod multilinear;
 pub mod pchip;
 #[cfg(test)]
 mod tests;
