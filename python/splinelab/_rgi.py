@@ -70,7 +70,8 @@ def _is_array_object(values):
     """numpy arrays (subclasses such as np.matrix included) and array-API
     arrays, which scipy converts with ``np.asarray``; a duck-typed object
     (``ndim``, ``shape``, ``__getitem__``) is kept as it is."""
-    return isinstance(values, (np.ndarray, np.generic)) or hasattr(values, "__array_namespace__")
+    return (isinstance(values, (np.ndarray, np.generic)) or hasattr(values, "__array_namespace__")
+            or type(values).__module__.partition(".")[0] == "pandas")  # array_like, as scipy's docs say
 
 
 def _check_values(values):
@@ -158,7 +159,7 @@ def _scan_points(grid, xi, bounds_error):
 
 def _bounds_check(grid, xi):
     """scipy's ValueError for a coordinate outside ``[grid[0], grid[-1]]``."""
-    _scan_points(grid, np.ascontiguousarray(xi, dtype=float), True)
+    _scan_points(grid, np.require(xi, dtype=float, requirements="CA"), True)
 
 
 # ---------------------------------------------------------------- data for the engine
@@ -236,6 +237,23 @@ def _rebuilt_spline(grid, stacked, cdtype, degree, threads):
     spline.spline = _ext.GridSpline(list(grid), stacked, degree, threads)
     spline._args = (grid, stacked, degree, threads)
     return spline
+
+
+def _power_of_two_scaled(grid, xi):
+    """The axes and the points' coordinates, each axis scaled by the power of
+    two that brings its largest node magnitude into ``[0.5, 1)`` where that
+    magnitude is beyond ``2^±64`` (else as they are).
+
+    PCHIP is invariant under a scaling of ``x``, and a power of two scales
+    without rounding, so the values are those of the unscaled computation
+    wherever it neither overflows nor underflows; on axes scaled by 1e-300
+    or 4e307 its slopes and Hermite terms would (scipy then returns NaN or
+    raises ``ValueError``)."""
+    exps = [int(np.frexp(max(abs(g[0]), abs(g[-1])))[1]) for g in grid]
+    exps = [e if abs(e) > 64 else 0 for e in exps]
+    if not any(exps):
+        return list(grid), np.ascontiguousarray(xi)
+    return [np.ldexp(g, -e) for g, e in zip(grid, exps)], np.ascontiguousarray(np.ldexp(xi, -np.array(exps)))
 
 
 def _nu(nu, ndim):
@@ -418,10 +436,21 @@ class RegularGridInterpolator:
             raise ValueError(f"method = {method!r} does not accept the 'solver' argument. Got  "
                              f"solver = {solver!r} and with arguments {solver_args}.")
 
+    def __getstate__(self):
+        # The spline is rebuilt from the values on unpickling (the same
+        # bits: a deterministic solve), so the values travel once.
+        return {**self.__dict__, "_spline": None}
+
+    def __setstate__(self, state):
+        self.__dict__.update(state)
+        if self.method in _SPLINE_METHODS_ndbspl:
+            self._spline = self._construct_spline(self.method)
+
     def _construct_spline(self, method):
         _validate_grid_dimensions(self._grid, method)
-        _require_finite(self._values, "RHS must contain only finite numbers")
-        return _Spline(self._grid, self._values, _SPLINE_DEGREE_MAP[method], self._threads)
+        values = self._array_values()
+        _require_finite(values, "RHS must contain only finite numbers")
+        return _Spline(self._grid, values, _SPLINE_DEGREE_MAP[method], self._threads)
 
     @property
     def grid(self):
@@ -498,17 +527,32 @@ class RegularGridInterpolator:
             if method in _SPLINE_METHODS_ndbspl:
                 result = spline(xi, _nu(nu, ndim), self._threads)
             elif method == "pchip":
-                _require_finite(self._values, "`y` must contain only finite values.")
-                stacked, _ = _samples([len(g) for g in self._grid], self._values)
-                result = _ext.grid_pchip(list(self._grid), stacked, np.ascontiguousarray(xi), self._threads)
-                result = result.astype(self._values.dtype, copy=False)
+                values = self._array_values()
+                _require_finite(values, "`y` must contain only finite values.")
+                # scipy's recursive route interpolates the last axis first and
+                # refuses a non-finite result before the next axis
+                _require_finite(xi[:, 1:], "`y` must contain only finite values.")
+                stacked, _ = _samples([len(g) for g in self._grid], values)
+                grid, at = _power_of_two_scaled(self._grid, xi)
+                result = _ext.grid_pchip(grid, stacked, at, self._threads)
+                result = result.astype(values.dtype, copy=False)
             else:  # the legacy methods: scipy's recursive route to the same exact spline
-                _require_finite(self._values, "Array must not contain infs or nans.")
+                values = self._array_values()
+                _require_finite(values, "Array must not contain infs or nans.")
+                _require_finite(xi[:, 1:], "Array must not contain infs or nans.")
                 result = self._construct_spline(method)(xi, None, self._threads)
-                result = result.astype(self._values.dtype, copy=False)
+                result = result.astype(values.dtype, copy=False)
 
-        if out_of_bounds is not None and self.fill_value is not None:
-            result[out_of_bounds] = self.fill_value
+        # scipy writes fill_value and NaN into its (points,) + trailing result,
+        # with numpy's boolean-mask assignment: an array of one value per point
+        # outside is taken in order, a 2-D one or one of another size refused
+        # (even where no point is outside)
+        result = result.reshape((xi.shape[0],) + self._values.shape[ndim:])
+        if not self.bounds_error and self.fill_value is not None:
+            if out_of_bounds is not None:
+                result[out_of_bounds] = self.fill_value
+            elif np.ndim(self.fill_value) > 0:
+                result[np.zeros(len(result), dtype=bool)] = self.fill_value
         if nans is not None:
             result[nans] = np.nan
         return result.reshape(xi_shape[:-1] + self._values.shape[ndim:])
@@ -520,7 +564,9 @@ class RegularGridInterpolator:
             raise ValueError(f"The requested sample points xi have dimension {xi.shape[-1]} but this "
                              f"RegularGridInterpolator has dimension {ndim}")
         xi_shape = xi.shape
-        xi = np.ascontiguousarray(xi.reshape(-1, xi_shape[-1]), dtype=float)
+        # C order and aligned: the engine reads xi as one slice (a numpy array
+        # unpickled by dask.distributed can sit at any byte offset)
+        xi = np.require(xi.reshape(-1, xi_shape[-1]), dtype=float, requirements="CA")
         nans, out_of_bounds = _scan_points(self._grid, xi, self.bounds_error)
         return xi, xi_shape, ndim, nans, out_of_bounds
 

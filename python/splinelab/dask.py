@@ -211,15 +211,10 @@ def _map(darr, axes, order, mode, tol, output, threads, route, nan_policy="propa
     else:
         conv = Settings.for_filter(order, mode, block_tol, threads, False, nan_policy, compute)
 
-    def block(x, block_info=None):
-        if not zeros_beyond:
-            # The local convolution: a coefficient reads only samples within `n`.
-            return _filter_array(x, axes, conv, dtype, convolution=True)
-        info = block_info[0]
-        ends = [(i == 0, i == k - 1) for i, k in zip(info["chunk-location"], info["num-chunks"])]
-        whole = [ax for ax in axes if ax not in seamed]
-        return _filter_block(x, seamed, whole, d, ends, dtype, settings)
-
+    if zeros_beyond:
+        block = functools.partial(_seamed_block, axes=axes, seamed=seamed, d=d, dtype=dtype, settings=settings)
+    else:
+        block = functools.partial(_convolved_block, axes=axes, conv=conv, dtype=dtype)
     out = darr.map_overlap(block, depth=depths, boundary=boundary, dtype=dtype, meta=np.array((), dtype=dtype))
     if nan_policy != "propagate" or order < 2 or darr.dtype.kind not in "fc":
         return out
@@ -227,6 +222,24 @@ def _map(darr, axes, order, mode, tol, output, threads, route, nan_policy="propa
     # along a filtered axis (a reduction no block can make alone).
     spread = (~da.isfinite(darr)).any(axis=tuple(axes), keepdims=True)
     return da.where(spread, np.asarray(np.nan, dtype), out)
+
+
+def _convolved_block(x, *, axes, conv, dtype):
+    """:func:`_map`'s block under a route without zeros beyond: the local
+    convolution (a coefficient reads only samples within ``n``). Module
+    level, bound with ``functools.partial``: the graph pickles with plain
+    ``pickle`` (a closure needs cloudpickle)."""
+    return _filter_array(x, axes, conv, dtype, convolution=True)
+
+
+def _seamed_block(x, block_info=None, *, axes, seamed, d, dtype, settings):
+    """:func:`_map`'s block with zeros beyond its read edges
+    (:func:`_filter_block`), its ends at the array's edges read from dask's
+    ``block_info``."""
+    info = block_info[0]
+    ends = [(i == 0, i == k - 1) for i, k in zip(info["chunk-location"], info["num-chunks"])]
+    whole = [ax for ax in axes if ax not in seamed]
+    return _filter_block(x, seamed, whole, d, ends, dtype, settings)
 
 
 class _BlockSettings(NamedTuple):

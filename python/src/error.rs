@@ -11,7 +11,7 @@ use pyo3::{PyErr, Python};
 use splinelab::ndimage::NdimageError;
 
 pyo3::create_exception!(
-    _splinelab,
+    splinelab._splinelab,
     NonFiniteCoordinateError,
     PyValueError,
     "A coordinate is NaN or infinite (the engine evaluates finite points only; the Python layer gives scipy's values there)."

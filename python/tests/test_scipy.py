@@ -176,11 +176,19 @@ def test_high_degrees_against_check_mpfr_reference(d, mode):
     assert r["reference_bits"] >= 128 and r["n"] == 60
 
 
-def test_reflect_short_lines_pass_check_where_scipy_fails():
+def test_reflect_short_lines_pass_check_where_scipy_117_fails():
+    # scipy up to 1.17 initialises short reflect lines wrongly (gh-24550,
+    # fixed in 1.18): splinelab has the corrected values with either.
+    import scipy
+
     s = rng(1).uniform(-1, 1, 9)
     ours = check_ulps(s, splinelab.spline_filter1d(s, order=5, mode="reflect"))
     theirs = check_ulps(s, ndimage.spline_filter1d(s, 5, mode="reflect"))
-    assert ours <= 16 < 1e3 < theirs
+    assert ours <= 16
+    if tuple(int(p) for p in scipy.__version__.split(".")[:2]) < (1, 18):
+        assert 1e3 < theirs
+    else:
+        assert theirs <= 16
 
 
 def check_ulps(s, c):

@@ -424,13 +424,23 @@ pub(crate) fn basis_into<T: Real>(
     right: &mut [T],
 ) {
     let p = order - 1;
+    // Outside the span (extrapolation) `right + left` cancels: it is the knot
+    // difference `t_{s+r+1} − t_{s+r+1−j}` computed through `t`, off by
+    // `|t|·u` (0/0 beyond ~1e20); there the difference is taken directly.
+    // Inside, the sum is kept (the same bits as before).
+    let outside = *t < knots[s] || *t > knots[s + 1];
     n[0] = T::one();
     for j in 1..=p {
         left[j] = t.clone() - &knots[s + 1 - j];
         right[j] = knots[s + j].clone() - t;
         let mut saved = T::zero();
         for r in 0..j {
-            let temp = n[r].clone() / (right[r + 1].clone() + &left[j - r]);
+            let width = if outside {
+                knots[s + r + 1].clone() - &knots[s + r + 1 - j]
+            } else {
+                right[r + 1].clone() + &left[j - r]
+            };
+            let temp = n[r].clone() / width;
             n[r] = saved + right[r + 1].clone() * &temp;
             saved = left[j - r].clone() * temp;
         }

@@ -75,7 +75,6 @@ pub fn nearest_node<T: Real>(axis: &GridAxis<T>, x: &T) -> usize {
 /// sample. The same for every point of a grid, so made once a call.
 #[derive(Debug, Clone)]
 pub struct Corners {
-    d: usize,
     strides: Vec<isize>,
     offsets: Vec<isize>,
 }
@@ -91,17 +90,16 @@ impl Corners {
             })
             .collect();
         Self {
-            d,
             strides: strides[..d].to_vec(),
             offsets,
         }
     }
+}
 
-    /// Corner `c`'s node on axis `a`: 0 lower, 1 upper.
-    #[inline]
-    fn node(&self, c: usize, a: usize) -> usize {
-        (c >> (self.d - 1 - a)) & 1
-    }
+/// Corner `c`'s node on axis `a` of `d`: 0 lower, 1 upper.
+#[inline(always)]
+fn node(c: usize, a: usize, d: usize) -> usize {
+    (c >> (d - 1 - a)) & 1
 }
 
 /// The multilinear interpolant of `m` sample columns at one point `x`
@@ -128,6 +126,7 @@ impl Corners {
 /// corner_sum(&[axis], &corners, &[3.4], order, |o, _| v[o as usize], &mut w, &mut acc);
 /// assert_eq!(acc[0], 1.0); // the sample, bit for bit
 /// ```
+#[inline(always)]
 pub fn corner_sum<T: Real>(
     axes: &[GridAxis<T>],
     corners: &Corners,
@@ -151,9 +150,9 @@ pub fn corner_sum<T: Real>(
     match order {
         CornerProduct::WeightsFirst => {
             for (c, &offset) in corners.offsets.iter().enumerate() {
-                let mut weight = w[0][corners.node(c, 0)].clone();
+                let mut weight = w[0][node(c, 0, d)].clone();
                 for (a, wa) in w.iter().enumerate().skip(1) {
-                    weight *= &wa[corners.node(c, a)];
+                    weight *= &wa[node(c, a, d)];
                 }
                 for (b, y) in acc.iter_mut().enumerate() {
                     *y += sample(base + offset, b) * &weight;
@@ -165,7 +164,7 @@ pub fn corner_sum<T: Real>(
                 for (b, y) in acc.iter_mut().enumerate() {
                     let mut term = sample(base + offset, b);
                     for (a, wa) in w.iter().enumerate() {
-                        term *= &wa[corners.node(c, a)];
+                        term *= &wa[node(c, a, d)];
                     }
                     *y += term;
                 }
@@ -195,10 +194,35 @@ pub fn multilinear_eval<T: Real, S: Sample<T>>(
     let corners = Corners::new(&layout.strides, d);
     let step_b = layout.strides[d];
     let sample = |offset: isize, b: usize| samples[layout.at(offset + b as isize * step_b)].widen();
-    over_points(points, d, out, batch, POINTS_PER_TASK, |pts, o| {
-        let mut w = vec![[T::zero(), T::zero()]; d];
-        for (x, acc) in pts.chunks_exact(d).zip(o.chunks_exact_mut(batch)) {
-            corner_sum(axes, &corners, x, order, sample, &mut w, acc);
+    // One to three axes with their count known at compile time (the loops
+    // over axes and corners unrolled: the same operations in the same order).
+    match d {
+        1 => fixed::<T, 1>(&axes[..1], &corners, points, batch, order, sample, out),
+        2 => fixed::<T, 2>(&axes[..2], &corners, points, batch, order, sample, out),
+        3 => fixed::<T, 3>(&axes[..3], &corners, points, batch, order, sample, out),
+        _ => over_points(points, d, out, batch, POINTS_PER_TASK, |pts, o| {
+            let mut w = vec![[T::zero(), T::zero()]; d];
+            for (x, acc) in pts.chunks_exact(d).zip(o.chunks_exact_mut(batch)) {
+                corner_sum(axes, &corners, x, order, sample, &mut w, acc);
+            }
+        }),
+    }
+}
+
+/// [`multilinear_eval`]'s loop for `D` axes.
+fn fixed<T: Real, const D: usize>(
+    axes: &[GridAxis<T>],
+    corners: &Corners,
+    points: &[T],
+    batch: usize,
+    order: CornerProduct,
+    sample: impl Fn(isize, usize) -> T + Sync + Send + Copy,
+    out: &mut [T],
+) {
+    over_points(points, D, out, batch, POINTS_PER_TASK, |pts, o| {
+        let mut w: [[T; 2]; D] = std::array::from_fn(|_| [T::zero(), T::zero()]);
+        for (x, acc) in pts.chunks_exact(D).zip(o.chunks_exact_mut(batch)) {
+            corner_sum(&axes[..D], corners, x, order, sample, &mut w, acc);
         }
     });
 }
