@@ -5,14 +5,16 @@
 # with the CI-file linters of scripts/ci_tools.sh and the headless Chromium
 # of scripts/chromium.sh for the page checks), then scripts/downstream.sh
 # (reproject's, nibabel's, sunpy's and scipy's own interpolation tests with
-# splinelab swapped in for scipy.ndimage's functions), then the documentation
+# splinelab swapped in for scipy.ndimage's and scipy.interpolate's functions,
+# xarray's with the accessor swapped in for `.interp`), then the documentation
 # (scripts/docs.sh: warnings as errors, every gallery example and the pages'
 # doctests run, every local link resolves, every page opens in headless
 # Chromium; the gallery at full size, about 10 s of examples, in both profiles).
 #   scripts/test.sh            # = --full
 #   scripts/test.sh --full     # every downstream client's suite (installs them)
-#   scripts/test.sh --quick    # what CI runs (.ci/run): downstream, scipy's own
-#                              # interpolation tests only (nothing to install), and
+#   scripts/test.sh --quick    # what CI runs (.ci/run): downstream, scipy's and
+#                              # xarray's own interpolation tests only (nothing to
+#                              # install: both are in .venv already), and
 #                              # the CLI fault sweep runs a quarter of its large
 #                              # case classes (SPLINELAB_TEST_PROFILE=quick);
 #                              # the weekly workflow and --full run the rest
@@ -49,7 +51,7 @@ SPLINELAB_REQUIRE_CHROMIUM=1 .venv/bin/python -m pytest -q -p no:cacheprovider -
 stamp "pytest done"
 # Downstream libraries' own tests (and scipy's) with splinelab swapped in.
 if [ "$profile" = quick ]; then
-  bash scripts/downstream.sh --client scipy
+  bash scripts/downstream.sh --quick
 else
   bash scripts/downstream.sh
 fi

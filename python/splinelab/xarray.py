@@ -8,17 +8,23 @@ a subset of the dimensions), the same coordinates, dimensions and attributes
 in the result, the same ``kwargs`` (``fill_value``, ``bounds_error``) and
 out-of-range points, datetime coordinates (numpy datetime64, and cftime dates
 in any calendar) converted as xarray converts them.
-The numbers are :class:`splinelab.RegularGridInterpolator`'s: scipy's for
-"linear", "nearest", "slinear" and "pchip", the exact not-a-knot spline for
-"cubic" and "quintic" (scipy's own on one dimension, where xarray calls
-``interp1d``; on two or more, where xarray calls scipy's ``interpn`` and
-its iterative ``gcrotmk`` solve, the exact spline instead of scipy's
-approximation of it). ``mode=`` interpolates in ndimage's boundary modes
-through :func:`splinelab.map_coordinates` on uniform axes.
+The numbers: along one dimension "linear", "nearest" and "slinear" are
+scipy's ``interp1d`` (xarray's routine there) to the bit, NaN samples
+included; "pchip" :class:`splinelab.RegularGridInterpolator`'s, scipy's.
+"cubic" and "quintic" are the not-a-knot spline: exact (one banded solve
+per grid line), or where the new coordinates are few for the grid, sums of
+its cardinal weights over certified windows, within ``tol * max|data|`` of
+it (``splinelab._xarray_dask``); along two or more dimensions, where
+xarray calls scipy's ``interpn`` and its iterative ``gcrotmk`` solve, that
+spline instead of scipy's approximation of it. ``mode=`` interpolates in
+ndimage's boundary modes through :func:`splinelab.map_coordinates` on
+uniform axes. Results are copies (writing to one never changes the input).
 
-On dask-backed data the result is lazy and no interpolated axis is
-rechunked into one chunk: see :doc:`/coming_from_xarray` for which input
-blocks each output block reads.
+On dask-backed data the result is lazy, the same bits as in memory
+whatever the chunking, and no interpolated axis is rechunked into one
+chunk where windows are read: see :doc:`/coming_from_xarray` for which input
+blocks each output block reads. Dask-backed new coordinates are not
+computed at the call.
 
 xarray is an optional dependency: ``pip install splinelab[xarray]``.
 """
@@ -32,6 +38,8 @@ except ImportError as _err:  # pragma: no cover - exercised in a subprocess by t
                       "pip install splinelab[xarray]") from _err
 
 import itertools
+import math
+import warnings
 from collections.abc import Mapping, Sequence
 
 import numpy as np
@@ -45,8 +53,9 @@ __all__ = ["SplinelabDataArrayAccessor", "SplinelabDatasetAccessor", "METHODS"]
 METHODS = {"linear": 2, "nearest": 1, "slinear": 2, "cubic": 4, "quintic": 6, "pchip": 4}
 #: The methods whose value at a point reads only nearby samples, and how
 #: many samples beyond the point's cell on each side (the window a chunked
-#: axis reads for them).
-_HALO = {"linear": 0, "nearest": 0, "slinear": 0, "pchip": 2}
+#: axis reads for them; "linear" one: along one dimension scipy's
+#: ``interp1d`` takes a node's left interval).
+_HALO = {"linear": 1, "nearest": 0, "slinear": 0, "pchip": 2}
 #: The ndimage spline degree of each method under ``mode=``.
 _MODE_ORDER = {"nearest": 0, "linear": 1, "slinear": 1, "cubic": 3, "quintic": 5}
 #: The methods xarray interpolates along one dimension at a time where the
@@ -89,8 +98,16 @@ def _is_cftime(values):
 
 
 def _is_datetime_like(values):
-    """numpy datetimes and timedeltas, or cftime dates (xarray's ``_contains_datetime_like_objects``)."""
-    return np.asarray(values).dtype.kind in "Mm" or _is_cftime(values)
+    """numpy datetimes and timedeltas, or cftime dates (xarray's
+    ``_contains_datetime_like_objects``). A dask array is judged by its
+    dtype, and an object one by its first element (the only one computed)."""
+    from ._xarray_dask import is_dask
+    kind = values.dtype.kind
+    if kind in "Mm":
+        return True
+    if is_dask(values):
+        return kind == "O" and values.size > 0 and _is_cftime(values.ravel()[:1].compute())
+    return _is_cftime(values)
 
 
 def _parsed_dates(obj, k, a):
@@ -132,7 +149,7 @@ def _validated(obj, coords):
                 raise IndexError(f"Unlabeled multi-dimensional array cannot be used for indexing: {k}")
             v = xr.Variable((k,) if a.ndim else (), a, attrs=attrs)
         x = _axis_variable(obj, k)
-        if _is_datetime_like(x.values) and not _is_datetime_like(v.values):
+        if _is_datetime_like(x.values) and not _is_datetime_like(v.data):
             raise TypeError("When interpolating over a datetime-like coordinate, the coordinates to interpolate "
                             f"to must be either datetime strings or datetimes. Instead got\n{v}")
         out[k] = v
@@ -159,10 +176,11 @@ def _groups(indexers, method):
         return [dict(indexers)]
     items = list(indexers.items())
     out, run, run_dims = [], {}, set()
-    for i, (k, (x, new)) in enumerate(items):
-        run[k] = (x, new)
+    for i, (k, axis) in enumerate(items):
+        run[k] = axis
+        new = axis[1]
         run_dims |= set(new.dims if new.ndim else (k,))
-        later = set().union(*(set(n.dims if n.ndim else (kk,)) for kk, (_, n) in items[i + 1:]))
+        later = set().union(*(set(a[1].dims if a[1].ndim else (kk,)) for kk, a in items[i + 1:]))
         if i == len(items) - 1 or not run_dims & later:
             out.append(run)
             run, run_dims = {}, set()
@@ -180,6 +198,10 @@ class _Options:
         self.mode = mode
         self.tol = tol
         self.one_dim = one_dim
+        # "slinear", "cubic", "quintic": windowed sums (the others, and
+        # "cubic"/"quintic" where _xarray_dask.use_windows says no, the
+        # whole-grid interpolator); set per group by _interp_group
+        self.windows = method == "slinear"
         kwargs = dict(kwargs or {})
         unknown = set(kwargs) - _KWARGS
         if unknown:
@@ -212,26 +234,31 @@ class _Options:
         self.below, self.above = (fill, fill) if np.ndim(fill) == 0 or isinstance(fill, str) else tuple(fill)
 
 
-def _float_axes(xs, news):
+def _float_axes(xs, news, origins=None):
     """The grid's axes and the new coordinates as float64, datetimes as
-    xarray converts them (offset by the axis' minimum, in the axis' unit;
-    cftime dates in nanoseconds)."""
+    xarray converts them (offset by the axis' minimum ``origins``, in the
+    axis' unit; cftime dates in nanoseconds). The minimum is the whole
+    axis' (before the restriction of "linear" and "nearest" to a window,
+    where xarray takes the window's), so a point's numbers do not depend on
+    which samples it is read with (default: each axis' own). New
+    coordinates that are dask arrays stay lazy."""
+    from ._xarray_dask import is_dask
     out_x, out_new = [], []
-    for x, new in zip(xs, news):
+    origins = [None] * len(xs) if origins is None else origins
+    for x, new, x0 in zip(xs, news, origins):
         x = np.asarray(x)
-        new = np.asarray(new)
+        x0 = _origin(x) if x0 is None else x0
+        new = new if is_dask(new) else np.asarray(new)
         if _is_cftime(x):
-            x0 = x.min()
             out_x.append(_cftime_ns(x, x0))
-            out_new.append(_cftime_ns(new, x0))
+            out_new.append(new.map_blocks(_cftime_ns, x0, dtype=np.float64) if is_dask(new) else _cftime_ns(new, x0))
         elif x.dtype.kind in "Mm":
             unit = np.timedelta64(1, np.datetime_data(x.dtype)[0])
-            x0 = x.min()
             out_x.append((x - x0) / unit)
             out_new.append((new - x0) / unit)
         else:
             out_x.append(np.asarray(x, dtype=np.float64))
-            out_new.append(np.asarray(new, dtype=np.float64))
+            out_new.append(new.astype(np.float64))
     return out_x, out_new
 
 
@@ -273,15 +300,69 @@ def _result_dtype(dtype, opts):
     return np.dtype(np.complex128) if dtype.kind == "c" else np.dtype(np.float64)
 
 
-def _raw(grid, values, xi, opts):
+def _raw(grid, values, xi, opts, outer=None):
     """Values on a grid (the grid's axes first, any trailing axes) at points
-    ``xi`` (P, ngrid), extrapolated: (P, trailing...)."""
-    if opts.mode is None:
+    ``xi`` (P, ngrid), extrapolated: (P, trailing...). "slinear", "cubic"
+    and "quintic" are windowed sums (:func:`splinelab._xarray_dask.spline_values`;
+    ``outer``: the points are the orthogonal grid of these coordinates);
+    "linear" along one dimension of a 1-D float64 or integer array is
+    ``numpy.interp``, as scipy's ``interp1d`` computes it there; the others
+    :class:`splinelab.RegularGridInterpolator`'s."""
+    from ._xarray_dask import DEGREE, spline_values
+    dtype = _result_dtype(values.dtype, opts)
+    if opts.mode is not None:
+        out = _evaluate_mode(grid, values, xi, opts)
+    elif opts.method in DEGREE and opts.windows:
+        out = spline_values(grid, values, xi, opts, outer)
+    elif _numpy_interp(values, opts):
+        out = np.interp(xi[:, 0], grid[0], np.asarray(values, dtype=np.float64))
+    elif opts.method == "linear" and opts.one_dim:
+        out = _interp1d_linear(grid[0], np.asarray(values), xi[:, 0])
+    elif opts.method in DEGREE and opts.one_dim:
+        out = _exact_lines(grid, values, xi, opts)
+    else:
         ip = RegularGridInterpolator(tuple(grid), values, method=opts.method, bounds_error=False, fill_value=None)
         out = np.asarray(ip(xi))
-    else:
-        out = _evaluate_mode(grid, values, xi, opts)
-    return out.astype(_result_dtype(values.dtype, opts), copy=False)
+    return out.astype(dtype, copy=False)
+
+
+def _interp1d_linear(x, y, q):
+    """"linear" along one dimension as scipy's ``interp1d`` computes it
+    (xarray's routine there; its ``_call_linear``): the interval
+    ``x[i-1] < q <= x[i]`` (the first at and below the first node), and
+    ``slope * (q - x[i-1]) + y[i-1]``, so a NaN sample spreads to the points
+    of the intervals beside it, a node's own interval the one on its left."""
+    i = np.clip(np.searchsorted(x, q), 1, len(x) - 1)
+    lo, hi = i - 1, i
+    shape = (-1,) + (1,) * (y.ndim - 1)
+    slope = (y[hi] - y[lo]) / (x[hi] - x[lo]).reshape(shape)
+    return slope * (q - x[lo]).reshape(shape) + y[lo]
+
+
+def _exact_lines(grid, values, xi, opts):
+    """The exact spline along one axis, a line holding a non-finite sample
+    NaN (scipy's ``interp1d``, xarray's routine there, gives NaN for every
+    point of an array holding a NaN; a line is what it solves)."""
+    from ._xarray_dask import line_flags
+    values = np.asarray(values)
+    flags = line_flags(values, 1)
+    if flags.any():
+        values = np.where(flags, 0, values)
+    out = np.asarray(RegularGridInterpolator(tuple(grid), values, method=opts.method, bounds_error=False,
+                                             fill_value=None)(xi))
+    if flags.any():
+        out[:, flags] = np.nan
+    return out
+
+
+def _numpy_interp(values, opts):
+    """Where scipy's ``interp1d`` (xarray's one-dimensional "linear")
+    delegates to ``numpy.interp``: a 1-D float64 or integer array and a fill
+    that does not extrapolate (it is exact at the nodes, and a NaN sample
+    spreads only to the intervals beside it)."""
+    return (opts.method == "linear" and opts.one_dim and values.ndim == 1
+            and (values.dtype == np.float64 or values.dtype.kind in "iub")
+            and not isinstance(opts.below, str) and not isinstance(opts.above, str))
 
 
 def _apply_fill(out, grid, xi, opts, dims):
@@ -308,9 +389,9 @@ def _apply_fill(out, grid, xi, opts, dims):
     return out
 
 
-def _evaluate(grid, values, xi, opts, dims):
+def _evaluate(grid, values, xi, opts, dims, outer=None):
     """``_raw`` with ``_apply_fill``."""
-    return _apply_fill(_raw(grid, values, xi, opts), grid, xi, opts, dims)
+    return _apply_fill(_raw(grid, values, xi, opts, outer), grid, xi, opts, dims)
 
 
 def _index_points(grid, xi):
@@ -355,6 +436,7 @@ def _interp_group(var, group, method, kwargs, mode, tol):
     dims = list(group)
     xs = [group[d][0] for d in dims]
     news = [group[d][1] for d in dims]
+    origins = [group[d][2] for d in dims]
     sizes = _result_sizes(news)
     rdims = list(dict.fromkeys(itertools.chain.from_iterable(n.dims for n in news)))
     vdims = [d for d in rdims if d in var.dims and d not in dims]      # vectorised over (xarray's vectorize)
@@ -366,23 +448,46 @@ def _interp_group(var, group, method, kwargs, mode, tol):
             raise ValueError(f"operands cannot be broadcast together with mismatched lengths for dimension "
                              f"{d}: {var.sizes[d]} vs {sizes[d]}")
     opts = _Options(method, kwargs, mode, tol, one_dim=len(dims) == 1)
-    grid, new_f = _float_axes([x.values for x in xs],
-                              [n.set_dims({d: sizes[d] for d in rdims}).values for n in news])
+    from . import _xarray_dask
+    lazy = any(_xarray_dask.is_dask(n.data) for n in news)
+    broadcast = [n.set_dims({d: sizes[d] for d in rdims}).data for n in news]
+    grid, new_f = _float_axes([x.values for x in xs], broadcast, origins)
     for d, g in zip(dims, grid):
         _check_axis(d, g, method, mode)
     pdims = [d for d in rdims if d not in vdims]
     pshape = tuple(sizes[d] for d in pdims)
     data = var.transpose(*(dims + vdims + bdims)).data
     bshape = tuple(var.sizes[d] for d in bdims)
+    orthogonal = not vdims and all(n.ndim <= 1 for n in news) and len({d for n in news for d in n.dims}) == sum(
+        n.ndim for n in news)
+    if mode is None and method in _xarray_dask.DEGREE and method != "slinear":
+        npoints = math.prod(pshape)
+        counts = [n.size for n in news] if orthogonal else [npoints] * len(news)
+        opts.windows = _xarray_dask.use_windows([len(g) for g in grid], _xarray_dask.DEGREE[method], counts,
+                                                npoints, math.prod(bshape), orthogonal, _xarray_dask._tol(opts))
 
-    from . import _xarray_dask
-    if _xarray_dask.is_dask(data):
-        result = _xarray_dask.interp(data, grid, new_f, rdims, vdims, pdims, len(bdims), opts, dims)
+    if lazy:
+        result = _xarray_dask.interp_lazy(data, grid, new_f, rdims, vdims, pdims, opts, dims)
+    elif _xarray_dask.is_dask(data):
+        result = _xarray_dask.interp(data, grid, new_f, rdims, vdims, pdims, len(bdims), opts, dims,
+                                     _outer(news, new_f, rdims) if orthogonal else None)
     else:
-        result = _interp_numpy(np.asarray(data), grid, new_f, rdims, vdims, pdims, opts, dims)
+        result = _interp_numpy(np.asarray(data), grid, new_f, rdims, vdims, pdims, opts, dims,
+                               _outer(news, new_f, rdims) if orthogonal else None)
     result = result.reshape(tuple(sizes[d] for d in vdims) + pshape + bshape)
     out = xr.Variable(vdims + pdims + bdims, result, attrs=var.attrs)
     return out.transpose(*out_dims) if len(out_dims) > 1 else out
+
+
+def _outer(news, new_f, rdims):
+    """The points are the orthogonal grid of per-axis coordinates (each new
+    coordinate a scalar or 1-D along a dimension of its own, none
+    vectorised): those coordinates (float64, in the points' C order)."""
+    out = []
+    for n, f in zip(news, new_f):
+        sel = tuple(slice(None) if d in n.dims else 0 for d in rdims)
+        out.append(np.asarray(f[sel]).reshape(-1))
+    return out
 
 
 def _points(new_f, rdims, vdims, vindex):
@@ -391,15 +496,16 @@ def _points(new_f, rdims, vdims, vindex):
     return np.stack([n[sel].ravel() for n in new_f], axis=-1) if new_f else np.empty((1, 0))
 
 
-def _interp_numpy(values, grid, new_f, rdims, vdims, pdims, opts, dims):
-    """In memory: one RegularGridInterpolator per vectorised position (one
-    in all where the new coordinates share no dimension with the data)."""
+def _interp_numpy(values, grid, new_f, rdims, vdims, pdims, opts, dims, outer=None):
+    """In memory: one evaluation per vectorised position (one in all where
+    the new coordinates share no dimension with the data; ``outer``: their
+    orthogonal grid's coordinates, :func:`_outer`)."""
     ng, nv = len(grid), len(vdims)
     vshape = values.shape[ng:ng + nv]
     outs = []
     for vindex in np.ndindex(*vshape):
         block = values[(slice(None),) * ng + vindex]
-        outs.append(_evaluate(grid, block, _points(new_f, rdims, vdims, vindex), opts, dims))
+        outs.append(_evaluate(grid, block, _points(new_f, rdims, vdims, vindex), opts, dims, outer))
     if not nv:
         return outs[0]
     return np.stack(outs).reshape(vshape + outs[0].shape)
@@ -419,13 +525,17 @@ def _interp_dataset(obj, coords, method, assume_sorted, kwargs, method_non_numer
         unsorted = [k for k in indexers if not _increasing(_axis_variable(obj, k).values)]
         if unsorted:
             obj = obj.sortby(unsorted)
+    origins = {k: _origin(_axis_variable(obj, k).values) for k in indexers}
+    if mode is None and method in ("linear", "nearest"):
+        for k, v in indexers.items():
+            obj = _localized(obj, k, v)
     axes = {k: _axis_variable(obj, k) for k in indexers}
 
     variables, reindex = {}, []
     for name, var in obj.variables.items():
         if name in indexers:
             continue
-        mine = {k: (axes[k], v) for k, v in indexers.items() if k in var.dims}
+        mine = {k: (axes[k], v, origins[k]) for k, v in indexers.items() if k in var.dims}
         kind = var.dtype.kind
         if not mine:
             variables[name] = var
@@ -436,7 +546,7 @@ def _interp_dataset(obj, coords, method, assume_sorted, kwargs, method_non_numer
         elif kind in "ObU":
             if all(var.sizes[d] == 1 for d in mine):
                 variables[name] = xr.Variable(
-                    *_broadcast_dims(var.squeeze(), [n for _, n in mine.values()])).copy(deep=True)
+                    *_broadcast_dims(var.squeeze(), [a[1] for a in mine.values()])).copy(deep=True)
             else:
                 reindex.append(name)
 
@@ -447,20 +557,99 @@ def _interp_dataset(obj, coords, method, assume_sorted, kwargs, method_non_numer
             variables[name] = re.variables[name]
 
     coord_names = [n for n in obj.coords if n in variables]
+    attached = _indexer_coords(coords, variables, obj)
     for k, v in indexers.items():
         variables[k] = v
         coord_names.append(k)
-    for k, v in coords.items():
-        if isinstance(v, xr.DataArray):
-            for c, cv in v.coords.items():
-                if c not in variables:
-                    variables[c] = cv.variable
-                    coord_names.append(c)
-    data_vars = {n: v for n, v in variables.items() if n not in coord_names}
+    for c, cv in attached.items():
+        variables[c] = cv
+        if c not in coord_names:
+            coord_names.append(c)
+    # what is not interpolated is copied, as xarray's result is: writing to
+    # the result never changes the input
+    data_vars = {n: v.copy(deep=True) if v is obj.variables.get(n) else v
+                 for n, v in variables.items() if n not in coord_names}
     kept = obj.drop_vars([n for n in obj.variables if n not in coord_names or n in indexers
                           or variables.get(n) is not obj.variables[n]]).coords
-    new_coords = {n: variables[n] for n in coord_names if n not in kept}
+    fresh = _fresh_indexed(kept)
+    kept = kept.to_dataset().drop_vars(list(fresh)).coords.copy(deep=True)
+    new_coords = {**fresh, **{n: variables[n] for n in coord_names if n not in kept and n not in fresh}}
     return xr.Dataset(data_vars, coords=kept, attrs=obj.attrs).assign_coords(new_coords)
+
+
+def _fresh_indexed(coords):
+    """The kept coordinates with a plain pandas index, as variables holding
+    a copy of their values (their new index is built on the copy: a deep
+    copy of the coordinates keeps the index object, whose values the
+    result's coordinate would share with the input's)."""
+    from xarray.indexes import PandasIndex
+    out = {}
+    for n, c in coords.items():
+        if type(coords.xindexes.get(n)) is PandasIndex and c.dims == (n,):
+            v = c.variable
+            out[n] = xr.Variable(v.dims, np.array(v.values, copy=True), v.attrs, v.encoding)
+    return out
+
+
+def _localized(obj, k, new):
+    """xarray's ``missing._localize`` for "linear" and "nearest": the
+    dataset restricted along ``k`` to the samples from two before the node
+    nearest the smallest new coordinate to two after the node nearest the
+    largest (every cell a new coordinate falls in, and the end cells of
+    points beyond the ends), so in-memory data is read only there (dask
+    data: the graph only holds those chunks). Unchanged where the new
+    coordinates are lazy (dask), empty or all NaN."""
+    import pandas as pd
+
+    from ._xarray_dask import is_dask
+    if is_dask(new.data) or new.size == 0:
+        return obj
+    values = new.values
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RuntimeWarning)   # all NaN: left whole below
+        try:
+            lo, hi = np.nanmin(values), np.nanmax(values)
+        except (TypeError, ValueError):
+            return obj
+    if pd.isna(lo) or pd.isna(hi):
+        return obj
+    index = _axis_variable(obj, k).to_index()
+    try:
+        imin, imax = index.get_indexer(pd.Index([lo, hi]), method="nearest")
+    except (TypeError, ValueError):
+        return obj
+    if imin < 0 or imax < 0:
+        return obj
+    return obj.isel({k: slice(max(imin - 2, 0), imax + 2)})
+
+
+def _indexer_coords(coords, taken, obj):
+    """xarray's ``_get_indexers_coords_and_indexes``: the coordinates of the
+    DataArray indexers (merged; conflicting values a ``MergeError``) that
+    the result holds no variable of yet, an indexer's own coordinate on
+    its dimension included (it replaces the new coordinate's values, as in
+    xarray: dates labelling new positions stay dates). A dimension
+    coordinate that disagrees with the data's is an ``IndexError``."""
+    out = {}
+    for v in coords.values():
+        if not isinstance(v, xr.DataArray):
+            continue
+        for c, cv in v.coords.items():
+            if c in out and not out[c].equals(cv.variable):
+                raise xr.MergeError(f"conflicting values for variable {c!r} on objects to be combined")
+            out.setdefault(c, cv.variable)
+    for c, cv in out.items():
+        if c in obj.dims and c in obj.coords and c in taken and not cv.equals(taken[c]):
+            raise IndexError(f"dimension coordinate {c!r} conflicts between indexed and indexing objects:\n"
+                             f"{obj[c]}\nvs.\n{cv}")
+    return {c: cv for c, cv in out.items() if c not in taken}
+
+
+def _origin(x):
+    """The offset of a datetime-like axis' conversion to floats (xarray's:
+    its minimum); None for a numeric axis."""
+    x = np.asarray(x)
+    return x.min() if x.size and (x.dtype.kind in "Mm" or _is_cftime(x)) else None
 
 
 def _increasing(x):
@@ -518,8 +707,9 @@ coords : dict, optional
     parses them: into the cftime index's calendar on a cftime axis).
 method : str, optional
     "cubic" (default; xarray's default is "linear"), "quintic", "linear",
-    "nearest", "slinear" or "pchip". "cubic" and "quintic" are the exact
-    not-a-knot spline; the others give scipy's numbers.
+    "nearest", "slinear" or "pchip". "cubic" and "quintic" are the
+    not-a-knot spline (exact, or within ``tol`` of it on windows); the
+    others give scipy's numbers.
 assume_sorted : bool, optional
     False (default): the interpolated coordinates are sorted first (xarray's
     ``sortby``); True: they must be increasing already.
@@ -541,9 +731,10 @@ tol : float, optional
     (:func:`splinelab.map_coordinates`' ``tol``; on dask data chunked
     along an interpolated dimension also of the windows read, default
     1e-12 there: ``splinelab.dask.bound``). For "cubic" and
-    "quintic" on dask data chunked along an interpolated dimension: the
-    certified bound, relative to max|data|, on the distance of the result
-    read from windows from the whole-grid spline (default 1e-14).
+    "quintic" where they sum windows (few new coordinates for the grid, in
+    memory and on dask alike): the certified bound, relative to max|data|,
+    on the distance of the result from the whole-grid spline (default
+    1e-14).
 **coords_kwargs
     The keyword form of ``coords``.
 

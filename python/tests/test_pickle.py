@@ -422,13 +422,8 @@ def _xarray_cases():
 # inside _grouped, _whole_grid, _mode_windows and the pointwise blockwise):
 # cloudpickle (dask.distributed) sends them, plain pickle cannot. Module-level
 # functions bound with functools.partial fix it (as splinelab.dask's _map).
-_XARRAY_CLOSURES = pytest.mark.xfail(strict=True, raises=(AttributeError, pickle.PicklingError),
-                                     reason="_xarray_dask's blockwise functions are closures")
-
-
-@pytest.mark.parametrize("case", [pytest.param(c, marks=_XARRAY_CLOSURES) if c.startswith("lazy") else c
-                                  for c in ("eager cubic", "eager mode=mirror", "lazy, grid axes chunked",
-                                            "lazy, carried axis chunked", "lazy, mode= windows", "lazy, pointwise")])
+@pytest.mark.parametrize("case", ["eager cubic", "eager mode=mirror", "lazy, grid axes chunked",
+                                  "lazy, carried axis chunked", "lazy, mode= windows", "lazy, pointwise"])
 def test_xarray_results_round_trip(case):
     """The accessor's results pickle (a lazy one with its graph) and
     compute to the original's bits, coordinates included."""
@@ -514,7 +509,7 @@ def _unaligned_in_worker(client, array):
     whatever offset its message gives it: 1 to 7 mod 8 in most tries), and
     that it is."""
     for _ in range(32):
-        held = client.scatter(array)
+        held = client.scatter(array, hash=False)  # a new key each time: a released copy is not the next one
         if not client.submit(operator.attrgetter("flags.aligned"), held, pure=False).result():
             return held
     pytest.fail("distributed placed 32 copies at aligned addresses")
