@@ -44,6 +44,8 @@ if [ "$(cat "$stamp" 2>/dev/null)" != "${reqs[*]} ${extras[*]}" ]; then
   fi
 fi
 
+# The C toolchain, GMP/MPFR and m4 the extension's build needs (quick when present).
+bash scripts/setup.sh
 [ -f "$HOME/.cargo/env" ] && . "$HOME/.cargo/env"
 read -r -a features <<<"$(bash scripts/gmp_features.sh)"
 # An extension left by a build before the abi3 wheel (issue 38) would be
