@@ -216,27 +216,10 @@ class _Spline:
     def __init__(self, grid, values, degree, threads):
         stacked, self.cdtype = _stacked([len(g) for g in grid], values)
         self.spline = _ext.GridSpline(list(grid), stacked, degree, threads)
-        self._args = (tuple(grid), stacked, degree, threads)
-
-    def __reduce__(self):
-        # The engine's spline is rebuilt from its samples: the solve is
-        # deterministic (one banded LU per grid line, the same operations
-        # in any thread), so the copy's coefficients are the same bits.
-        grid, stacked, degree, threads = self._args
-        return _rebuilt_spline, (grid, stacked, self.cdtype, degree, threads)
 
     def __call__(self, xi, nu=None, threads=None):
         out = self.spline.eval(np.ascontiguousarray(xi, dtype=np.float64), nu, threads)
         return _from_columns(out, self.cdtype)
-
-
-def _rebuilt_spline(grid, stacked, cdtype, degree, threads):
-    """An unpickled :class:`_Spline`."""
-    spline = _Spline.__new__(_Spline)
-    spline.cdtype = cdtype
-    spline.spline = _ext.GridSpline(list(grid), stacked, degree, threads)
-    spline._args = (grid, stacked, degree, threads)
-    return spline
 
 
 def _power_of_two_scaled(grid, xi):
@@ -620,7 +603,7 @@ class RegularGridInterpolator:
         keep, values = self._long_axes(values) if isinstance(values, np.ndarray) else ([], None)
         if values is not None and keep and values.dtype.isnative and values.dtype in _GATHERED:
             grid = [self._grid[i] for i in keep]
-            stacked, cdtype = _stacked([len(g) for g in grid], values)
+            stacked, cdtype = _samples([len(g) for g in grid], values)
             out = _ext.grid_nearest(grid, stacked, _columns(xi, keep), self._threads)
             return out if cdtype is None else np.ascontiguousarray(out).view(values.dtype)
         index = []

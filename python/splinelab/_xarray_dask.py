@@ -1,4 +1,4 @@
-"""The accessor's windowed splines and its dask routes (``splinelab.xarray``, issue 51).
+"""The accessor's windowed splines and its dask routes (``splinelab.xarray``).
 
 **Windowed sums, one computation for every route.** Along an axis with
 nodes x₀ … xₙ₋₁ the degree-k spline's value at q is ``sum_i w_i(q) y_i``:

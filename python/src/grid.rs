@@ -53,17 +53,17 @@ fn work_ns(multiply_adds: usize) -> f64 {
     multiply_adds as f64
 }
 
-/// A new float64 array `n × m` filled by `fill` without the GIL
-/// (`work` estimated nanoseconds).
-fn results<'py>(
+/// A new array `n × m` (float64, or the samples' type) filled by `fill`
+/// without the GIL (`work` estimated nanoseconds).
+fn results<'py, T: numpy::Element + Send>(
     py: Python<'py>,
     n: usize,
     m: usize,
     threads: Option<usize>,
     work: f64,
-    fill: impl FnOnce(&mut [f64]) -> Result<(), GriddedError> + Send,
+    fill: impl FnOnce(&mut [T]) -> Result<(), GriddedError> + Send,
 ) -> PyResult<Bound<'py, PyAny>> {
-    let mut out = crate::alloc::zeros::<f64>(py, &[n, m])?;
+    let mut out = crate::alloc::zeros::<T>(py, &[n, m])?;
     let slice = out.slice_mut();
     crate::pool::run_detached(py, threads, work, || fill(slice))?.map_err(grid_error)?;
     Ok(out.into_any())
@@ -121,8 +121,13 @@ fn on_samples<S: Sample<f64> + numpy::Element>(
     // A broadcast axis (stride 0) holds one distinct sample along it: that
     // one is read, and the layout steps 0 along the axis (a broadcast grid
     // is never copied or scanned whole).
-    let broadcast: Vec<usize> = (0..values.ndim())
-        .filter(|&a| values.strides()[a] == 0 && values.shape()[a] > 1)
+    let broadcast: Vec<usize> = values
+        .strides()
+        .iter()
+        .zip(values.shape())
+        .enumerate()
+        .filter(|(_, (stride, len))| **stride == 0 && **len > 1)
+        .map(|(a, _)| a)
         .collect();
     let mut distinct = values.clone();
     for &a in &broadcast {
@@ -130,7 +135,9 @@ fn on_samples<S: Sample<f64> + numpy::Element>(
     }
     let steps_zero = |mut layout: Layout| {
         for &a in &broadcast {
-            layout.strides[a] = 0;
+            if let Some(stride) = layout.strides.get_mut(a) {
+                *stride = 0;
+            }
         }
         layout
     };
@@ -421,18 +428,14 @@ pub fn grid_nearest<'py>(
         threads: Option<usize>,
     ) -> PyResult<Bound<'py, PyAny>> {
         let m = v.shape().last().copied().unwrap_or(0);
-        let mut out = crate::alloc::zeros::<S>(py, &[n, m])?;
-        let slice = out.slice_mut();
         // A binary search per axis and m copies a point.
         let work = work_ns(n.saturating_mul(8 * axes.len() + m));
-        crate::pool::run_detached(py, threads, work, || {
+        results(py, n, m, threads, work, |out: &mut [S]| {
             on_samples(v, axes, |s, layout, m| {
-                multilinear::nearest_gather(axes, s, layout, m, x, slice);
+                multilinear::nearest_gather(axes, s, layout, m, x, out);
                 Ok(())
             })
-        })?
-        .map_err(grid_error)?;
-        Ok(out.into_any())
+        })
     }
     match Values::extract(values)? {
         Values::F64(v) => gather(py, &axes, v.as_array(), x, n, threads),
